@@ -1,0 +1,25 @@
+# Helpers shared by every layer: one place sets warnings and include roots.
+
+# telear_library(NAME SOURCES ... ) creates the static library telear_NAME, alias telear::NAME,
+# whose headers are included as "NAME/file.hpp" from src/.
+function(telear_library name)
+  add_library(telear_${name} STATIC ${ARGN})
+  add_library(telear::${name} ALIAS telear_${name})
+  target_include_directories(telear_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  telear_warnings(telear_${name})
+endfunction()
+
+function(telear_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+endfunction()
+
+# telear_test(NAME SOURCES ... LIBS ...) registers one GoogleTest executable with CTest.
+function(telear_test name)
+  cmake_parse_arguments(T "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${T_SOURCES})
+  target_link_libraries(${name} PRIVATE ${T_LIBS} telear::test_util GTest::gtest GTest::gmock
+                                        GTest::gtest_main)
+  telear_warnings(${name})
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
+                       PROPERTIES ENVIRONMENT "TELEAR_DATA_DIR=${TELEAR_DATA_DIR}")
+endfunction()

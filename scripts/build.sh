@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Configures and builds telear (Release, Ninja) into ./build. Extra arguments go to CMake.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+"$(pwd)/scripts/install-deps.sh"
+build_dir=${TELEAR_BUILD_DIR:-build}
+if [ ! -f "$build_dir/build.ninja" ]; then
+  cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"
+fi
+# Two parallel jobs fit the 2-core, 24 GiB machines this project targets.
+cmake --build "$build_dir" -j "${TELEAR_JOBS:-2}"

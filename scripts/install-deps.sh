@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages telear builds against, skipping those already present.
+# Idempotent: a second run with everything installed returns at once without apt-get.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  cmake ninja-build g++ pkg-config clang-format
+  # core: math, robot descriptions, file formats
+  libeigen3-dev liburdfdom-dev libyaml-cpp-dev nlohmann-json3-dev
+  # apps
+  libcli11-dev libspdlog-dev
+  # tests and benchmarks (Orocos KDL is the benchmark baseline)
+  libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "telear: all ${#packages[@]} Debian packages already installed"
+  exit 0
+fi
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then
+    sudo_cmd=(sudo)
+  else
+    echo "telear: need root or sudo to install: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+
+echo "telear: installing ${#missing[@]} missing Debian packages: ${missing[*]}"
+"${sudo_cmd[@]}" apt-get update -q
+DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,28 @@
+#pragma once
+// Shared helpers of the test suite: model loading, seeded random configurations, and an
+// independent standard-DH product to check kinematics against.
+
+#include <Eigen/Geometry>
+#include <random>
+#include <string>
+
+#include "core/robot_model.hpp"
+
+namespace telear::test {
+
+// data/ of the source tree.
+std::string data_path(const std::string& relative);
+
+// The shipped PUMA 560 (DH YAML); fails the test on error.
+RobotModelPtr puma560();
+
+// Uniform random joint vector within the model's limits (infinite limits: [-pi, pi]).
+Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& rng);
+
+// Naive 4x4 product of standard DH matrices, written independently of core/kinematics.
+Eigen::Matrix4d dh_product(const std::vector<DhRow>& rows, const Eigen::VectorXd& q);
+
+// Maximum absolute entry difference of two 4x4 matrices.
+double max_abs_diff(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b);
+
+}  // namespace telear::test
