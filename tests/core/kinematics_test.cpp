@@ -41,6 +41,27 @@ TEST_F(PumaKinematics, ZeroConfigurationIsTheKnownPose) {
   EXPECT_LT((T.linear() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+TEST_F(PumaKinematics, MatchesTheRoboticsToolboxPublishedPoseAtQn) {
+  // Corke's RVC3-python README prints puma.fkine(puma.qn) for the toolbox's Puma560 with the
+  // pedestal left out (d1 = 0), to four decimals:
+  //    0  0  1   0.5963
+  //    0  1  0  -0.1501
+  //   -1  0  0   0.6575
+  // and ikine_LM's answer q = (7.235e-08, -0.8335, 0.09396, 3.142, 0.8312, -3.142) for it.
+  const Eigen::Isometry3d T = tool_pose(*model, *model->named_configuration("qn"));
+  const double d1 = (*model->dh())[0].d;
+  EXPECT_NEAR(T.translation().x(), 0.5963, 5e-5);
+  EXPECT_NEAR(T.translation().y(), -0.1501, 5e-5);
+  EXPECT_NEAR(T.translation().z() - d1, 0.6575, 5e-5);
+  Eigen::Matrix3d R_expected;
+  R_expected << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+  EXPECT_LT((T.linear() - R_expected).cwiseAbs().maxCoeff(), 1e-12);
+  Eigen::VectorXd q_toolbox(6);
+  q_toolbox << 7.235e-08, -0.8335, 0.09396, 3.142, 0.8312, -3.142;
+  const Eigen::Isometry3d T_toolbox = tool_pose(*model, q_toolbox);
+  EXPECT_LT((T_toolbox.translation() - T.translation()).norm(), 1e-3);  // 4-digit q printout
+}
+
 TEST_F(PumaKinematics, RandomConfigurationsMatchIndependentDhProduct) {
   std::mt19937_64 rng(42);
   KinematicsData data(*model);
