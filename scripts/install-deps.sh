@@ -10,8 +10,14 @@ packages=(
   libeigen3-dev liburdfdom-dev libyaml-cpp-dev nlohmann-json3-dev
   # apps
   libcli11-dev libspdlog-dev
+  # vision: camera models, distortion maps, calibration
+  libopencv-dev
+  # render: GL headers and loader, headless EGL with Mesa's llvmpipe, GLFW windows, stb images
+  libgl-dev libegl-dev libepoxy-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libstb-dev
   # tests and benchmarks (Orocos KDL is the benchmark baseline)
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
+  # tests: OpenCV's real stereo chessboard images (examples/data), ~95 MB, not needed to build
+  opencv-doc
 )
 
 missing=()

@@ -5,9 +5,12 @@
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <sstream>
 
 #include "apps/cli_parsing.hpp"
 #include "core/angles.hpp"
+#include "core/ik_analytic.hpp"
+#include "core/inverse_kinematics.hpp"
 #include "core/joint_limits.hpp"
 #include "core/kinematics.hpp"
 #include "core/robot_loader.hpp"
@@ -44,6 +47,147 @@ void print_pose(const Eigen::Isometry3d& T, std::ostream& out) {
                 p.z(), degrees_from_radians(rpy.x()), degrees_from_radians(rpy.y()),
                 degrees_from_radians(rpy.z()));
   out << buffer;
+}
+
+// Joint vector in the user's units: degrees for revolute joints with --deg.
+Eigen::VectorXd joints_to_user(const RobotModel& model, Eigen::VectorXd q, bool degrees) {
+  if (!degrees) return q;
+  for (int i = 0; i < model.dof(); ++i) {
+    if (model.joint(i).type == JointType::kRevolute) q[i] = degrees_from_radians(q[i]);
+  }
+  return q;
+}
+
+// "[  1.00,  -2.50]": fixed width and precision, and no "-0.00" for values that round to 0.
+std::string format_joints(const Eigen::VectorXd& q, int width, int precision) {
+  std::string text = "[";
+  char buffer[32];
+  const double zero = 0.5 * std::pow(10.0, -precision);
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    const double value = std::abs(q[i]) < zero ? 0.0 : q[i];
+    std::snprintf(buffer, sizeof buffer, "%*.*f", width, precision, value);
+    text += (i ? ", " : "") + std::string(buffer);
+  }
+  return text + "]";
+}
+
+// 1-based index of the first joint with no 2*pi-equivalent value within its limits, or 0.
+int first_joint_outside_limits(const RobotModel& model, const Eigen::VectorXd& q) {
+  for (int i = 0; i < model.dof(); ++i) {
+    const double lower = model.lower_limits()[i], upper = model.upper_limits()[i];
+    double v = q[i];
+    if (model.joint(i).type == JointType::kRevolute && std::isfinite(lower)) {
+      v += 2.0 * M_PI * std::ceil((lower - 1e-9 - v) / (2.0 * M_PI));
+    }
+    if (v < lower - 1e-9 || v > upper + 1e-9) return i + 1;
+  }
+  return 0;
+}
+
+// [SECTION] kin ik: the target pose from --T or --pose
+
+// Why a 4x4 matrix is not a rigid transform, or empty when it is one (to `tolerance`).
+std::string rigid_transform_problem(const Eigen::Matrix4d& M, double tolerance) {
+  char buffer[160];
+  const double last_row = (M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff();
+  if (last_row > tolerance) return "its last row is not 0 0 0 1";
+  const Eigen::Matrix3d R = M.topLeftCorner<3, 3>();
+  const double orthonormality =
+      (R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (orthonormality > tolerance) {
+    std::snprintf(buffer, sizeof buffer,
+                  "its rotation block is not orthonormal (R R^T - I is off by %.3g; tolerance %g)",
+                  orthonormality, tolerance);
+    return buffer;
+  }
+  if (R.determinant() < 0.0) return "its rotation block is a reflection (determinant -1)";
+  return {};
+}
+
+// "16 numbers row-major": comma-separated, or separated by blanks when there is no comma.
+Result<Eigen::Isometry3d> transform_from_text(const std::string& text) {
+  std::string list = text;
+  if (list.find(',') == std::string::npos) {
+    std::string joined;
+    std::istringstream words(text);
+    std::string word;
+    while (words >> word) joined += (joined.empty() ? "" : ",") + word;
+    list = joined;
+  }
+  auto values = parse_number_list(list, "--T", 16);
+  if (!values) return values.error();
+  Eigen::Matrix4d M;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) M(r, c) = (*values)[static_cast<size_t>(4 * r + c)];
+  }
+  // Printed matrices carry a few digits only: accept small deviations, then re-orthonormalize.
+  constexpr double kTolerance = 1e-4;
+  if (const std::string problem = rigid_transform_problem(M, kTolerance); !problem.empty()) {
+    return Error{"--T is not a rigid transform: " + problem};
+  }
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() =
+      Eigen::Quaterniond(Eigen::Matrix3d(M.topLeftCorner<3, 3>())).normalized().toRotationMatrix();
+  T.translation() = M.topRightCorner<3, 1>();
+  return T;
+}
+
+Result<Eigen::Isometry3d> target_from_options(const KinOptions& options) {
+  if (options.T && options.pose) {
+    return Error{"give the target as --T or as --pose, not both"};
+  }
+  if (options.T) return transform_from_text(*options.T);
+  if (options.pose) {
+    auto values = parse_number_list(*options.pose, "--pose", 6);
+    if (!values) {
+      return Error{values.error().message + " (x,y,z in m, roll,pitch,yaw in " +
+                   (options.degrees ? "deg)" : "rad)")};
+    }
+    const std::vector<double>& v = *values;
+    Eigen::Vector3d rpy(v[3], v[4], v[5]);
+    if (options.degrees) rpy = rpy.unaryExpr([](double a) { return radians_from_degrees(a); });
+    return pose_from_xyz_rpy(Eigen::Vector3d(v[0], v[1], v[2]), rpy);
+  }
+  return Error{"needs a target: --T \"16 numbers, row-major\" or --pose x,y,z,roll,pitch,yaw"};
+}
+
+// The demo's IK part: the 8 closed-form solutions for the pose of a named configuration,
+// the worst round-trip error |FK(IK(T)) - T| and which solution is the configuration itself.
+void print_ik_round_trip(const RobotModel& model, const PumaGeometry& geometry,
+                         const NamedConfiguration& c, const Eigen::Isometry3d& T,
+                         std::ostream& out) {
+  const AnalyticIkResult r = solve_analytic_ik(model, geometry, T);
+  if (r.status == IkStatus::kUnreachable) {
+    out << "  closed-form IK: " << r.message << "\n";
+    return;
+  }
+  out << "  closed-form IK, " << r.solutions.size() << " solutions (deg):\n";
+  KinematicsData data(model);
+  double worst = 0.0;
+  std::string itself;
+  for (const IkSolution& s : r.solutions) {
+    forward_kinematics(model, data, s.q);
+    worst = std::max(worst, (data.T_base_tool.matrix() - T.matrix()).cwiseAbs().maxCoeff());
+    // At a wrist singularity only q4 + q6 is determined: compare that sum.
+    double distance = 0.0;
+    for (int i = 0; i < model.dof(); ++i) {
+      double a = s.q[i], b = c.q[i];
+      if (s.singular && (i == 3 || i == 5)) {
+        a = s.q[3] + s.q[5];
+        b = c.q[3] + c.q[5];
+      }
+      distance = std::max(distance, std::abs(wrap_to_pi(a - b)));
+    }
+    if (itself.empty() && distance < 1e-9) itself = s.config;
+    out << "    " << s.config << "  " << format_joints(joints_to_user(model, s.q, true), 8, 2)
+        << (s.within_limits ? "" : "  outside limits") << (s.singular ? "  singular" : "") << "\n";
+  }
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, "  worst round trip |FK(IK(T)) - T| = %.1e; %s is %s%s\n",
+                worst, c.name.c_str(), itself.empty() ? "none of them" : "solution ",
+                itself.c_str());
+  out << buffer;
+  if (!r.message.empty()) out << "  note: " << r.message << "\n";
 }
 
 }  // namespace
@@ -147,6 +291,90 @@ int run_kin_fk(const KinOptions& options, std::ostream& out, std::ostream& err) 
   return 0;
 }
 
+int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) {
+  const char* who = "telear kin ik: ";
+  auto loaded = load_robot(options.robot);
+  if (!loaded) {
+    err << who << loaded.error().message << "\n";
+    return 2;
+  }
+  const RobotModel& model = **loaded;
+  auto target = target_from_options(options);
+  if (!target) {
+    err << who << target.error().message << "\n";
+    return 2;
+  }
+  if (Status s = check_ik_config(options.config); !s) {
+    err << who << "--config: " << s.error().message << "\n";
+    return 2;
+  }
+  const Eigen::Isometry3d& T = *target;
+  auto geometry = puma_geometry(model);
+  AnalyticIkResult result;
+  if (geometry) {
+    result = solve_analytic_ik(model, *geometry, T, options.config);
+    if (result.status == IkStatus::kUnreachable) {
+      err << who << result.message << "\n";
+      return 1;
+    }
+  } else {
+    if (!options.config.empty()) {
+      err << who << "--config selects closed-form solutions, and " << geometry.error().message
+          << "\n";
+      return 2;
+    }
+    // Cold start from the zero configuration (clamped into the limits by the solver).
+    auto solution = solve_ik_nearest(model, T, Eigen::VectorXd::Zero(model.dof()));
+    if (!solution) {
+      err << who << solution.error().message << "\n";
+      return 1;
+    }
+    result.solutions.push_back(std::move(solution).value());
+    if (result.solutions.front().singular) {
+      result.status = IkStatus::kSingular;
+      result.message = "near a singularity (smallest Jacobian singular value below 1e-6)";
+    }
+  }
+  const char* method = geometry ? "analytic" : "numeric";
+  if (options.json) {
+    nlohmann::json j;
+    j["robot"] = model.name();
+    j["method"] = method;
+    j["status"] = result.status == IkStatus::kSingular ? "singular" : "ok";
+    if (!result.message.empty()) j["message"] = result.message;
+    j["units"] = options.degrees ? "deg" : "rad";
+    j["solutions"] = nlohmann::json::array();
+    for (const IkSolution& s : result.solutions) {
+      const Eigen::VectorXd q = joints_to_user(model, s.q, options.degrees);
+      j["solutions"].push_back({{"config", s.config},
+                                {"q", std::vector<double>(q.begin(), q.end())},
+                                {"within_limits", s.within_limits},
+                                {"singular", s.singular}});
+    }
+    out << j.dump(2) << "\n";
+    return 0;
+  }
+  out << model.name() << ": " << result.solutions.size()
+      << (result.solutions.size() == 1 ? " solution" : " solutions")
+      << (geometry ? " (closed form)" : " (numeric)") << " for\n";
+  print_pose(T, out);
+  out << "joint values in " << (options.degrees ? "deg" : "rad") << ":\n";
+  for (const IkSolution& s : result.solutions) {
+    const Eigen::VectorXd q = joints_to_user(model, s.q, options.degrees);
+    out << "  " << std::left << std::setw(8) << s.config
+        << format_joints(q, options.degrees ? 9 : 8, options.degrees ? 4 : 5);
+    if (const int joint = first_joint_outside_limits(model, s.q); joint > 0) {
+      out << "  outside limits (joint " << joint << ")";
+    } else {
+      out << "  within limits";
+    }
+    if (s.singular) out << ", singular";
+    out << "\n";
+  }
+  if (!result.message.empty()) out << "note: " << result.message << "\n";
+  return 0;
+}
+
 int run_kin_demo(const KinOptions& options, std::ostream& out, std::ostream& err) {
   auto loaded = load_robot(options.robot);
   if (!loaded) {
@@ -155,9 +383,10 @@ int run_kin_demo(const KinOptions& options, std::ostream& out, std::ostream& err
   }
   const RobotModel& model = **loaded;
   out << "telear: the geometric model of " << model.name() << " (" << model.dof()
-      << " joints) at its named configurations\n";
+      << " joints) at its named configurations, and inverse kinematics back\n";
   KinematicsData data(model);
   Jacobian J;
+  const auto geometry = puma_geometry(model);
   for (const NamedConfiguration& c : model.named_configurations()) {
     forward_kinematics(model, data, c.q);
     geometric_jacobian(model, data, JacobianFrame::kBase, J);
@@ -168,7 +397,9 @@ int run_kin_demo(const KinOptions& options, std::ostream& out, std::ostream& err
     std::snprintf(buffer, sizeof buffer, "  manipulability = %.5f%s\n", manipulability,
                   manipulability < 1e-6 ? "  (singular)" : "");
     out << buffer;
+    if (geometry) print_ik_round_trip(model, *geometry, c, data.T_base_tool, out);
   }
+  if (!geometry) out << "(no closed-form IK: " << geometry.error().message << ")\n";
   return 0;
 }
 

@@ -4,7 +4,12 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "apps/bench_command.hpp"
+#include "apps/calibrate_command.hpp"
 #include "apps/kin_command.hpp"
+#include "apps/render_bench_command.hpp"
+#include "apps/render_command.hpp"
+#include "apps/sim_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"telear: augmented-reality telerobotics (docs/cli.md)", "telear"};
@@ -30,6 +35,137 @@ int main(int argc, char** argv) {
   kin_fk->add_flag("--json", kin.json, "print JSON (row-major 4x4, metres)");
   CLI::App* kin_demo = kin_app->add_subcommand("demo", "FK at the named configurations");
   add_robot(kin_demo);
+  CLI::App* kin_ik = kin_app->add_subcommand("ik", "inverse kinematics: joints for a tool pose");
+  add_robot(kin_ik);
+  kin_ik->add_option_function<std::string>(
+      "--T", [&kin](const std::string& v) { kin.T = v; },
+      "tool pose: 16 numbers, row-major 4x4 (metres), comma or blank separated");
+  kin_ik->add_option_function<std::string>(
+      "--pose", [&kin](const std::string& v) { kin.pose = v; },
+      "tool pose x,y,z,roll,pitch,yaw (m; rad, or deg with --deg); e.g. --pose=-0.2,...");
+  kin_ik->add_option("--config", kin.config, "configuration letters l/r, u/d, n/f, e.g. lun");
+  kin_ik->add_flag("--deg", kin.degrees, "angles (pose and joint values) in degrees");
+  kin_ik->add_flag("--json", kin.json, "print JSON");
+
+  // [SECTION] render
+  telear::cli::RenderOptions render;
+  CLI::App* render_app =
+      app.add_subcommand("render", "draw the arm through a camera, on a video frame, to PNG");
+  render_app->add_option("--robot", render.robot, "shipped robot name or .yaml / .urdf file")
+      ->capture_default_str();
+  render_app
+      ->add_option("--q", render.q, "joint values q1,...,qn (rad, or deg with --deg) or a name")
+      ->required();
+  render_app->add_flag("--deg", render.degrees, "joint values in degrees");
+  render_app->add_option("--camera", render.camera,
+                         "camera file (mono or stereo) or left.yaml,right.yaml; default: a view "
+                         "of the whole arm");
+  render_app->add_option("--eye", render.eye,
+                         "left, right or both (default: both for a stereo camera file, else "
+                         "left)");
+  render_app->add_option("--stereo", render.stereo, "sbs, tb, anaglyph or separate")
+      ->capture_default_str();
+  render_app->add_option("--background", render.background,
+                         "video frame (PNG/JPEG) behind the arm, or left.png,right.png");
+  render_app->add_flag("--wireframe", render.wireframe, "wire-frame instead of solid");
+  render_app->add_option("--segments", render.segments, "segments of every cylinder (3..512)");
+  render_app->add_option("--gripper", render.gripper, "gripper opening, m");
+  render_app->add_option("--alpha", render.alpha, "opacity of the arm (0, 1]; < 1: ghost")
+      ->capture_default_str();
+  render_app->add_flag("--undistort", render.undistort,
+                       "undistort the frame and draw with K (default: warp the arm into the raw "
+                       "frame)");
+  render_app->add_flag("--floor", render.floor, "a checkered floor at z = 0");
+  render_app->add_flag("--cube", render.cube, "the seed's cube in front of the arm");
+  render_app->add_flag("--no-arm", render.no_arm, "leave the arm out (the scene alone)");
+  render_app->add_option("--width", render.width, "image width of the default view")
+      ->capture_default_str();
+  render_app->add_option("--height", render.height, "image height of the default view")
+      ->capture_default_str();
+  render_app->add_option("-o,--output", render.output, "PNG to write")->required();
+
+  // [SECTION] calibrate
+  telear::cli::CalibrateOptions calibrate;
+  CLI::App* calibrate_app = app.add_subcommand(
+      "calibrate", "camera calibration, mono or stereo, from images of a chessboard or circles");
+  calibrate_app
+      ->add_option("--left", calibrate.left,
+                   "the (left) camera's images, a quoted glob: 'DIR/left*.png'")
+      ->required();
+  calibrate_app->add_option("--right", calibrate.right,
+                            "the right camera's images (stereo), a quoted glob; pairs are "
+                            "matched in sorted name order");
+  calibrate_app
+      ->add_option("--pattern", calibrate.pattern,
+                   "chessboard:COLSxROWS:SQUARE_M (inner corners, e.g. chessboard:9x6:0.025) or "
+                   "circles:COLSxROWS:SPACING_M (asymmetric grid)")
+      ->required();
+  calibrate_app->add_option("-o,--output", calibrate.output, "camera file (YAML) to write")
+      ->required();
+  calibrate_app->add_option("--report", calibrate.report, "JSON report to write");
+  calibrate_app->add_option("--camera-info", calibrate.camera_info,
+                            "also write ROS camera_info: PREFIX_left.yaml, PREFIX_right.yaml "
+                            "(or PREFIX.yaml)");
+  calibrate_app
+      ->add_option("--outlier-factor", calibrate.outlier_factor,
+                   "reject views whose error exceeds this x the median; 0 keeps every view")
+      ->capture_default_str();
+  calibrate_app->add_flag("--estimate-k3", calibrate.estimate_k3,
+                          "estimate k3 too (default: held at 0, two radial terms)");
+  calibrate_app->add_flag("--zero-tangential", calibrate.zero_tangential, "hold p1, p2 at 0");
+  calibrate_app->add_flag("--keep-mono-intrinsics", calibrate.keep_mono_intrinsics,
+                          "stereo: keep each camera's own calibration, fit only R, T");
+
+  // [SECTION] sim (the simulated robot and stereo rig)
+  CLI::App* sim_app = app.add_subcommand("sim", "the simulated robot and stereo rig");
+  sim_app->require_subcommand(1);
+  telear::cli::SimCaptureOptions sim_capture;
+  CLI::App* sim_capture_app = sim_app->add_subcommand(
+      "capture", "calibration images of a target from the simulated stereo rig + truth.yaml");
+  sim_capture_app->add_option("--rig", sim_capture.rig, "rig file (data/rigs/*.yaml)")
+      ->capture_default_str();
+  sim_capture_app
+      ->add_option("--pattern", sim_capture.pattern,
+                   "chessboard:COLSxROWS:SQUARE_M or circles:COLSxROWS:SPACING_M")
+      ->capture_default_str();
+  sim_capture_app->add_option("--views", sim_capture.views, "stereo pairs to write (1..100)")
+      ->capture_default_str();
+  sim_capture_app->add_option("-o,--output", sim_capture.output, "directory to write to")
+      ->required();
+  sim_capture_app->add_option("--seed", sim_capture.seed, "seed of the poses and the noise")
+      ->capture_default_str();
+  sim_capture_app
+      ->add_option("--noise", sim_capture.noise, "sensor noise, grey levels (Gaussian sigma)")
+      ->capture_default_str();
+  sim_capture_app->add_option("--supersample", sim_capture.supersample,
+                              "anti-aliasing samples per pixel and axis (1..8)")
+      ->capture_default_str();
+  sim_capture_app->add_flag("--no-scene", sim_capture.no_scene,
+                            "the target alone (no robot, floor or table)");
+
+  // [SECTION] bench (one subcommand per benchmark: render, ...)
+  CLI::App* bench_app = app.add_subcommand("bench", "measured figures beside the seed's");
+  bench_app->require_subcommand(1);
+  telear::cli::RenderBenchOptions bench_render_options;
+  CLI::App* bench_render =
+      bench_app->add_subcommand("render", "the seed's rendering Tables 1 and 2, headless (EGL)");
+  bench_render->add_option("--seconds", bench_render_options.seconds, "timed seconds per case")
+      ->capture_default_str();
+  bench_render->add_option("--width", bench_render_options.width, "view width in pixels")
+      ->capture_default_str();
+  bench_render->add_option("--height", bench_render_options.height, "view height in pixels")
+      ->capture_default_str();
+  bench_render->add_option("--only", bench_render_options.only,
+                           "run only the cases whose name contains this text");
+  bench_render->add_flag("--json", bench_render_options.json, "print JSON");
+  telear::cli::BenchKinOptions bench_kin_options;
+  CLI::App* bench_kin =
+      bench_app->add_subcommand("kin", "FK, Jacobian, analytic and numeric IK against Orocos KDL");
+  bench_kin->add_option("--robot", bench_kin_options.robot, "shipped robot name or DH .yaml file")
+      ->capture_default_str();
+  bench_kin->add_option("--poses", bench_kin_options.poses, "random targets for numeric IK")
+      ->capture_default_str();
+  bench_kin->add_option("--json", bench_kin_options.json, "also write the table as JSON to FILE");
 
   try {
     app.parse(argc, argv);
@@ -40,5 +176,22 @@ int main(int argc, char** argv) {
   if (kin_info->parsed()) return telear::cli::run_kin_info(kin, std::cout, std::cerr);
   if (kin_fk->parsed()) return telear::cli::run_kin_fk(kin, std::cout, std::cerr);
   if (kin_demo->parsed()) return telear::cli::run_kin_demo(kin, std::cout, std::cerr);
+  if (kin_ik->parsed()) return telear::cli::run_kin_ik(kin, std::cout, std::cerr);
+  if (render_app->parsed()) return telear::cli::run_render(render, std::cout, std::cerr);
+  if (calibrate_app->parsed()) return telear::cli::run_calibrate(calibrate, std::cout, std::cerr);
+  if (sim_capture_app->parsed()) {
+    return telear::cli::run_sim_capture(sim_capture, std::cout, std::cerr);
+  }
+  if (bench_render->parsed()) {
+    return telear::cli::run_bench_render(bench_render_options, std::cout, std::cerr);
+  }
+  if (bench_kin->parsed()) {
+#ifdef TELEAR_HAVE_KIN_BENCH
+    return telear::cli::run_bench_kin(bench_kin_options, std::cout, std::cerr);
+#else
+    std::cerr << "telear bench kin: not built (configure with -DTELEAR_BUILD_BENCH=ON)\n";
+    return 2;
+#endif
+  }
   return 1;
 }

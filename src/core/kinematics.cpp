@@ -1,41 +1,245 @@
 #include "core/kinematics.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
+
+#include "core/fast_sincos.hpp"
 
 namespace telear {
 namespace {
 
-// M <- M * Rz(theta), touching only the first two rotation columns.
-inline void post_rotate_z(Eigen::Isometry3d& M, double theta) {
-  const double c = std::cos(theta);
-  const double s = std::sin(theta);
-  auto L = M.linear();
-  const Eigen::Vector3d x = L.col(0);
-  const Eigen::Vector3d y = L.col(1);
-  L.col(0) = c * x + s * y;
-  L.col(1) = c * y - s * x;
+// ---- rigid transforms in SIMD lane pairs ----------------------------------------------------
+//
+// A frame is kept as the top three rows of its homogeneous matrix, column by column in the
+// layout of Eigen's column-major Isometry3d::matrix(): each column's rows 0 and 1 in one lane
+// pair (one SSE2 register), row 2 as a scalar. Products are written by hand on these columns,
+// without Eigen temporaries. The bottom row (0 0 0 1) is never computed: the frames in
+// KinematicsData are constructed as identities and only their top three rows are written.
+struct Frame {
+  Double2 x, y, z, p;       // rows 0, 1 of the rotation columns and of the origin
+  double x2, y2, z2, p2;    // row 2
+};
+static_assert(!(Eigen::Isometry3d::MatrixType::Flags & Eigen::RowMajorBit),
+              "load() / store() assume Eigen's default column-major storage");
+
+inline Double2 load2(const double* m) {
+  Double2 v;
+  std::memcpy(&v, m, sizeof v);
+  return v;
+}
+
+inline void store2(double* m, const Double2& v) { std::memcpy(m, &v, sizeof v); }
+
+inline Double2 splat(double v) { return Double2{v, v}; }
+
+inline Frame load(const Eigen::Isometry3d& T) {
+  const double* m = T.matrix().data();
+  return {load2(m), load2(m + 4), load2(m + 8), load2(m + 12), m[2], m[6], m[10], m[14]};
+}
+
+inline Frame identity_frame() {
+  const Double2 zero = {0.0, 0.0};
+  return {Double2{1.0, 0.0}, Double2{0.0, 1.0}, zero, zero, 0.0, 0.0, 1.0, 0.0};
+}
+
+inline void store(const Frame& F, Eigen::Isometry3d& T) {
+  double* m = T.matrix().data();
+  store2(m, F.x);
+  m[2] = F.x2;
+  store2(m + 4, F.y);
+  m[6] = F.y2;
+  store2(m + 8, F.z);
+  m[10] = F.z2;
+  store2(m + 12, F.p);
+  m[14] = F.p2;
+}
+
+inline void store(const Double2& v01, double v2, Eigen::Vector3d& out) {
+  store2(out.data(), v01);
+  out[2] = v2;
+}
+
+// Exact comparison with the identity (top three rows).
+inline bool is_identity(const Frame& F) {
+  const Double2 zero = {0.0, 0.0};
+  const auto equal = (F.x == Double2{1.0, 0.0}) & (F.y == Double2{0.0, 1.0}) & (F.z == zero) &
+                     (F.p == zero);
+  return equal[0] != 0 && equal[1] != 0 && F.x2 == 0.0 && F.y2 == 0.0 && F.z2 == 1.0 &&
+         F.p2 == 0.0;
+}
+
+// A * B.
+inline Frame compose(const Frame& A, const Frame& B) {
+  Frame out;
+  auto column = [&A](const Double2& b01, double b2, Double2& o01, double& o2) {
+    o01 = b01[0] * A.x + b01[1] * A.y + b2 * A.z;
+    o2 = b01[0] * A.x2 + b01[1] * A.y2 + b2 * A.z2;
+  };
+  column(B.x, B.x2, out.x, out.x2);
+  column(B.y, B.y2, out.y, out.y2);
+  column(B.z, B.z2, out.z, out.z2);
+  column(B.p, B.p2, out.p, out.p2);
+  out.p = out.p + A.p;
+  out.p2 = out.p2 + A.p2;
+  return out;
+}
+
+// The joint motion Z(v): a rotation about z by v (given its cos and sin) or a translation
+// along z by v.
+inline Frame joint_motion(JointType type, double c, double s, double v) {
+  Frame Z = identity_frame();
+  if (type == JointType::kRevolute) {
+    Z.x = Double2{c, s};
+    Z.y = Double2{-s, c};
+  } else {
+    Z.p2 = v;
+  }
+  return Z;
+}
+
+// The DH parameters a joint of a kDh* form reads from after = Tz(d) Tx(a) Rx(alpha).
+struct DhParameters {
+  double a, d, c_alpha, s_alpha;
+};
+
+inline DhParameters dh_parameters(const Joint& joint) {
+  const Eigen::Matrix4d& A = joint.after.matrix();
+  return {A(0, 3), A(2, 3), A(1, 1), A(2, 1)};
+}
+
+// T * Rz(theta) Tz(d) Tx(a) Rx(alpha), one standard-DH joint, given c, s = cos, sin theta.
+// With T's columns [x y z p]: Rz turns the axes into x' = c x + s y and y' = c y - s x;
+// Rx(alpha) gives y'' = c_alpha y' + s_alpha z and z'' = c_alpha z - s_alpha y', which for the
+// twists of a real arm is a copy or a negation: alpha = 0: (y', z); +pi/2: (z, -y');
+// -pi/2: (-z, y'). The origin moves by a along x' and d along z. Terms with a or d exactly 0
+// are skipped (they would add exact zeros). 2 to 4 column products instead of the 12 + 12
+// of forming the joint's transform and multiplying by it.
+inline Frame dh_step(JointForm form, const Frame& T, double c, double s, const DhParameters& dh) {
+  const Double2 vc = splat(c), vs = splat(s);
+  Frame out;
+  out.x = vc * T.x + vs * T.y;
+  out.x2 = c * T.x2 + s * T.y2;
+  switch (form) {
+    case JointForm::kDhTwist0:
+      out.y = vc * T.y - vs * T.x;
+      out.y2 = c * T.y2 - s * T.x2;
+      out.z = T.z;
+      out.z2 = T.z2;
+      break;
+    case JointForm::kDhTwistPlus90: {  // s_alpha = 1: y'' = c_alpha y' + z, z'' = c_alpha z - y'
+      const Double2 y = vc * T.y - vs * T.x;
+      const double y2 = c * T.y2 - s * T.x2;
+      out.y = dh.c_alpha * y + T.z;
+      out.y2 = dh.c_alpha * y2 + T.z2;
+      out.z = dh.c_alpha * T.z - y;
+      out.z2 = dh.c_alpha * T.z2 - y2;
+      break;
+    }
+    case JointForm::kDhTwistMinus90: {  // s_alpha = -1
+      const Double2 y = vc * T.y - vs * T.x;
+      const double y2 = c * T.y2 - s * T.x2;
+      out.y = dh.c_alpha * y - T.z;
+      out.y2 = dh.c_alpha * y2 - T.z2;
+      out.z = dh.c_alpha * T.z + y;
+      out.z2 = dh.c_alpha * T.z2 + y2;
+      break;
+    }
+    default: {
+      const Double2 y = vc * T.y - vs * T.x;
+      const double y2 = c * T.y2 - s * T.x2;
+      out.y = dh.c_alpha * y + dh.s_alpha * T.z;
+      out.y2 = dh.c_alpha * y2 + dh.s_alpha * T.z2;
+      out.z = dh.c_alpha * T.z - dh.s_alpha * y;
+      out.z2 = dh.c_alpha * T.z2 - dh.s_alpha * y2;
+    }
+  }
+  out.p = T.p;
+  out.p2 = T.p2;
+  if (dh.a != 0.0) {
+    out.p = out.p + dh.a * out.x;
+    out.p2 = out.p2 + dh.a * out.x2;
+  }
+  if (dh.d != 0.0) {
+    out.p = out.p + dh.d * T.z;
+    out.p2 = out.p2 + dh.d * T.z2;
+  }
+  return out;
+}
+
+// The same step from the base frame (the identity), where every product is known: frame 1 is
+// the joint's own transform. Used for joint 0, whose parent frame is always the base.
+inline Frame dh_first(JointForm form, double c, double s, const DhParameters& dh) {
+  const Double2 zero = {0.0, 0.0};
+  Frame out;
+  out.x = Double2{c, s};
+  out.x2 = 0.0;
+  switch (form) {
+    case JointForm::kDhTwist0:
+      out.y = Double2{-s, c};
+      out.y2 = 0.0;
+      out.z = zero;
+      out.z2 = 1.0;
+      break;
+    default:
+      out.y = Double2{-s * dh.c_alpha, c * dh.c_alpha};
+      out.y2 = dh.s_alpha;
+      out.z = Double2{s * dh.s_alpha, -c * dh.s_alpha};
+      out.z2 = dh.c_alpha;
+  }
+  out.p = dh.a * out.x;
+  out.p2 = dh.d;
+  return out;
 }
 
 // Re-computes link frames first_joint+1..n and the tool from frame first_joint.
+//
+// Joints of a DH form (JointForm, classified by RobotModel::Create) take dh_step; their axis
+// and its origin are column z and the origin of frame i-1. Any other joint multiplies by
+// before * Z(q + offset) * after. The sines and cosines of a block of joints are evaluated
+// first, two at a time, so that the chain of frame products then runs without waiting on them.
 void propagate(const RobotModel& model, KinematicsData& data, int first_joint) {
   const int n = model.dof();
-  for (int i = first_joint; i < n; ++i) {
-    const Joint& joint = model.joint(i);
-    const double value = data.q[i] + joint.offset;
-    Eigen::Isometry3d M = data.T_base_link[static_cast<size_t>(i)];
-    if (!joint.before_is_identity) M = M * joint.before;
-    if (joint.type == JointType::kRevolute) {
-      post_rotate_z(M, value);
-    } else {
-      M.translation() += value * M.linear().col(2);
+  constexpr int kBlock = 8;  // even: sincos2 takes pairs
+  alignas(16) double angles[kBlock], sines[kBlock], cosines[kBlock];
+  Frame current =
+      first_joint == 0 ? identity_frame() : load(data.T_base_link[static_cast<size_t>(first_joint)]);
+  for (int start = first_joint; start < n; start += kBlock) {
+    const int count = std::min(kBlock, n - start);
+    for (int k = 0; k < count; ++k) angles[k] = data.q[start + k] + model.joint(start + k).offset;
+    if (count % 2 != 0) angles[count] = 0.0;
+    for (int k = 0; k < count; k += 2) {
+      Double2 s, c;
+      sincos2(load2(angles + k), s, c);
+      store2(sines + k, s);
+      store2(cosines + k, c);
     }
-    data.axis_base[static_cast<size_t>(i)] = M.linear().col(2);
-    data.axis_origin_base[static_cast<size_t>(i)] = M.translation();
-    data.T_base_link[static_cast<size_t>(i) + 1] = joint.after_is_identity ? M : M * joint.after;
+    for (int k = 0; k < count; ++k) {
+      const int i = start + k;
+      const auto index = static_cast<size_t>(i);
+      const Joint& joint = model.joint(i);
+      const double c = cosines[k], s = sines[k];
+      if (joint.form != JointForm::kGeneral) {
+        store(current.z, current.z2, data.axis_base[index]);
+        store(current.p, current.p2, data.axis_origin_base[index]);
+        current = i == 0 ? dh_first(joint.form, c, s, dh_parameters(joint))
+                         : dh_step(joint.form, current, c, s, dh_parameters(joint));
+      } else {
+        const Frame local = compose(joint_motion(joint.type, c, s, angles[k]), load(joint.after));
+        const Frame joint_frame =
+            joint.before_is_identity ? current : compose(current, load(joint.before));
+        store(joint_frame.z, joint_frame.z2, data.axis_base[index]);
+        store(joint_frame.p, joint_frame.p2, data.axis_origin_base[index]);
+        current = compose(joint_frame, local);
+      }
+      store(current, data.T_base_link[index + 1]);
+    }
   }
-  data.T_base_tool = data.T_base_link[static_cast<size_t>(n)] * model.T_flange_tool();
+  const Frame tool = load(model.T_flange_tool());
+  store(is_identity(tool) ? current : compose(current, tool), data.T_base_tool);
   data.last_first_updated_joint = first_joint;
   data.last_frames_recomputed = n - first_joint;
 }

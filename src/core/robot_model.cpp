@@ -12,6 +12,21 @@ bool is_identity(const Eigen::Isometry3d& T) {
   return (T.matrix() - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff() == 0.0;
 }
 
+// See JointForm. Exact comparisons: a DH form must reproduce `after` to the last bit, apart from
+// the quarter-turn snap (|cos alpha| <= 2^-53: only the doubles nearest +-pi/2).
+JointForm classify(const Joint& joint) {
+  if (joint.type != JointType::kRevolute || !joint.before_is_identity) return JointForm::kGeneral;
+  const Eigen::Matrix4d& A = joint.after.matrix();
+  const double c = A(1, 1), s = A(2, 1);
+  const bool dh = A(0, 0) == 1.0 && A(1, 0) == 0.0 && A(2, 0) == 0.0 && A(0, 1) == 0.0 &&
+                  A(0, 2) == 0.0 && A(1, 2) == -s && A(2, 2) == c && A(1, 3) == 0.0;
+  if (!dh) return JointForm::kGeneral;
+  if (c == 1.0 && s == 0.0) return JointForm::kDhTwist0;
+  if (s == 1.0) return JointForm::kDhTwistPlus90;
+  if (s == -1.0) return JointForm::kDhTwistMinus90;
+  return JointForm::kDh;
+}
+
 std::string joint_label(int i, const Joint& joint) {
   std::ostringstream s;
   s << "joint " << (i + 1) << " (" << joint.name << ")";
@@ -44,6 +59,7 @@ Result<RobotModel> RobotModel::Create(Description d) {
     }
     joint.before_is_identity = is_identity(joint.before);
     joint.after_is_identity = is_identity(joint.after);
+    joint.form = classify(joint);
   }
   if (!d.T_flange_tool.matrix().allFinite()) {
     return Error{where + ": the tool transform is not finite"};

@@ -13,6 +13,7 @@
 // The tool centre point is T_base_tool = T_base_link[n] * T_flange_tool.
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,6 +42,19 @@ struct DhRow {
   double offset = 0.0;  // rad, added to the joint variable
 };
 
+// How forward kinematics applies a joint, classified once by RobotModel::Create so that the
+// per-call code takes the cheapest exact product. The kDh* forms are revolute joints with
+// before = I and after exactly of the form Tz(d) Tx(a) Rx(alpha) (a standard-DH row, whatever
+// file it came from); the twist forms are alpha = 0 and alpha = +-pi/2, where the double
+// nearest pi/2 (whose cosine is 6.1e-17, not 0) counts as an exact quarter turn.
+enum class JointForm : std::uint8_t {
+  kGeneral,         // before * Z(q + offset) * after as full products
+  kDh,              // any other twist: cos / sin alpha read from `after`
+  kDhTwist0,        // alpha = 0
+  kDhTwistPlus90,   // alpha = +pi/2
+  kDhTwistMinus90,  // alpha = -pi/2
+};
+
 struct Joint {
   std::string name;
   JointType type = JointType::kRevolute;
@@ -51,6 +65,7 @@ struct Joint {
   // Set by RobotModel::Create so that forward kinematics can skip identity products.
   bool before_is_identity = true;
   bool after_is_identity = true;
+  JointForm form = JointForm::kGeneral;  // also set by RobotModel::Create
 };
 
 struct NamedConfiguration {

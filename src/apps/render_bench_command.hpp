@@ -1,0 +1,67 @@
+#pragma once
+// `telear bench render`: the seed paper's Tables 1 and 2 re-run headless (EGL) on the same
+// cases, printed beside the seed's figures (REFERENCES.md):
+//   graphics only : no drawing; a cube and the arm; the arm with 8 segments; with 50
+//                   segments, solid and wire-frame;
+//   on video      : the same arm over a 640x480 video frame, uploaded as a texture every
+//                   frame, and the composed frame read back to memory;
+//   mono / stereo : one view, or two views (6 cm apart) side by side, each with its own
+//                   video frame in the video cases.
+// Every frame moves the arm (all joints), so every part's matrix is uploaded, and ends with
+// glFinish (graphics only) or the read-back (video), so a frame is complete when timed.
+//
+// RenderBenchScene is the workload shared by this command and bench/render_bench.cpp
+// (Google Benchmark).
+
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/result.hpp"
+
+namespace telear::cli {
+
+struct RenderBenchCase {
+  std::string name;
+  bool draw_arm = true;
+  bool draw_cube = false;
+  int segments = 8;
+  bool wireframe = false;
+  bool video = false;   // 640x480 frame upload + background + read-back
+  bool stereo = false;  // two views side by side
+  // The seed's figure for this row (REFERENCES.md), as text; empty when it has none.
+  std::string seed;
+};
+
+// The rows of the table, in order.
+std::vector<RenderBenchCase> render_bench_cases();
+
+class RenderBenchScene {
+ public:
+  // A current GL context is required. width x height is one eye's view (and video frame).
+  static Result<std::unique_ptr<RenderBenchScene>> create(const RenderBenchCase& c, int width,
+                                                          int height);
+  ~RenderBenchScene();
+  // Renders one complete frame (see the header comment).
+  void frame();
+  // The last frame's read-back (video cases), or a read-back made now (other cases).
+  std::vector<unsigned char> last_image();
+
+ private:
+  RenderBenchScene();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+struct RenderBenchOptions {
+  double seconds = 1.0;  // timed per case (after a short warm-up)
+  int width = 640;
+  int height = 480;
+  std::string only;  // run only the cases whose name contains this text
+  bool json = false;
+};
+
+int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace telear::cli

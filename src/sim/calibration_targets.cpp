@@ -1,0 +1,236 @@
+#include "sim/calibration_targets.hpp"
+
+#include <cmath>
+#include <opencv2/aruco.hpp>
+#include <random>
+
+namespace telear::sim {
+namespace {
+
+const Eigen::Vector3f kBlack(0.04f, 0.04f, 0.045f);
+const Eigen::Vector3f kWhite(0.93f, 0.93f, 0.92f);
+
+// A quad with corners a, b, c, d (counter-clockwise seen from the side `normal` points to).
+void add_quad(Mesh& mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
+              const Eigen::Vector3f& c, const Eigen::Vector3f& d, const Eigen::Vector3f& normal,
+              const Eigen::Vector3f& colour) {
+  const std::uint32_t i0 = mesh.add_vertex(a, normal, colour);
+  const std::uint32_t i1 = mesh.add_vertex(b, normal, colour);
+  const std::uint32_t i2 = mesh.add_vertex(c, normal, colour);
+  const std::uint32_t i3 = mesh.add_vertex(d, normal, colour);
+  mesh.triangles.insert(mesh.triangles.end(), {i0, i1, i2, i0, i2, i3});
+  mesh.lines.insert(mesh.lines.end(), {i0, i1, i1, i2, i2, i3, i3, i0});
+}
+
+// An axis-aligned rectangle [x0, x1] x [y0, y1] at height z of the target frame, facing -z.
+void add_rect(Mesh& mesh, double x0, double y0, double x1, double y1, double z,
+              const Eigen::Vector3f& colour) {
+  const Eigen::Vector3f n(0.f, 0.f, -1.f);
+  const auto p = [z](double x, double y) {
+    return Eigen::Vector3f(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+  };
+  // Seen from -z with x right, y down the winding (x0,y0) -> (x0,y1) -> (x1,y1) -> (x1,y0)
+  // is counter-clockwise on screen.
+  add_quad(mesh, p(x0, y0), p(x0, y1), p(x1, y1), p(x1, y0), n, colour);
+}
+
+}  // namespace
+
+std::array<Eigen::Vector3d, 4> CalibrationTarget::outline_corners() const {
+  return {Eigen::Vector3d(outline_min.x(), outline_min.y(), 0.0),
+          Eigen::Vector3d(outline_max.x(), outline_min.y(), 0.0),
+          Eigen::Vector3d(outline_max.x(), outline_max.y(), 0.0),
+          Eigen::Vector3d(outline_min.x(), outline_max.y(), 0.0)};
+}
+
+Eigen::Vector3d CalibrationTarget::pattern_centre() const {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& p : points_target) sum += p;
+  return sum / static_cast<double>(points_target.size());
+}
+
+CalibrationTarget make_calibration_target(const CalibrationPattern& pattern,
+                                          double margin_squares) {
+  CalibrationTarget target;
+  target.pattern = pattern;
+  for (const cv::Point3f& p : pattern_object_points(pattern)) {
+    target.points_target.emplace_back(p.x, p.y, p.z);
+  }
+  const double s = pattern.spacing;
+  const double m = margin_squares * s;
+  if (pattern.kind == PatternKind::kChessboard) {
+    // Squares from -s to cols * s (x) and -s to rows * s (y); margin outside that.
+    const double x0 = -s, y0 = -s, x1 = pattern.cols * s, y1 = pattern.rows * s;
+    for (int j = -1; j < pattern.rows; ++j) {
+      for (int i = -1; i < pattern.cols; ++i) {
+        const bool black = ((i + j) % 2 + 2) % 2 == 0;
+        add_rect(target.mesh, i * s, j * s, (i + 1) * s, (j + 1) * s, 0.0,
+                 black ? kBlack : kWhite);
+      }
+    }
+    // The white margin as four strips that do not overlap the squares.
+    add_rect(target.mesh, x0 - m, y0 - m, x1 + m, y0, 0.0, kWhite);
+    add_rect(target.mesh, x0 - m, y1, x1 + m, y1 + m, 0.0, kWhite);
+    add_rect(target.mesh, x0 - m, y0, x0, y1, 0.0, kWhite);
+    add_rect(target.mesh, x1, y0, x1 + m, y1, 0.0, kWhite);
+    target.outline_min = {x0 - m, y0 - m};
+    target.outline_max = {x1 + m, y1 + m};
+  } else {
+    const double radius = 0.3 * s;
+    constexpr int kSegments = 96;
+    for (const auto& centre : target.points_target) {
+      std::vector<std::uint32_t> fan;
+      const Eigen::Vector3f n(0.f, 0.f, -1.f);
+      fan.push_back(target.mesh.add_vertex(centre.cast<float>(), n, kBlack));
+      // Counter-clockwise on screen seen from -z (x right, y down): decreasing angle.
+      for (int k = 0; k <= kSegments; ++k) {
+        const double a = -2.0 * M_PI * k / kSegments;
+        const Eigen::Vector3d p = centre + radius * Eigen::Vector3d(std::cos(a), std::sin(a), 0);
+        fan.push_back(target.mesh.add_vertex(p.cast<float>(), n, kBlack));
+      }
+      target.mesh.append_triangle_fan(fan);
+    }
+    const double x0 = -m, y0 = -m;
+    const double x1 = (2 * (pattern.cols - 1) + 1) * s + m, y1 = (pattern.rows - 1) * s + m;
+    add_rect(target.mesh, x0, y0, x1, y1, 0.0002, kWhite);
+    target.outline_min = {x0, y0};
+    target.outline_max = {x1, y1};
+  }
+  return target;
+}
+
+Eigen::Isometry3d MarkerSpec::default_T_flange_marker() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear().col(0) = Eigen::Vector3d::UnitY();  // x_marker = y6
+  T.linear().col(1) = Eigen::Vector3d::UnitZ();  // y_marker = z6
+  T.linear().col(2) = Eigen::Vector3d::UnitX();  // z_marker = x6 (face normal)
+  T.translation() = Eigen::Vector3d(0.05, 0.0, 0.07);
+  return T;
+}
+
+Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec) {
+  if (spec.id < 0 || spec.id >= 50) {
+    return Error{"ArUco marker id " + std::to_string(spec.id) +
+                 " is outside DICT_4X4_50's range 0..49"};
+  }
+  if (!(spec.side_m > 0.0)) return Error{"ArUco marker side must be positive"};
+  ArucoMarker marker;
+  marker.spec = spec;
+  // The 6 x 6 cells: 4 x 4 bits inside a one-cell black border (drawMarker, one pixel per
+  // cell), then a one-cell white quiet zone around it: 8 x 8 cells.
+  cv::Mat cells;
+  cv::aruco::drawMarker(cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50), spec.id, 6,
+                        cells, 1);
+  const double cell = spec.side_m / 6.0;
+  Mesh face;
+  const Eigen::Vector3f n(0.f, 0.f, 1.f);
+  for (int row = -1; row <= 6; ++row) {
+    for (int col = -1; col <= 6; ++col) {
+      const bool inside = row >= 0 && row < 6 && col >= 0 && col < 6;
+      const bool black = inside && cells.at<std::uint8_t>(row, col) < 128;
+      // Cell (row, col) of the printed image: x = (col - 3) cell .. , y = (3 - row) cell ..
+      const float xa = static_cast<float>((col - 3) * cell), xb = static_cast<float>((col - 2) * cell);
+      const float ya = static_cast<float>((3 - row) * cell), yb = static_cast<float>((2 - row) * cell);
+      // Counter-clockwise seen from +z (x right, y up).
+      add_quad(face, {xa, yb, 0.f}, {xb, yb, 0.f}, {xb, ya, 0.f}, {xa, ya, 0.f}, n,
+               black ? kBlack : kWhite);
+    }
+  }
+  // Backing plate behind the face (z < 0), slightly larger than the quiet zone.
+  const float half = static_cast<float>(4.5 * cell);
+  append_box(face, Eigen::Vector3f(0.f, 0.f, -0.0051f), Eigen::Vector3f(2 * half, 2 * half, 0.01f),
+             Eigen::Vector3f(0.18f, 0.18f, 0.2f));
+  face.transform(spec.T_flange_marker.matrix().cast<float>());
+  marker.mesh = std::move(face);
+  const double h = spec.side_m / 2.0;
+  const std::array<Eigen::Vector3d, 4> corners_marker = {
+      Eigen::Vector3d(-h, h, 0), Eigen::Vector3d(h, h, 0), Eigen::Vector3d(h, -h, 0),
+      Eigen::Vector3d(-h, -h, 0)};
+  for (int k = 0; k < 4; ++k) marker.corners_flange[k] = spec.T_flange_marker * corners_marker[k];
+  return marker;
+}
+
+namespace {
+
+bool visible_in(const CameraModel& camera, const Eigen::Isometry3d& T_base_target,
+                const CalibrationTarget& target, double margin_px) {
+  const Eigen::Isometry3d T_cam_target = camera.T_cam_base * T_base_target;
+  // The printed face is seen from -z_target: the camera must be on that side.
+  const Eigen::Vector3d camera_in_target = T_cam_target.inverse().translation();
+  if (camera_in_target.z() >= 0.0) return false;
+  const double max_radius = camera.max_monotonic_radius();
+  const auto inside = [&](const Eigen::Vector3d& p_target) {
+    const Eigen::Vector3d p_cam = T_cam_target * p_target;
+    if (p_cam.z() <= 0.05) return false;
+    if (std::hypot(p_cam.x() / p_cam.z(), p_cam.y() / p_cam.z()) >= 0.95 * max_radius) {
+      return false;
+    }
+    const auto uv = camera.project(T_base_target * p_target);
+    return uv && uv->x() >= margin_px - 0.5 && uv->y() >= margin_px - 0.5 &&
+           uv->x() <= camera.width - 0.5 - margin_px && uv->y() <= camera.height - 0.5 - margin_px;
+  };
+  // Outline corners and points along its edges (a distorted edge bows between corners).
+  const auto corners = target.outline_corners();
+  for (int k = 0; k < 4; ++k) {
+    for (int step = 0; step < 8; ++step) {
+      const Eigen::Vector3d p = corners[k] + (corners[(k + 1) % 4] - corners[k]) * (step / 8.0);
+      if (!inside(p)) return false;
+    }
+  }
+  for (const auto& p : target.points_target) {
+    if (!inside(p)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(
+    const StereoCameraModel& cameras, const Eigen::Isometry3d& T_base_rig,
+    const CalibrationTarget& target, int count, std::uint64_t seed, double margin_px) {
+  std::mt19937_64 generator(seed);
+  const auto uniform = [&generator](double lo, double hi) {
+    return lo + (hi - lo) * (static_cast<double>(generator() >> 11) / 9007199254740992.0);
+  };
+  const CameraModel& left = cameras.left;
+  const double board_width = target.outline_max.x() - target.outline_min.x();
+  const Eigen::Vector3d centre_target = 0.5 * (Eigen::Vector3d(target.outline_min.x(),
+                                                               target.outline_min.y(), 0.0) +
+                                               Eigen::Vector3d(target.outline_max.x(),
+                                                               target.outline_max.y(), 0.0));
+  constexpr double kDeg = M_PI / 180.0;
+  std::vector<Eigen::Isometry3d> poses;
+  for (int view = 0; view < count; ++view) {
+    bool found = false;
+    for (int attempt = 0; attempt < 2000 && !found; ++attempt) {
+      const double fill = uniform(0.40, 0.70);
+      const double distance = left.fx * board_width / (fill * left.width);
+      const Eigen::Vector2d uv(uniform(0.3, 0.7) * left.width, uniform(0.3, 0.7) * left.height);
+      const Eigen::Vector3d ray((uv.x() - left.cx) / left.fx, (uv.y() - left.cy) / left.fy, 1.0);
+      const Eigen::Vector3d centre_rig = ray * distance;
+      const double spin = uniform(-20.0, 20.0) * kDeg;
+      const double axis_angle = uniform(0.0, 2.0 * M_PI);
+      const double tilt = uniform(10.0, 40.0) * kDeg;
+      const Eigen::Matrix3d R_rig_target =
+          (Eigen::AngleAxisd(tilt, Eigen::Vector3d(std::cos(axis_angle), std::sin(axis_angle), 0)) *
+           Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ()))
+              .toRotationMatrix();
+      Eigen::Isometry3d T_rig_target = Eigen::Isometry3d::Identity();
+      T_rig_target.linear() = R_rig_target;
+      T_rig_target.translation() = centre_rig - R_rig_target * centre_target;
+      const Eigen::Isometry3d T_base_target = T_base_rig * T_rig_target;
+      if (visible_in(cameras.left, T_base_target, target, margin_px) &&
+          visible_in(cameras.right, T_base_target, target, margin_px)) {
+        poses.push_back(T_base_target);
+        found = true;
+      }
+    }
+    if (!found) {
+      return Error{"no pose found that shows the whole " + target.pattern.spec() +
+                   " target in both images (is the board too large for the cameras?)"};
+    }
+  }
+  return poses;
+}
+
+}  // namespace telear::sim

@@ -1,0 +1,244 @@
+#include "sim/scene_renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "core/kinematics.hpp"
+#include "render/camera_projection.hpp"
+
+namespace telear::sim {
+namespace {
+
+// A floor of square tiles whose grey varies a little from tile to tile (a fixed generator),
+// like worn concrete slabs: texture for the eye, but no high-contrast checkerboard that a
+// chessboard detector could mistake for the target.
+Mesh make_tiled_floor(double size_m, int tiles) {
+  Mesh mesh;
+  std::mt19937 generator(12345u);
+  std::uniform_real_distribution<float> shade(0.42f, 0.52f);
+  const Eigen::Vector3f n(0.f, 0.f, 1.f);
+  const double tile = size_m / tiles;
+  const double gap = 0.004;  // a darker joint between tiles
+  for (int j = 0; j < tiles; ++j) {
+    for (int i = 0; i < tiles; ++i) {
+      const float g = shade(generator);
+      const Eigen::Vector3f colour(g * 1.02f, g, g * 0.96f);
+      const float x0 = static_cast<float>(-size_m / 2 + i * tile + gap);
+      const float y0 = static_cast<float>(-size_m / 2 + j * tile + gap);
+      const float x1 = static_cast<float>(-size_m / 2 + (i + 1) * tile - gap);
+      const float y1 = static_cast<float>(-size_m / 2 + (j + 1) * tile - gap);
+      const std::uint32_t a = mesh.add_vertex({x0, y0, 0.f}, n, colour);
+      const std::uint32_t b = mesh.add_vertex({x1, y0, 0.f}, n, colour);
+      const std::uint32_t c = mesh.add_vertex({x1, y1, 0.f}, n, colour);
+      const std::uint32_t d = mesh.add_vertex({x0, y1, 0.f}, n, colour);
+      mesh.triangles.insert(mesh.triangles.end(), {a, b, c, a, c, d});
+    }
+  }
+  // The joints: one slightly lower, darker plane under the tiles.
+  const Eigen::Vector3f joint(0.3f, 0.3f, 0.3f);
+  const float h = static_cast<float>(size_m / 2);
+  const std::uint32_t a = mesh.add_vertex({-h, -h, -0.001f}, n, joint);
+  const std::uint32_t b = mesh.add_vertex({h, -h, -0.001f}, n, joint);
+  const std::uint32_t c = mesh.add_vertex({h, h, -0.001f}, n, joint);
+  const std::uint32_t d = mesh.add_vertex({-h, h, -0.001f}, n, joint);
+  mesh.triangles.insert(mesh.triangles.end(), {a, b, c, a, c, d});
+  return mesh;
+}
+
+// A wooden table (top and four legs) and the box to pick on it.
+Mesh make_table_and_object(const WorkspaceObject& object) {
+  Mesh mesh;
+  const Eigen::Vector3f wood(0.55f, 0.38f, 0.22f);
+  const Eigen::Vector3f leg(0.25f, 0.2f, 0.16f);
+  const Eigen::Vector3f top_centre(0.55f, -0.45f, 0.385f);
+  const Eigen::Vector3f top_size(0.5f, 0.7f, 0.03f);
+  append_box(mesh, top_centre, top_size, wood);
+  for (int sx : {-1, 1}) {
+    for (int sy : {-1, 1}) {
+      const Eigen::Vector3f c(top_centre.x() + sx * 0.21f, top_centre.y() + sy * 0.31f, 0.185f);
+      append_box(mesh, c, Eigen::Vector3f(0.04f, 0.04f, 0.37f), leg);
+    }
+  }
+  const float e = static_cast<float>(object.edge_m);
+  append_box(mesh, object.centre_base.cast<float>(), Eigen::Vector3f(e, e, e),
+             Eigen::Vector3f(0.8f, 0.18f, 0.12f));
+  return mesh;
+}
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+}  // namespace
+
+CameraModel supersampled_camera(const CameraModel& camera, int factor) {
+  CameraModel scaled = camera;
+  const double s = factor;
+  scaled.width = camera.width * factor;
+  scaled.height = camera.height * factor;
+  scaled.fx = camera.fx * s;
+  scaled.fy = camera.fy * s;
+  scaled.cx = s * (camera.cx + 0.5) - 0.5;
+  scaled.cy = s * (camera.cy + 0.5) - 0.5;
+  return scaled;
+}
+
+render::Image downsample_box(const render::Image& image, int factor) {
+  const int width = image.width / factor;
+  const int height = image.height / factor;
+  render::Image out(width, height, 3);
+  const int channels = image.channels;
+  const int area = factor * factor;
+  std::vector<int> sums(static_cast<std::size_t>(width) * 3);
+  for (int y = 0; y < height; ++y) {
+    std::fill(sums.begin(), sums.end(), 0);
+    for (int dy = 0; dy < factor; ++dy) {
+      const std::uint8_t* row = image.row(y * factor + dy);
+      for (int x = 0; x < width; ++x) {
+        const std::uint8_t* p = row + static_cast<std::size_t>(x) * factor * channels;
+        for (int dx = 0; dx < factor; ++dx, p += channels) {
+          sums[3 * x] += p[0];
+          sums[3 * x + 1] += p[1];
+          sums[3 * x + 2] += p[2];
+        }
+      }
+    }
+    std::uint8_t* out_row = out.row(y);
+    for (int k = 0; k < width * 3; ++k) {
+      out_row[k] = static_cast<std::uint8_t>((sums[k] + area / 2) / area);
+    }
+  }
+  return out;
+}
+
+std::uint64_t noise_seed(std::uint64_t seed, std::uint64_t frame, Eye eye) {
+  return splitmix64(splitmix64(splitmix64(seed) ^ frame) ^ (eye == Eye::kLeft ? 1u : 2u));
+}
+
+void add_sensor_noise(render::Image& image, double sigma, std::uint64_t seed) {
+  if (sigma <= 0.0) return;
+  std::mt19937_64 generator(seed);
+  // Uniform in (0, 1] from 53 random bits, then Box-Muller: two normals per pair.
+  const auto uniform = [&generator] {
+    return (static_cast<double>(generator() >> 11) + 1.0) * (1.0 / 9007199254740992.0);
+  };
+  const std::size_t n = image.pixels.size();
+  for (std::size_t i = 0; i < n; i += 2) {
+    const double radius = sigma * std::sqrt(-2.0 * std::log(uniform()));
+    const double angle = 2.0 * M_PI * uniform();
+    const double noise[2] = {radius * std::cos(angle), radius * std::sin(angle)};
+    for (std::size_t k = 0; k < 2 && i + k < n; ++k) {
+      const double value = std::round(image.pixels[i + k] + noise[k]);
+      image.pixels[i + k] = static_cast<std::uint8_t>(std::clamp(value, 0.0, 255.0));
+    }
+  }
+}
+
+Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const RobotModel& model,
+                                            const BodyDescription& body,
+                                            const SceneOptions& options) {
+  if (options.supersample < 1 || options.supersample > 8) {
+    return Error{"supersampling factor " + std::to_string(options.supersample) +
+                 " is outside 1..8"};
+  }
+  if (!(options.noise_sigma >= 0.0) || options.noise_sigma > 100.0) {
+    return Error{"sensor noise must be between 0 and 100 grey levels"};
+  }
+  SceneRenderer scene;
+  scene.rig_ = rig;
+  scene.options_ = options;
+  scene.model_ = &model;
+  scene.body_ = build_arm_body(body);
+  scene.pose_.emplace(model, scene.body_);
+  auto arm = render::ArmRenderer::create(scene.body_);
+  if (!arm) return arm.error();
+  scene.arm_ = std::move(*arm);
+
+  const Mesh floor = make_tiled_floor(8.0, 20);
+  const Mesh table = make_table_and_object(workspace_object());
+  auto environment = render::MeshSetRenderer::create({&floor, &table});
+  if (!environment) return environment.error();
+  scene.environment_ = std::move(*environment);
+
+  if (options.marker) {
+    auto marker = make_aruco_marker(*options.marker);
+    if (!marker) return marker.error();
+    scene.marker_ = std::move(*marker);
+    auto parts = render::MeshSetRenderer::create({&scene.marker_->mesh});
+    if (!parts) return parts.error();
+    scene.marker_parts_ = std::move(*parts);
+  }
+
+  render::OverlayOptions overlay_options;
+  overlay_options.mode = render::OverlayMode::kRaw;
+  overlay_options.clear_colour = options.background;
+  for (int eye = 0; eye < 2; ++eye) {
+    const CameraModel camera = supersampled_camera(
+        rig.camera(eye == 0 ? Eye::kLeft : Eye::kRight), options.supersample);
+    auto overlay = render::Overlay::create(camera, overlay_options);
+    if (!overlay) return overlay.error();
+    scene.overlay_[eye] = std::move(*overlay);
+    auto target = render::OffscreenTarget::create(camera.width, camera.height);
+    if (!target) return target.error();
+    scene.high_res_[eye] = std::move(*target);
+  }
+  return scene;
+}
+
+Eigen::Isometry3d SceneRenderer::T_base_flange() const {
+  return pose_->kinematics().T_base_link.back();
+}
+
+std::array<Eigen::Vector3d, 4> SceneRenderer::marker_corners_base() const {
+  std::array<Eigen::Vector3d, 4> corners{};
+  if (!marker_) return corners;
+  const Eigen::Isometry3d T = T_base_flange();
+  for (int k = 0; k < 4; ++k) corners[k] = T * marker_->corners_flange[k];
+  return corners;
+}
+
+Status SceneRenderer::set_target(const CalibrationTarget& target,
+                                 const Eigen::Isometry3d& T_base_target) {
+  auto parts = render::MeshSetRenderer::create({&target.mesh});
+  if (!parts) return parts.error();
+  target_ = std::move(*parts);
+  target_.set_matrix(0, T_base_target.matrix().cast<float>());
+  T_base_target_ = T_base_target;
+  has_target_ = true;
+  return Status::Ok();
+}
+
+render::Image SceneRenderer::render_clean(Eye eye) {
+  const int index = eye == Eye::kLeft ? 0 : 1;
+  arm_.update(*pose_);
+  if (marker_) {
+    marker_parts_.set_matrix(0, T_base_flange().matrix().cast<float>());
+  }
+  render::DrawOptions solid;
+  solid.lighting = options_.lighting;
+  render::DrawOptions flat = solid;
+  flat.cull_back_faces = false;  // the targets and the floor are open, one-sided meshes
+  overlay_[index].render(high_res_[index], [&](const Eigen::Matrix4f& projection,
+                                               const Eigen::Matrix4f& T_view_base) {
+    if (options_.show_environment) environment_.draw(projection, T_view_base, flat);
+    if (options_.show_robot) {
+      arm_.draw(projection, T_view_base, solid);
+      if (marker_) marker_parts_.draw(projection, T_view_base, flat);
+    }
+    if (has_target_) target_.draw(projection, T_view_base, flat);
+  });
+  const render::Image high = high_res_[index].read_rgba();
+  return downsample_box(high, options_.supersample);
+}
+
+render::Image SceneRenderer::render(Eye eye, std::uint64_t frame) {
+  render::Image image = render_clean(eye);
+  add_sensor_noise(image, options_.noise_sigma, noise_seed(options_.seed, frame, eye));
+  return image;
+}
+
+}  // namespace telear::sim

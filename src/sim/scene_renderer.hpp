@@ -1,0 +1,117 @@
+#pragma once
+// The "real" scene as the simulated stereo rig's TRUE cameras see it: a tiled floor, a table
+// with a box to pick, the PUMA with its real body (not the ghost's), an optional calibration
+// target and the ArUco marker on the gripper, lit by the renderer's ambient + directional
+// light. Each eye is rendered through the renderer's raw (distorted) overlay pipeline with the
+// eye's true camera, so the image carries the true lens distortion; then Gaussian sensor
+// noise is added.
+//
+// Anti-aliasing by supersampling. A camera scaled by S has the same lens and the pixel grid
+// refined S times:  fx' = S fx, fy' = S fy, c' = S (c + 0.5) - 0.5, size' = S size, the same
+// alpha_c and kc (distortion acts on normalized coordinates). High-res pixel (i', j') covers
+// [i' - 0.5, i' + 0.5) there, i.e. [(i' + 0.5) / S - 1, ...) ... ; the S x S block
+// i' = S i .. S i + S - 1 covers exactly pixel i's square [i - 0.5, i + 0.5). Averaging each
+// block therefore gives each pixel its area-weighted coverage (S^2 samples): edges and corners
+// land where the true camera puts them, without the half-pixel bias of point sampling.
+//
+// Noise: per pixel and channel N(0, noise_sigma) grey levels, from a std::mt19937_64 seeded
+// by (seed, frame, eye), turned into normals by Box-Muller (not std::normal_distribution,
+// whose algorithm differs between standard libraries): the same seed and frame give the same
+// image, bit for bit.
+//
+// Needs a current GL context (render::create_headless_context) for create() and render().
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+
+#include "core/arm_body.hpp"
+#include "core/arm_body_pose.hpp"
+#include "core/robot_model.hpp"
+#include "render/arm_renderer.hpp"
+#include "render/draw_options.hpp"
+#include "render/image.hpp"
+#include "render/mesh_set_renderer.hpp"
+#include "render/offscreen_target.hpp"
+#include "render/overlay.hpp"
+#include "sim/calibration_targets.hpp"
+#include "sim/stereo_rig.hpp"
+
+namespace telear::sim {
+
+struct SceneOptions {
+  int supersample = 4;       // S above, 1..8
+  double noise_sigma = 1.0;  // grey levels (0..255 scale), 0 = none
+  std::uint64_t seed = 1;
+  bool show_robot = true;
+  bool show_environment = true;  // floor, table, the box to pick
+  std::optional<MarkerSpec> marker = MarkerSpec{};  // nullopt: no marker on the gripper
+  render::Lighting lighting;
+  Eigen::Vector3f background{0.55f, 0.58f, 0.62f};  // walls (where nothing is drawn)
+};
+
+// The box to pick, on the table (base frame): edge and centre.
+struct WorkspaceObject {
+  double edge_m = 0.05;
+  Eigen::Vector3d centre_base{0.55, -0.35, 0.425};
+};
+
+class SceneRenderer {
+ public:
+  SceneRenderer() = default;
+  // The model must outlive the renderer. `body` is the real arm's look (the rig's body file).
+  // Errors: invalid options, GL failures.
+  static Result<SceneRenderer> create(const StereoRig& rig, const RobotModel& model,
+                                      const BodyDescription& body, const SceneOptions& options = {});
+
+  const StereoRig& rig() const { return rig_; }
+  const SceneOptions& options() const { return options_; }
+  static WorkspaceObject workspace_object() { return {}; }
+
+  void set_configuration(const Eigen::VectorXd& q) { pose_->set_configuration(q); }
+  void set_gripper_opening(float opening_m) { pose_->set_gripper_opening(opening_m); }
+  // Pose of the last link (flange / tool frame) in the base frame, at the current joints.
+  Eigen::Isometry3d T_base_flange() const;
+  const std::optional<ArucoMarker>& marker() const { return marker_; }
+  // Marker corners in the base frame at the current joints.
+  std::array<Eigen::Vector3d, 4> marker_corners_base() const;
+
+  // Places a calibration target (its mesh uploaded once per call) or removes it.
+  Status set_target(const CalibrationTarget& target, const Eigen::Isometry3d& T_base_target);
+  void clear_target() { has_target_ = false; }
+
+  // The eye's image without noise (RGB, camera size, top row first) and with the noise of
+  // (options.seed, frame, eye).
+  render::Image render_clean(Eye eye);
+  render::Image render(Eye eye, std::uint64_t frame);
+
+ private:
+  StereoRig rig_;
+  SceneOptions options_;
+  const RobotModel* model_ = nullptr;
+  ArmBody body_;
+  std::optional<ArmBodyPose> pose_;  // optional: ArmBodyPose has no empty state
+  render::ArmRenderer arm_;
+  render::MeshSetRenderer environment_;
+  render::MeshSetRenderer target_;
+  render::MeshSetRenderer marker_parts_;
+  std::optional<ArucoMarker> marker_;
+  Eigen::Isometry3d T_base_target_ = Eigen::Isometry3d::Identity();
+  bool has_target_ = false;
+  render::Overlay overlay_[2];
+  render::OffscreenTarget high_res_[2];
+};
+
+// The camera with its pixel grid refined `factor` times (see the header comment).
+CameraModel supersampled_camera(const CameraModel& camera, int factor);
+
+// Averages factor x factor blocks of an RGB(A) image into RGB.
+render::Image downsample_box(const render::Image& image, int factor);
+
+// Adds N(0, sigma) grey levels to every byte, rounding and clamping; seeded generator.
+void add_sensor_noise(render::Image& image, double sigma, std::uint64_t seed);
+
+// The generator seed of (seed, frame, eye) (a splitmix64 mix, stable across platforms).
+std::uint64_t noise_seed(std::uint64_t seed, std::uint64_t frame, Eye eye);
+
+}  // namespace telear::sim

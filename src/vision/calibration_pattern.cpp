@@ -1,0 +1,205 @@
+#include "vision/calibration_pattern.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+
+namespace telear {
+namespace {
+
+constexpr int kMaxPatternSide = 200;
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string::size_type begin = 0;
+  while (true) {
+    const auto end = text.find(separator, begin);
+    parts.push_back(text.substr(begin, end - begin));
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  return parts;
+}
+
+std::optional<int> parse_int(const std::string& text) {
+  int value = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+std::optional<double> parse_double(const std::string& text) {
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+cv::Mat to_grey(const cv::Mat& image) {
+  if (image.channels() == 1) return image;
+  cv::Mat grey;
+  cv::cvtColor(image, grey, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return grey;
+}
+
+std::string not_found(const CalibrationPattern& pattern) {
+  return "no pattern found (the whole " + pattern.spec() +
+         " must be visible; COLSxROWS counts inner corners)";
+}
+
+Result<std::vector<cv::Point2f>> detect_chessboard(const cv::Mat& grey,
+                                                   const CalibrationPattern& pattern) {
+  std::vector<cv::Point2f> corners;
+  const int flags = cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE;
+  bool found = cv::findChessboardCorners(grey, pattern.size(), corners, flags);
+  if (!found && grey.cols <= 1024 && grey.rows <= 1024) {
+    // Small boards: the quad detector needs a few pixels per square (OpenCV's sample does the
+    // same). Corners found at scale 2 are brought back and refined on the original image.
+    // Not for large images, where squares are rarely that small and the search is slow.
+    cv::Mat larger;
+    cv::resize(grey, larger, cv::Size(), 2.0, 2.0, cv::INTER_LINEAR_EXACT);
+    found = cv::findChessboardCorners(larger, pattern.size(), corners, flags);
+    if (found) {
+      for (cv::Point2f& p : corners) p *= 0.5f;
+    }
+  }
+  if (!found) return Error{not_found(pattern)};
+  const int half = subpixel_half_window(corners, pattern);
+  cv::cornerSubPix(grey, corners, cv::Size(half, half), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-3));
+  return corners;
+}
+
+Result<std::vector<cv::Point2f>> detect_circles(const cv::Mat& grey,
+                                                const CalibrationPattern& pattern) {
+  // OpenCV's default blob detector caps the blob area at 5000 px^2, which misses the circles
+  // of a target filling a high-resolution image: allow up to one grid cell's area.
+  cv::SimpleBlobDetector::Params params;
+  params.minArea = 10.0f;
+  params.maxArea = std::max(
+      5000.0f, static_cast<float>(grey.total()) / static_cast<float>(pattern.point_count()));
+  const cv::Ptr<cv::FeatureDetector> blobs = cv::SimpleBlobDetector::create(params);
+  std::vector<cv::Point2f> centres;
+  if (!cv::findCirclesGrid(grey, pattern.size(), centres, cv::CALIB_CB_ASYMMETRIC_GRID, blobs)) {
+    return Error{not_found(pattern)};
+  }
+  return centres;
+}
+
+}  // namespace
+
+std::string CalibrationPattern::spec() const {
+  // Shortest text that reads back as the same double ("0.03", not "0.029999999999999999").
+  char number[32];
+  const auto end = std::to_chars(number, number + sizeof number, spacing).ptr;
+  return std::string(kind == PatternKind::kChessboard ? "chessboard" : "circles") + ":" +
+         std::to_string(cols) + "x" + std::to_string(rows) + ":" + std::string(number, end);
+}
+
+Result<CalibrationPattern> parse_calibration_pattern(const std::string& spec) {
+  const std::string where = "pattern '" + spec + "': ";
+  const std::string form =
+      " (expected chessboard:COLSxROWS:SQUARE_M, e.g. chessboard:9x6:0.025 for a board of "
+      "10x7 squares of 25 mm, or circles:COLSxROWS:SPACING_M, e.g. circles:4x11:0.02)";
+  const std::vector<std::string> parts = split(spec, ':');
+  if (parts.size() != 3) return Error{where + "not three fields separated by ':'" + form};
+
+  CalibrationPattern pattern;
+  if (parts[0] == "chessboard") {
+    pattern.kind = PatternKind::kChessboard;
+  } else if (parts[0] == "circles") {
+    pattern.kind = PatternKind::kAsymmetricCircles;
+  } else {
+    return Error{where + "unknown kind '" + parts[0] + "'" + form};
+  }
+
+  const std::vector<std::string> size = split(parts[1], 'x');
+  const std::optional<int> cols = size.size() == 2 ? parse_int(size[0]) : std::nullopt;
+  const std::optional<int> rows = size.size() == 2 ? parse_int(size[1]) : std::nullopt;
+  if (!cols || !rows) return Error{where + "size '" + parts[1] + "' is not COLSxROWS" + form};
+  pattern.cols = *cols;
+  pattern.rows = *rows;
+  const int min_cols = pattern.kind == PatternKind::kChessboard ? 3 : 2;
+  if (pattern.cols < min_cols || pattern.rows < 3 || pattern.cols > kMaxPatternSide ||
+      pattern.rows > kMaxPatternSide) {
+    return Error{where + "size " + parts[1] + " is out of range: " +
+                 (pattern.kind == PatternKind::kChessboard
+                      ? "a chessboard needs 3 to 200 inner corners per side (count the "
+                        "corners where four squares meet: a board of 10x7 squares is 9x6)"
+                      : "a circle grid needs 2 to 200 circles per row and 3 to 200 rows")};
+  }
+
+  const std::optional<double> spacing = parse_double(parts[2]);
+  if (!spacing || !std::isfinite(*spacing) || *spacing <= 0.0) {
+    return Error{where + "spacing '" + parts[2] +
+                 "' is not a positive number (the square side or circle spacing in metres, "
+                 "e.g. 0.025)"};
+  }
+  pattern.spacing = *spacing;
+  return pattern;
+}
+
+std::vector<cv::Point3f> pattern_object_points(const CalibrationPattern& pattern) {
+  std::vector<cv::Point3f> points;
+  points.reserve(static_cast<std::size_t>(pattern.point_count()));
+  const double s = pattern.spacing;
+  for (int r = 0; r < pattern.rows; ++r) {
+    for (int c = 0; c < pattern.cols; ++c) {
+      const double x = pattern.kind == PatternKind::kChessboard ? c * s : (2 * c + r % 2) * s;
+      points.emplace_back(static_cast<float>(x), static_cast<float>(r * s), 0.0f);
+    }
+  }
+  return points;
+}
+
+int subpixel_half_window(const std::vector<cv::Point2f>& corners,
+                         const CalibrationPattern& pattern) {
+  assert(static_cast<int>(corners.size()) == pattern.point_count());
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < pattern.rows; ++r) {
+    for (int c = 0; c < pattern.cols; ++c) {
+      const cv::Point2f& p = corners[static_cast<std::size_t>(r * pattern.cols + c)];
+      if (c + 1 < pattern.cols) {
+        nearest = std::min(
+            nearest, cv::norm(p - corners[static_cast<std::size_t>(r * pattern.cols + c + 1)]));
+      }
+      if (r + 1 < pattern.rows) {
+        nearest = std::min(
+            nearest, cv::norm(p - corners[static_cast<std::size_t>((r + 1) * pattern.cols + c)]));
+      }
+    }
+  }
+  return std::clamp(static_cast<int>(std::lround(0.3 * nearest)), 2, 15);
+}
+
+std::optional<cv::Size> larger_chessboard(const cv::Mat& image, const CalibrationPattern& pattern) {
+  assert(pattern.kind == PatternKind::kChessboard);
+  std::vector<cv::Point2f> corners;
+  cv::Mat meta;
+  bool found = false;
+  try {
+    found = cv::findChessboardCornersSB(to_grey(image), pattern.size(), corners,
+                                        cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_LARGER, meta);
+  } catch (const cv::Exception&) {
+    return std::nullopt;
+  }
+  if (!found || static_cast<int>(corners.size()) <= pattern.point_count()) return std::nullopt;
+  // meta is the found board's grid, in either orientation: report it in the pattern's.
+  if (meta.cols >= pattern.cols && meta.rows >= pattern.rows) return cv::Size(meta.cols, meta.rows);
+  return cv::Size(meta.rows, meta.cols);
+}
+
+Result<std::vector<cv::Point2f>> detect_pattern(const cv::Mat& image,
+                                                const CalibrationPattern& pattern) {
+  assert(!image.empty() && image.depth() == CV_8U);
+  const cv::Mat grey = to_grey(image);
+  return pattern.kind == PatternKind::kChessboard ? detect_chessboard(grey, pattern)
+                                                  : detect_circles(grey, pattern);
+}
+
+}  // namespace telear

@@ -1,0 +1,362 @@
+#include "vision/camera_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <sstream>
+#include <vector>
+
+namespace telear {
+namespace {
+
+struct ParseError {
+  std::string message;
+};
+
+std::string join(const std::string& prefix, const std::string& key) {
+  return prefix.empty() ? key : prefix + "." + key;
+}
+
+double scalar(const YAML::Node& node, const std::string& what) {
+  if (!node.IsScalar()) throw ParseError{what + ": must be a number"};
+  double value = 0.0;
+  try {
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ParseError{what + ": must be a number, got '" + node.Scalar() + "'"};
+  }
+  if (!std::isfinite(value)) throw ParseError{what + ": must be finite, got " + node.Scalar()};
+  return value;
+}
+
+int integer(const YAML::Node& node, const std::string& what) {
+  if (!node) throw ParseError{what + ": missing"};
+  if (!node.IsScalar()) throw ParseError{what + ": must be an integer"};
+  try {
+    return node.as<int>();
+  } catch (const YAML::Exception&) {
+    throw ParseError{what + ": must be an integer, got '" + node.Scalar() + "'"};
+  }
+}
+
+struct Matrix {
+  int rows = 0;
+  int cols = 0;
+  std::vector<double> data;  // row-major
+};
+
+// An OpenCV / ROS matrix {rows, cols, data: [...]} (dt, when present, is not needed: the
+// values are read as doubles), or a plain list of numbers (rows = 1).
+Matrix matrix(const YAML::Node& node, const std::string& what) {
+  if (!node) throw ParseError{what + ": missing"};
+  Matrix m;
+  YAML::Node data;
+  if (node.IsSequence()) {
+    data = node;
+    m.rows = 1;
+    m.cols = static_cast<int>(node.size());
+  } else if (node.IsMap()) {
+    m.rows = integer(node["rows"], what + ".rows");
+    m.cols = integer(node["cols"], what + ".cols");
+    if (m.rows <= 0 || m.cols <= 0 || m.rows > 64 || m.cols > 64) {
+      throw ParseError{what + ": rows and cols must be in [1, 64], got " + std::to_string(m.rows) +
+                       "x" + std::to_string(m.cols)};
+    }
+    data = node["data"];
+    if (!data) throw ParseError{what + ".data: missing"};
+    if (!data.IsSequence()) throw ParseError{what + ".data: must be a list of numbers"};
+    if (data.size() != static_cast<size_t>(m.rows * m.cols)) {
+      throw ParseError{what + ".data: expected " + std::to_string(m.rows * m.cols) + " numbers (" +
+                       std::to_string(m.rows) + "x" + std::to_string(m.cols) + "), got " +
+                       std::to_string(data.size())};
+    }
+  } else {
+    throw ParseError{what + ": must be a matrix {rows, cols, data} or a list of numbers"};
+  }
+  for (size_t i = 0; i < data.size(); ++i) {
+    m.data.push_back(scalar(data[i], what + ".data[" + std::to_string(i) + "]"));
+  }
+  return m;
+}
+
+std::string format_shape(const Matrix& m) {
+  return std::to_string(m.rows) + "x" + std::to_string(m.cols);
+}
+
+Eigen::Isometry3d rigid_transform(const YAML::Node& node, const std::string& what) {
+  const Matrix m = matrix(node, what);
+  if (m.data.size() != 16 || (m.rows != 4 && m.rows != 1)) {
+    throw ParseError{what + ": expected a 4x4 matrix, got " + format_shape(m)};
+  }
+  Eigen::Matrix4d T;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) T(r, c) = m.data[static_cast<size_t>(4 * r + c)];
+  }
+  if ((T.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) {
+    throw ParseError{what + ": the last row must be 0 0 0 1"};
+  }
+  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+  const double orthonormality = (R * R.transpose() - Eigen::Matrix3d::Identity()).norm();
+  // Files typed by hand carry rotations to ~6 decimals; accept those and snap to the nearest
+  // rotation, so that downstream checks at 1e-6 hold.
+  if (orthonormality > 1e-4) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.3g", orthonormality);
+    throw ParseError{what + ": the rotation part is not orthonormal (|R R^T - I| = " +
+                     std::string(buffer) + ")"};
+  }
+  if (R.determinant() < 0.0) {
+    throw ParseError{what + ": the rotation part is a reflection (determinant -1)"};
+  }
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::Quaterniond(R).normalized().toRotationMatrix();
+  pose.translation() = T.topRightCorner<3, 1>();
+  return pose;
+}
+
+Distortion distortion(const YAML::Node& map, const std::string& prefix) {
+  const std::string what = join(prefix, "distortion_coefficients");
+  if (const YAML::Node model = map["distortion_model"]) {
+    const std::string name = model.IsScalar() ? model.Scalar() : "";
+    if (name != "plumb_bob" && name != "rational_polynomial") {
+      throw ParseError{join(prefix, "distortion_model") +
+                       ": telear supports plumb_bob (k1, k2, p1, p2, k3), got '" + name + "'"};
+    }
+  }
+  const YAML::Node node = map["distortion_coefficients"];
+  if (!node) return {};  // a lens without distortion may leave the key out
+  const Matrix m = matrix(node, what);
+  if (m.rows != 1 && m.cols != 1) {
+    throw ParseError{what + ": expected a vector (1xN or Nx1), got " + format_shape(m)};
+  }
+  const size_t n = m.data.size();
+  if (n != 4 && n != 5 && n != 8 && n != 12 && n != 14) {
+    throw ParseError{what + ": expected 4, 5, 8, 12 or 14 coefficients, got " + std::to_string(n)};
+  }
+  for (size_t i = 5; i < n; ++i) {
+    if (m.data[i] != 0.0) {
+      throw ParseError{what + ": coefficient " + std::to_string(i) +
+                       " is not zero; telear models k1, k2, p1, p2, k3 only"};
+    }
+  }
+  std::array<double, 5> kc{};
+  for (size_t i = 0; i < std::min<size_t>(n, 5); ++i) kc[i] = m.data[i];
+  return Distortion::from_array(kc);
+}
+
+struct ParsedCamera {
+  CameraModel camera;
+  bool has_pose = false;
+};
+
+ParsedCamera camera(const YAML::Node& map, const std::string& prefix) {
+  if (!map.IsMap()) {
+    throw ParseError{(prefix.empty() ? std::string("the file") : prefix) +
+                     ": must be a map of image_width, image_height, camera_matrix, ..."};
+  }
+  ParsedCamera parsed;
+  CameraModel& c = parsed.camera;
+  c.width = integer(map["image_width"], join(prefix, "image_width"));
+  c.height = integer(map["image_height"], join(prefix, "image_height"));
+
+  const std::string k_what = join(prefix, "camera_matrix");
+  const Matrix K = matrix(map["camera_matrix"], k_what);
+  if (K.data.size() != 9 || (K.rows != 3 && K.rows != 1)) {
+    throw ParseError{k_what + ": expected a 3x3 matrix, got " + format_shape(K)};
+  }
+  const std::vector<double>& k = K.data;
+  if (k[3] != 0.0 || k[6] != 0.0 || k[7] != 0.0 || std::abs(k[8] - 1.0) > 1e-12) {
+    throw ParseError{k_what +
+                     ": must be [fx s cx; 0 fy cy; 0 0 1] ([1][0], [2][0], [2][1] zero and "
+                     "[2][2] one)"};
+  }
+  if (!(k[0] > 0.0)) throw ParseError{k_what + ": fx ([0][0]) must be positive"};
+  if (!(k[4] > 0.0)) throw ParseError{k_what + ": fy ([1][1]) must be positive"};
+  c.fx = k[0];
+  c.alpha_c = k[1] / k[0];
+  c.cx = k[2];
+  c.fy = k[4];
+  c.cy = k[5];
+  c.kc = distortion(map, prefix);
+  if (const YAML::Node pose = map["T_cam_base"]) {
+    c.T_cam_base = rigid_transform(pose, join(prefix, "T_cam_base"));
+    parsed.has_pose = true;
+  }
+  if (Status valid = validate_camera(c); !valid) {
+    throw ParseError{(prefix.empty() ? "" : prefix + ": ") + valid.error().message};
+  }
+  return parsed;
+}
+
+// OpenCV writes the non-standard directive "%YAML:1.0", which YAML parsers reject; blank it
+// (keeping line numbers for messages).
+std::string strip_opencv_directive(const std::string& text) {
+  if (text.rfind("%YAML:", 0) != 0) return text;
+  const size_t end = text.find('\n');
+  return end == std::string::npos ? std::string() : text.substr(end);
+}
+
+std::string read_file(const std::string& path, bool& ok) {
+  std::ifstream in(path, std::ios::binary);
+  ok = static_cast<bool>(in);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+cv::Mat mat(const Eigen::Matrix3d& K) {
+  cv::Mat m(3, 3, CV_64F);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m.at<double>(r, c) = K(r, c);
+  }
+  return m;
+}
+
+void write_camera(cv::FileStorage& fs, const CameraModel& camera) {
+  fs << "image_width" << camera.width;
+  fs << "image_height" << camera.height;
+  fs << "camera_matrix" << mat(camera.K());
+  const std::array<double, 5> kc = camera.kc.as_array();
+  fs << "distortion_coefficients" << cv::Mat(1, 5, CV_64F, const_cast<double*>(kc.data()));
+  cv::Mat T(4, 4, CV_64F);
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) T.at<double>(r, c) = camera.T_cam_base.matrix()(r, c);
+  }
+  fs << "T_cam_base" << T;
+}
+
+Status write_text(const std::string& text, const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) return Error{"cannot write camera file '" + path + "'"};
+  out << text;
+  out.close();
+  if (!out) return Error{"cannot write camera file '" + path + "'"};
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<CameraFile> parse_camera_yaml(const std::string& text, const std::string& source) {
+  const std::string where = "camera file '" + source + "': ";
+  try {
+    const YAML::Node root = YAML::Load(strip_opencv_directive(text));
+    if (!root.IsMap()) throw ParseError{"the file must be a YAML map"};
+    CameraFile file;
+    if (root["left"] || root["right"]) {
+      if (!root["left"]) throw ParseError{"left: missing (a stereo file needs left and right)"};
+      if (!root["right"]) throw ParseError{"right: missing (a stereo file needs left and right)"};
+      ParsedCamera left = camera(root["left"], "left");
+      ParsedCamera right = camera(root["right"], "right");
+      file.left = left.camera;
+      file.left_has_pose = left.has_pose;
+      file.right = right.camera;
+      file.right_has_pose = right.has_pose;
+    } else {
+      ParsedCamera mono = camera(root, "");
+      file.left = mono.camera;
+      file.left_has_pose = mono.has_pose;
+    }
+    return file;
+  } catch (const ParseError& e) {
+    return Error{where + e.message};
+  } catch (const YAML::Exception& e) {
+    return Error{where + "not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " +
+                 e.msg};
+  }
+}
+
+Result<CameraFile> load_camera_file(const std::string& path) {
+  bool ok = false;
+  const std::string text = read_file(path, ok);
+  if (!ok) return Error{"cannot open camera file '" + path + "'"};
+  return parse_camera_yaml(text, path);
+}
+
+Result<CameraFile> load_stereo_camera_files(const std::string& left_path,
+                                            const std::string& right_path) {
+  Result<CameraFile> left = load_camera_file(left_path);
+  if (!left) return left.error();
+  Result<CameraFile> right = load_camera_file(right_path);
+  if (!right) return right.error();
+  if (left->is_stereo()) {
+    return Error{"camera file '" + left_path + "': is a stereo file; give one camera per file"};
+  }
+  if (right->is_stereo()) {
+    return Error{"camera file '" + right_path + "': is a stereo file; give one camera per file"};
+  }
+  CameraFile file;
+  file.left = left->left;
+  file.left_has_pose = left->left_has_pose;
+  file.right = right->left;
+  file.right_has_pose = right->left_has_pose;
+  return file;
+}
+
+std::string opencv_camera_yaml(const CameraModel& camera) {
+  cv::FileStorage fs(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  write_camera(fs, camera);
+  return fs.releaseAndGetString();
+}
+
+std::string opencv_stereo_camera_yaml(const StereoCameraModel& cameras) {
+  cv::FileStorage fs(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  fs << "left"
+     << "{";
+  write_camera(fs, cameras.left);
+  fs << "}";
+  fs << "right"
+     << "{";
+  write_camera(fs, cameras.right);
+  fs << "}";
+  return fs.releaseAndGetString();
+}
+
+Status write_camera_file(const CameraModel& camera, const std::string& path) {
+  return write_text(opencv_camera_yaml(camera), path);
+}
+
+Status write_stereo_camera_file(const StereoCameraModel& cameras, const std::string& path) {
+  return write_text(opencv_stereo_camera_yaml(cameras), path);
+}
+
+std::string ros_camera_info_yaml(const CameraModel& camera, const std::string& camera_name) {
+  auto matrix_node = [](int rows, int cols, const std::vector<double>& data) {
+    YAML::Node node;
+    node["rows"] = rows;
+    node["cols"] = cols;
+    YAML::Node values(YAML::NodeType::Sequence);
+    for (double v : data) values.push_back(v);
+    values.SetStyle(YAML::EmitterStyle::Flow);
+    node["data"] = values;
+    return node;
+  };
+  const Eigen::Matrix3d K = camera.K();
+  std::vector<double> k, p, t;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) k.push_back(K(r, c));
+    for (int c = 0; c < 4; ++c) p.push_back(c < 3 ? K(r, c) : 0.0);
+  }
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) t.push_back(camera.T_cam_base.matrix()(r, c));
+  }
+  const std::array<double, 5> kc = camera.kc.as_array();
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  YAML::Node root;
+  root["image_width"] = camera.width;
+  root["image_height"] = camera.height;
+  root["camera_name"] = camera_name;
+  root["camera_matrix"] = matrix_node(3, 3, k);
+  root["distortion_model"] = "plumb_bob";
+  root["distortion_coefficients"] = matrix_node(1, 5, {kc.begin(), kc.end()});
+  root["rectification_matrix"] = matrix_node(3, 3, {1, 0, 0, 0, 1, 0, 0, 0, 1});
+  root["projection_matrix"] = matrix_node(3, 4, p);
+  root["T_cam_base"] = matrix_node(4, 4, t);
+  out << root;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace telear

@@ -1,0 +1,41 @@
+#pragma once
+// Shared set-up of the GL tests: one headless EGL context per test process (llvmpipe in CI,
+// no X server). When no EGL display can be created the tests FAIL with the reason: a CI
+// machine without Mesa's EGL must not pass the GL tests by skipping them.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "render/egl_context.hpp"
+#include "render/image.hpp"
+
+namespace telear::render::test {
+
+class GlTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite();
+  void SetUp() override;
+  static GlContext* context();
+};
+
+// Pixels whose RGB differs from `background` by more than `tolerance` in any channel.
+bool differs(const Image& image, int x, int y, const Eigen::Vector3i& background,
+             int tolerance = 8);
+long count_covered(const Image& image, const Eigen::Vector3i& background);
+
+// Bounding box of the covered pixels: {min_x, min_y, max_x, max_y}; min > max when none.
+struct Box {
+  int min_x, min_y, max_x, max_y;
+  bool empty() const { return min_x > max_x; }
+};
+Box covered_box(const Image& image, const Eigen::Vector3i& background);
+
+// Leftmost and rightmost covered columns in row y ({1, 0} when none).
+std::pair<int, int> covered_span(const Image& image, int y, const Eigen::Vector3i& background);
+
+}  // namespace telear::render::test

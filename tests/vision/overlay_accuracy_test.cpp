@@ -1,0 +1,138 @@
+// The overlay error metric: identical cameras give 0 px; a known pixel shift of the principal
+// point gives that shift; a registration from noisy synthetic observations stays under the
+// issue's targets (<= 0.5 px RMS, <= 1.5 px max per eye).
+
+#include "vision/overlay_accuracy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/kinematics.hpp"
+#include "test_util/test_util.hpp"
+#include "vision/camera_file.hpp"
+#include "vision/registration.hpp"
+
+namespace telear {
+namespace {
+
+StereoCameraModel truth_rig() {
+  Result<CameraFile> file = load_camera_file(test::data_path("cameras/puma560_stereo.yaml"));
+  EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().message);
+  return {file->left, *file->right};
+}
+
+ArmBody puma_body(const RobotModel& model) {
+  Result<BodyDescription> description = body_description_for(model);
+  EXPECT_TRUE(description.ok()) << (description.ok() ? "" : description.error().message);
+  return build_arm_body(*description);
+}
+
+TEST(OverlayAccuracy, SamplesCoverEveryLinkDensely) {
+  const RobotModelPtr model = test::puma560();
+  const ArmBody body = puma_body(*model);
+  const std::vector<LinkSamples> samples = sample_arm_body(body, 0.01);
+  std::vector<bool> seen(static_cast<std::size_t>(model->dof() + 1), false);
+  for (const LinkSamples& s : samples) seen[static_cast<std::size_t>(s.link)] = !s.p_link.empty();
+  for (int link = 1; link <= model->dof(); ++link) {
+    EXPECT_TRUE(seen[static_cast<std::size_t>(link)]) << "link " << link;
+  }
+  // Finer spacing gives more points.
+  std::size_t coarse = 0, fine = 0;
+  for (const LinkSamples& s : sample_arm_body(body, 0.05)) coarse += s.p_link.size();
+  for (const LinkSamples& s : samples) fine += s.p_link.size();
+  EXPECT_GT(fine, 2 * coarse);
+}
+
+TEST(OverlayAccuracy, IdenticalCamerasAndAKnownShift) {
+  const RobotModelPtr model = test::puma560();
+  const StereoCameraModel truth = truth_rig();
+  const ArmBody body = puma_body(*model);
+  AccuracyOptions options;
+  options.configurations = 10;
+  const AccuracyReport same = evaluate_accuracy(*model, body, truth, truth, options);
+  EXPECT_GT(same.left.overlay.points, 1000);
+  EXPECT_EQ(same.left.overlay.rms_px, 0.0);
+  EXPECT_EQ(same.right.overlay.max_px, 0.0);
+  EXPECT_NEAR(same.baseline_truth_m, 0.06, 1e-9);
+  EXPECT_EQ(same.left.registration.position_mm, 0.0);
+
+  // Moving the principal point by (0.3, 0.4) px moves every pixel by 0.5 px exactly.
+  StereoCameraModel shifted = truth;
+  shifted.left.cx += 0.3;
+  shifted.left.cy += 0.4;
+  const AccuracyReport shift = evaluate_accuracy(*model, body, truth, shifted, options);
+  EXPECT_NEAR(shift.left.overlay.rms_px, 0.5, 1e-9);
+  EXPECT_NEAR(shift.left.overlay.max_px, 0.5, 1e-9);
+  EXPECT_EQ(shift.right.overlay.rms_px, 0.0);
+
+  // A 1 mm camera displacement along the base x axis: registration error 1 mm, 0 deg.
+  StereoCameraModel moved = truth;
+  moved.right.T_cam_base =
+      truth.right.T_cam_base * Eigen::Translation3d(Eigen::Vector3d(-0.001, 0.0, 0.0));
+  const AccuracyReport move = evaluate_accuracy(*model, body, truth, moved, options);
+  EXPECT_NEAR(move.right.registration.position_mm, 1.0, 1e-9);
+  EXPECT_NEAR(move.right.registration.rotation_deg, 0.0, 1e-6);
+  EXPECT_NEAR(move.baseline_estimate_m,
+              (truth.right.T_cam_base.inverse().translation() + Eigen::Vector3d(0.001, 0, 0) -
+               truth.left.T_cam_base.inverse().translation())
+                  .norm(),
+              1e-9);
+}
+
+TEST(OverlayAccuracy, RegisteredRigStaysUnderTarget) {
+  const RobotModelPtr model = test::puma560();
+  const StereoCameraModel truth = truth_rig();
+  // Marker corners at 20 random configurations where both eyes see them, 0.1 px noise.
+  const std::vector<Eigen::Vector3d> corners = {
+      {-0.025, -0.025, 0.05}, {0.025, -0.025, 0.05}, {0.025, 0.025, 0.05}, {-0.025, 0.025, 0.05}};
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  RegistrationObservations observations;
+  observations.point_in_flange = corners;
+  KinematicsData data(*model);
+  auto inside = [](const CameraModel& c, const std::optional<Eigen::Vector2d>& uv) {
+    return uv && uv->x() > 10 && uv->y() > 10 && uv->x() < c.width - 10 && uv->y() < c.height - 10;
+  };
+  while (observations.configurations.size() < 20) {
+    ObservedConfiguration c;
+    c.q = test::random_configuration(*model, rng);
+    forward_kinematics(*model, data, c.q);
+    bool visible = true;
+    for (const Eigen::Vector3d& p : corners) {
+      const Eigen::Vector3d p_base = data.T_base_link.back() * p;
+      const auto l = truth.left.project(p_base);
+      const auto r = truth.right.project(p_base);
+      if (!inside(truth.left, l) || !inside(truth.right, r)) {
+        visible = false;
+        break;
+      }
+      c.left_pixels.push_back(*l + Eigen::Vector2d(noise(rng), noise(rng)));
+      c.right_pixels.push_back(*r + Eigen::Vector2d(noise(rng), noise(rng)));
+    }
+    if (visible) observations.configurations.push_back(c);
+  }
+  Result<RegistrationResult> registration =
+      register_stereo(*model, truth.left, truth.right,
+                      right_from_left(truth.left.T_cam_base, truth.right.T_cam_base), observations);
+  ASSERT_TRUE(registration.ok()) << registration.error().message;
+  StereoCameraModel estimate = truth;
+  estimate.left.T_cam_base = registration->T_left_base;
+  estimate.right.T_cam_base = registration->T_right_base;
+  const AccuracyReport report = evaluate_accuracy(*model, puma_body(*model), truth, estimate);
+  std::printf(
+      "overlay: left %.3f px RMS %.3f px max, right %.3f / %.3f (%ld, %ld points); "
+      "registration %.3f mm %.4f deg\n",
+      report.left.overlay.rms_px, report.left.overlay.max_px, report.right.overlay.rms_px,
+      report.right.overlay.max_px, report.left.overlay.points, report.right.overlay.points,
+      report.left.registration.position_mm, report.left.registration.rotation_deg);
+  EXPECT_LE(report.left.overlay.rms_px, 0.5);
+  EXPECT_LE(report.left.overlay.max_px, 1.5);
+  EXPECT_LE(report.right.overlay.rms_px, 0.5);
+  EXPECT_LE(report.right.overlay.max_px, 1.5);
+  EXPECT_LT(report.left.registration.position_mm, 1.0);
+  EXPECT_LT(report.left.registration.rotation_deg, 0.1);
+}
+
+}  // namespace
+}  // namespace telear
