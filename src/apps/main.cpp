@@ -6,10 +6,13 @@
 
 #include "apps/bench_command.hpp"
 #include "apps/calibrate_command.hpp"
+#include "apps/eval_command.hpp"
 #include "apps/kin_command.hpp"
+#include "apps/register_command.hpp"
 #include "apps/render_bench_command.hpp"
 #include "apps/render_command.hpp"
 #include "apps/sim_command.hpp"
+#include "apps/sim_observations_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"telear: augmented-reality telerobotics (docs/cli.md)", "telear"};
@@ -116,6 +119,45 @@ int main(int argc, char** argv) {
   calibrate_app->add_flag("--keep-mono-intrinsics", calibrate.keep_mono_intrinsics,
                           "stereo: keep each camera's own calibration, fit only R, T");
 
+  // [SECTION] register
+  telear::cli::RegisterOptions register_options;
+  CLI::App* register_app = app.add_subcommand(
+      "register", "the robot base's pose in each camera (T_cam_base) from marker observations");
+  register_app
+      ->add_option("--rig", register_options.rig,
+                   "stereo camera file with R, T (telear calibrate's output)")
+      ->required();
+  register_app->add_option("--robot", register_options.robot, "shipped robot name or file")
+      ->capture_default_str();
+  register_app
+      ->add_option("--observations", register_options.observations,
+                   "observations YAML (telear sim observations)")
+      ->required();
+  register_app->add_option("-o,--output", register_options.output, "camera file to write")
+      ->required();
+  register_app
+      ->add_option("--max-iterations", register_options.max_iterations,
+                   "Levenberg-Marquardt iterations at most")
+      ->capture_default_str();
+
+  // [SECTION] eval
+  telear::cli::EvalOptions eval_options;
+  CLI::App* eval_app = app.add_subcommand(
+      "eval", "accuracy of calibration + registration against ground truth (sim)");
+  eval_app->add_option("--truth", eval_options.truth, "true stereo cameras (sim truth.yaml)")
+      ->required();
+  eval_app->add_option("--estimate", eval_options.estimate, "registered stereo camera file")
+      ->required();
+  eval_app->add_option("--robot", eval_options.robot, "shipped robot name or file")
+      ->capture_default_str();
+  eval_app->add_option("--json", eval_options.json, "also write the table as JSON to FILE");
+  eval_app
+      ->add_option("--configurations", eval_options.configurations,
+                   "random arm configurations of the overlay error")
+      ->capture_default_str();
+  eval_app->add_option("--spacing", eval_options.spacing_m, "body sample spacing, m")
+      ->capture_default_str();
+
   // [SECTION] sim (the simulated robot and stereo rig)
   CLI::App* sim_app = app.add_subcommand("sim", "the simulated robot and stereo rig");
   sim_app->require_subcommand(1);
@@ -137,11 +179,37 @@ int main(int argc, char** argv) {
   sim_capture_app
       ->add_option("--noise", sim_capture.noise, "sensor noise, grey levels (Gaussian sigma)")
       ->capture_default_str();
-  sim_capture_app->add_option("--supersample", sim_capture.supersample,
-                              "anti-aliasing samples per pixel and axis (1..8)")
+  sim_capture_app
+      ->add_option("--supersample", sim_capture.supersample,
+                   "anti-aliasing samples per pixel and axis (1..8)")
       ->capture_default_str();
   sim_capture_app->add_flag("--no-scene", sim_capture.no_scene,
                             "the target alone (no robot, floor or table)");
+
+  telear::cli::SimObservationsOptions sim_observations;
+  CLI::App* sim_observations_app =
+      sim_app->add_subcommand("observations",
+                              "registration observations: the gripper's ArUco marker detected in "
+                              "rendered stereo images at random configurations");
+  sim_observations_app->add_option("--rig", sim_observations.rig, "rig file (data/rigs/*.yaml)")
+      ->capture_default_str();
+  sim_observations_app->add_option("--robot", sim_observations.robot, "shipped robot name or file")
+      ->capture_default_str();
+  sim_observations_app
+      ->add_option("--configs", sim_observations.configs, "configurations to render (1..500)")
+      ->capture_default_str();
+  sim_observations_app->add_option("-o,--output", sim_observations.output, "observations YAML")
+      ->required();
+  sim_observations_app
+      ->add_option("--seed", sim_observations.seed, "seed of the configurations and the noise")
+      ->capture_default_str();
+  sim_observations_app
+      ->add_option("--noise", sim_observations.noise, "sensor noise, grey levels (sigma)")
+      ->capture_default_str();
+  sim_observations_app
+      ->add_option("--supersample", sim_observations.supersample,
+                   "anti-aliasing samples per pixel and axis (1..8)")
+      ->capture_default_str();
 
   // [SECTION] bench (one subcommand per benchmark: render, ...)
   CLI::App* bench_app = app.add_subcommand("bench", "measured figures beside the seed's");
@@ -181,6 +249,13 @@ int main(int argc, char** argv) {
   if (calibrate_app->parsed()) return telear::cli::run_calibrate(calibrate, std::cout, std::cerr);
   if (sim_capture_app->parsed()) {
     return telear::cli::run_sim_capture(sim_capture, std::cout, std::cerr);
+  }
+  if (register_app->parsed()) {
+    return telear::cli::run_register(register_options, std::cout, std::cerr);
+  }
+  if (eval_app->parsed()) return telear::cli::run_eval(eval_options, std::cout, std::cerr);
+  if (sim_observations_app->parsed()) {
+    return telear::cli::run_sim_observations(sim_observations, std::cout, std::cerr);
   }
   if (bench_render->parsed()) {
     return telear::cli::run_bench_render(bench_render_options, std::cout, std::cerr);

@@ -75,8 +75,8 @@ int run_sim_capture(const SimCaptureOptions& options, std::ostream& out, std::os
     return 1;
   }
   const sim::CalibrationTarget target = sim::make_calibration_target(*pattern);
-  auto poses = sim::calibration_target_poses(rig->cameras, rig->T_base_rig, target,
-                                             options.views, options.seed);
+  auto poses = sim::calibration_target_poses(rig->cameras, rig->T_base_rig, target, options.views,
+                                             options.seed);
   if (!poses) {
     err << "error: " << poses.error().message << "\n";
     return 1;
@@ -133,8 +133,8 @@ int run_sim_capture(const SimCaptureOptions& options, std::ostream& out, std::os
                << "      right_image: " << right_name << "\n"
                << "      T_base_target: " << matrix_yaml(T_base_target.matrix(), "         ")
                << "      T_left_target: " << matrix_yaml(T_left_target.matrix(), "         ");
-    out << "view " << (view + 1) << "/" << options.views << ": " << left_name << ", "
-        << right_name << "\n"
+    out << "view " << (view + 1) << "/" << options.views << ": " << left_name << ", " << right_name
+        << "\n"
         << std::flush;
   }
 
@@ -146,8 +146,8 @@ int run_sim_capture(const SimCaptureOptions& options, std::ostream& out, std::os
         << "# of vision/calibration_pattern.hpp), sensor noise in grey levels.\n"
         << "rig: \"" << rig->name << "\"\n"
         << "baseline_m: " << rig->baseline_m << "\n"
-        << "T_base_rig: " << matrix_yaml(rig->T_base_rig.matrix(), "   ")
-        << "pattern: \"" << pattern->spec() << "\"\n"
+        << "T_base_rig: " << matrix_yaml(rig->T_base_rig.matrix(), "   ") << "pattern: \""
+        << pattern->spec() << "\"\n"
         << "seed: " << options.seed << "\n"
         << "noise_sigma_grey: " << options.noise << "\n"
         << "supersample: " << options.supersample << "\n"

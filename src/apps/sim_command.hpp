@@ -16,11 +16,11 @@ struct SimCaptureOptions {
   std::string rig = "data/rigs/puma560_rig.yaml";
   std::string pattern = "chessboard:9x6:0.03";
   int views = 20;
-  std::string output;       // directory, created if missing
-  std::uint64_t seed = 1;   // poses and sensor noise
-  double noise = 1.0;       // sensor noise, grey levels (Gaussian sigma)
-  int supersample = 4;      // anti-aliasing factor per axis
-  bool no_scene = false;    // the target alone on the background (no robot, floor, table)
+  std::string output;      // directory, created if missing
+  std::uint64_t seed = 1;  // poses and sensor noise
+  double noise = 1.0;      // sensor noise, grey levels (Gaussian sigma)
+  int supersample = 4;     // anti-aliasing factor per axis
+  bool no_scene = false;   // the target alone on the background (no robot, floor, table)
 };
 
 int run_sim_capture(const SimCaptureOptions& options, std::ostream& out, std::ostream& err);

@@ -20,8 +20,8 @@ namespace {
 // without Eigen temporaries. The bottom row (0 0 0 1) is never computed: the frames in
 // KinematicsData are constructed as identities and only their top three rows are written.
 struct Frame {
-  Double2 x, y, z, p;       // rows 0, 1 of the rotation columns and of the origin
-  double x2, y2, z2, p2;    // row 2
+  Double2 x, y, z, p;     // rows 0, 1 of the rotation columns and of the origin
+  double x2, y2, z2, p2;  // row 2
 };
 static_assert(!(Eigen::Isometry3d::MatrixType::Flags & Eigen::RowMajorBit),
               "load() / store() assume Eigen's default column-major storage");
@@ -32,9 +32,13 @@ inline Double2 load2(const double* m) {
   return v;
 }
 
-inline void store2(double* m, const Double2& v) { std::memcpy(m, &v, sizeof v); }
+inline void store2(double* m, const Double2& v) {
+  std::memcpy(m, &v, sizeof v);
+}
 
-inline Double2 splat(double v) { return Double2{v, v}; }
+inline Double2 splat(double v) {
+  return Double2{v, v};
+}
 
 inline Frame load(const Eigen::Isometry3d& T) {
   const double* m = T.matrix().data();
@@ -58,18 +62,12 @@ inline void store(const Frame& F, Eigen::Isometry3d& T) {
   m[14] = F.p2;
 }
 
-inline void store(const Double2& v01, double v2, Eigen::Vector3d& out) {
-  store2(out.data(), v01);
-  out[2] = v2;
-}
-
 // Exact comparison with the identity (top three rows).
 inline bool is_identity(const Frame& F) {
   const Double2 zero = {0.0, 0.0};
-  const auto equal = (F.x == Double2{1.0, 0.0}) & (F.y == Double2{0.0, 1.0}) & (F.z == zero) &
-                     (F.p == zero);
-  return equal[0] != 0 && equal[1] != 0 && F.x2 == 0.0 && F.y2 == 0.0 && F.z2 == 1.0 &&
-         F.p2 == 0.0;
+  const auto equal =
+      (F.x == Double2{1.0, 0.0}) & (F.y == Double2{0.0, 1.0}) & (F.z == zero) & (F.p == zero);
+  return equal[0] != 0 && equal[1] != 0 && F.x2 == 0.0 && F.y2 == 0.0 && F.z2 == 1.0 && F.p2 == 0.0;
 }
 
 // A * B.
@@ -99,6 +97,11 @@ inline Frame joint_motion(JointType type, double c, double s, double v) {
     Z.p2 = v;
   }
   return Z;
+}
+
+// Frame i-1 * before_i: the frame joint i's axis is the z axis of (current is frame i-1).
+inline Frame joint_frame(const Joint& joint, const Frame& current) {
+  return joint.before_is_identity ? current : compose(current, load(joint.before));
 }
 
 // The DH parameters a joint of a kDh* form reads from after = Tz(d) Tx(a) Rx(alpha).
@@ -197,16 +200,16 @@ inline Frame dh_first(JointForm form, double c, double s, const DhParameters& dh
 
 // Re-computes link frames first_joint+1..n and the tool from frame first_joint.
 //
-// Joints of a DH form (JointForm, classified by RobotModel::Create) take dh_step; their axis
-// and its origin are column z and the origin of frame i-1. Any other joint multiplies by
-// before * Z(q + offset) * after. The sines and cosines of a block of joints are evaluated
-// first, two at a time, so that the chain of frame products then runs without waiting on them.
+// Joints of a DH form (JointForm, classified by RobotModel::Create) take dh_step. Any other
+// joint multiplies by before * Z(q + offset) * after. The sines and cosines of a block of joints
+// are evaluated first, two at a time, so that the chain of frame products then runs without waiting
+// on them.
 void propagate(const RobotModel& model, KinematicsData& data, int first_joint) {
   const int n = model.dof();
   constexpr int kBlock = 8;  // even: sincos2 takes pairs
   alignas(16) double angles[kBlock], sines[kBlock], cosines[kBlock];
-  Frame current =
-      first_joint == 0 ? identity_frame() : load(data.T_base_link[static_cast<size_t>(first_joint)]);
+  Frame current = first_joint == 0 ? identity_frame()
+                                   : load(data.T_base_link[static_cast<size_t>(first_joint)]);
   for (int start = first_joint; start < n; start += kBlock) {
     const int count = std::min(kBlock, n - start);
     for (int k = 0; k < count; ++k) angles[k] = data.q[start + k] + model.joint(start + k).offset;
@@ -223,17 +226,11 @@ void propagate(const RobotModel& model, KinematicsData& data, int first_joint) {
       const Joint& joint = model.joint(i);
       const double c = cosines[k], s = sines[k];
       if (joint.form != JointForm::kGeneral) {
-        store(current.z, current.z2, data.axis_base[index]);
-        store(current.p, current.p2, data.axis_origin_base[index]);
         current = i == 0 ? dh_first(joint.form, c, s, dh_parameters(joint))
                          : dh_step(joint.form, current, c, s, dh_parameters(joint));
       } else {
         const Frame local = compose(joint_motion(joint.type, c, s, angles[k]), load(joint.after));
-        const Frame joint_frame =
-            joint.before_is_identity ? current : compose(current, load(joint.before));
-        store(joint_frame.z, joint_frame.z2, data.axis_base[index]);
-        store(joint_frame.p, joint_frame.p2, data.axis_origin_base[index]);
-        current = compose(joint_frame, local);
+        current = compose(joint_frame(joint, current), local);
       }
       store(current, data.T_base_link[index + 1]);
     }
@@ -249,9 +246,7 @@ void propagate(const RobotModel& model, KinematicsData& data, int first_joint) {
 KinematicsData::KinematicsData(const RobotModel& model)
     : q(Eigen::VectorXd::Zero(model.dof())),
       T_base_link(static_cast<size_t>(model.dof()) + 1, Eigen::Isometry3d::Identity()),
-      T_base_tool(Eigen::Isometry3d::Identity()),
-      axis_base(static_cast<size_t>(model.dof()), Eigen::Vector3d::UnitZ()),
-      axis_origin_base(static_cast<size_t>(model.dof()), Eigen::Vector3d::Zero()) {}
+      T_base_tool(Eigen::Isometry3d::Identity()) {}
 
 void forward_kinematics(const RobotModel& model, KinematicsData& data, const Eigen::VectorXd& q) {
   assert(q.size() == model.dof() && "forward_kinematics(): wrong joint vector size");
@@ -295,9 +290,13 @@ void geometric_jacobian(const RobotModel& model, const KinematicsData& data, Jac
   J.resize(6, n);
   const Eigen::Vector3d p_tool = data.T_base_tool.translation();
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d& z = data.axis_base[static_cast<size_t>(i)];
-    if (model.joint(i).type == JointType::kRevolute) {
-      J.block<3, 1>(0, i) = z.cross(p_tool - data.axis_origin_base[static_cast<size_t>(i)]);
+    // Joint i's axis z and a point o on it, in the base frame, as forward kinematics saw them.
+    const Joint& joint = model.joint(i);
+    const Frame F = joint_frame(joint, load(data.T_base_link[static_cast<size_t>(i)]));
+    const Eigen::Vector3d z(F.z[0], F.z[1], F.z2);
+    const Eigen::Vector3d o(F.p[0], F.p[1], F.p2);
+    if (joint.type == JointType::kRevolute) {
+      J.block<3, 1>(0, i) = z.cross(p_tool - o);
       J.block<3, 1>(3, i) = z;
     } else {
       J.block<3, 1>(0, i) = z;

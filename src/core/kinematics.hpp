@@ -4,7 +4,9 @@
 // KinematicsData is the per-thread workspace: it caches the joint vector it was last
 // evaluated at and every link frame, so that changing joint i re-computes only frames
 // i..n (the seed paper's reason for keeping one object per link). No function here
-// allocates once the data is constructed.
+// allocates once the data is constructed. The products are hand-written on SIMD lane pairs
+// (kinematics.cpp), with the sines and cosines from fast_sincos.hpp; a standard-DH joint
+// (JointForm in robot_model.hpp) is applied as Rz(theta) Tz(d) Tx(a) Rx(alpha) directly.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -23,9 +25,10 @@ struct KinematicsData {
   Eigen::VectorXd q;                           // joint vector the frames are valid for
   std::vector<Eigen::Isometry3d> T_base_link;  // n + 1 frames; [0] is the base (identity)
   Eigen::Isometry3d T_base_tool;               // tool centre point
-  // Joint i's axis (unit, in the base frame) and a point on it, for the Jacobian.
-  std::vector<Eigen::Vector3d> axis_base;
-  std::vector<Eigen::Vector3d> axis_origin_base;
+  // Forward kinematics writes the top three rows of these frames only: their bottom rows are
+  // (0 0 0 1) from construction on. Joint i's axis and its origin are not stored: they are
+  // column z and the origin of T_base_link[i] * before_i (of T_base_link[i] itself for DH
+  // joints), derived by geometric_jacobian.
   // 0-based index of the first joint whose frame was re-computed by the last update, and
   // how many link frames it re-computed; tests use these to prove incremental FK.
   int last_first_updated_joint = 0;

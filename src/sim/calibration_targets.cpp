@@ -64,8 +64,7 @@ CalibrationTarget make_calibration_target(const CalibrationPattern& pattern,
     for (int j = -1; j < pattern.rows; ++j) {
       for (int i = -1; i < pattern.cols; ++i) {
         const bool black = ((i + j) % 2 + 2) % 2 == 0;
-        add_rect(target.mesh, i * s, j * s, (i + 1) * s, (j + 1) * s, 0.0,
-                 black ? kBlack : kWhite);
+        add_rect(target.mesh, i * s, j * s, (i + 1) * s, (j + 1) * s, 0.0, black ? kBlack : kWhite);
       }
     }
     // The white margin as four strips that do not overlap the squares.
@@ -129,8 +128,10 @@ Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec) {
       const bool inside = row >= 0 && row < 6 && col >= 0 && col < 6;
       const bool black = inside && cells.at<std::uint8_t>(row, col) < 128;
       // Cell (row, col) of the printed image: x = (col - 3) cell .. , y = (3 - row) cell ..
-      const float xa = static_cast<float>((col - 3) * cell), xb = static_cast<float>((col - 2) * cell);
-      const float ya = static_cast<float>((3 - row) * cell), yb = static_cast<float>((2 - row) * cell);
+      const float xa = static_cast<float>((col - 3) * cell),
+                  xb = static_cast<float>((col - 2) * cell);
+      const float ya = static_cast<float>((3 - row) * cell),
+                  yb = static_cast<float>((2 - row) * cell);
       // Counter-clockwise seen from +z (x right, y up).
       add_quad(face, {xa, yb, 0.f}, {xb, yb, 0.f}, {xb, ya, 0.f}, {xa, ya, 0.f}, n,
                black ? kBlack : kWhite);
@@ -185,19 +186,20 @@ bool visible_in(const CameraModel& camera, const Eigen::Isometry3d& T_base_targe
 
 }  // namespace
 
-Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(
-    const StereoCameraModel& cameras, const Eigen::Isometry3d& T_base_rig,
-    const CalibrationTarget& target, int count, std::uint64_t seed, double margin_px) {
+Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(const StereoCameraModel& cameras,
+                                                                const Eigen::Isometry3d& T_base_rig,
+                                                                const CalibrationTarget& target,
+                                                                int count, std::uint64_t seed,
+                                                                double margin_px) {
   std::mt19937_64 generator(seed);
   const auto uniform = [&generator](double lo, double hi) {
     return lo + (hi - lo) * (static_cast<double>(generator() >> 11) / 9007199254740992.0);
   };
   const CameraModel& left = cameras.left;
   const double board_width = target.outline_max.x() - target.outline_min.x();
-  const Eigen::Vector3d centre_target = 0.5 * (Eigen::Vector3d(target.outline_min.x(),
-                                                               target.outline_min.y(), 0.0) +
-                                               Eigen::Vector3d(target.outline_max.x(),
-                                                               target.outline_max.y(), 0.0));
+  const Eigen::Vector3d centre_target =
+      0.5 * (Eigen::Vector3d(target.outline_min.x(), target.outline_min.y(), 0.0) +
+             Eigen::Vector3d(target.outline_max.x(), target.outline_max.y(), 0.0));
   constexpr double kDeg = M_PI / 180.0;
   std::vector<Eigen::Isometry3d> poses;
   for (int view = 0; view < count; ++view) {

@@ -36,8 +36,8 @@ namespace telear::sim {
 
 struct CalibrationTarget {
   CalibrationPattern pattern;
-  Mesh mesh;                                  // target frame
-  std::vector<Eigen::Vector3d> points_target;  // pattern points, detection order
+  Mesh mesh;                                              // target frame
+  std::vector<Eigen::Vector3d> points_target;             // pattern points, detection order
   Eigen::Vector2d outline_min = Eigen::Vector2d::Zero();  // the board's extent in x, y
   Eigen::Vector2d outline_max = Eigen::Vector2d::Zero();
   // Corners of the outline (z = 0), for visibility checks.
@@ -52,8 +52,8 @@ CalibrationTarget make_calibration_target(const CalibrationPattern& pattern,
                                           double margin_squares = 1.0);
 
 struct MarkerSpec {
-  int id = 0;             // DICT_4X4_50: 0..49
-  double side_m = 0.08;   // black square's side (the detector's corners)
+  int id = 0;           // DICT_4X4_50: 0..49
+  double side_m = 0.1;  // black square's side (the detector's corners); ~20 px at 2.5 m
   // Marker frame in the flange (tool) frame, the last link's frame: by default on a plate
   // beside the gripper's palm, facing +x6 (x_marker = y6, y_marker = z6).
   Eigen::Isometry3d T_flange_marker = default_T_flange_marker();
@@ -77,8 +77,10 @@ Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec = {});
 // axis; it is accepted only when every outline corner and pattern point projects (with the
 // true distortion) at least `margin_px` inside both images and the printed face looks
 // towards both cameras. Errors: no acceptable pose found (board too large for the rig).
-Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(
-    const StereoCameraModel& cameras, const Eigen::Isometry3d& T_base_rig,
-    const CalibrationTarget& target, int count, std::uint64_t seed, double margin_px = 12.0);
+Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(const StereoCameraModel& cameras,
+                                                                const Eigen::Isometry3d& T_base_rig,
+                                                                const CalibrationTarget& target,
+                                                                int count, std::uint64_t seed,
+                                                                double margin_px = 12.0);
 
 }  // namespace telear::sim

@@ -177,8 +177,8 @@ Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const RobotMod
   overlay_options.mode = render::OverlayMode::kRaw;
   overlay_options.clear_colour = options.background;
   for (int eye = 0; eye < 2; ++eye) {
-    const CameraModel camera = supersampled_camera(
-        rig.camera(eye == 0 ? Eye::kLeft : Eye::kRight), options.supersample);
+    const CameraModel camera =
+        supersampled_camera(rig.camera(eye == 0 ? Eye::kLeft : Eye::kRight), options.supersample);
     auto overlay = render::Overlay::create(camera, overlay_options);
     if (!overlay) return overlay.error();
     scene.overlay_[eye] = std::move(*overlay);
@@ -222,15 +222,15 @@ render::Image SceneRenderer::render_clean(Eye eye) {
   solid.lighting = options_.lighting;
   render::DrawOptions flat = solid;
   flat.cull_back_faces = false;  // the targets and the floor are open, one-sided meshes
-  overlay_[index].render(high_res_[index], [&](const Eigen::Matrix4f& projection,
-                                               const Eigen::Matrix4f& T_view_base) {
-    if (options_.show_environment) environment_.draw(projection, T_view_base, flat);
-    if (options_.show_robot) {
-      arm_.draw(projection, T_view_base, solid);
-      if (marker_) marker_parts_.draw(projection, T_view_base, flat);
-    }
-    if (has_target_) target_.draw(projection, T_view_base, flat);
-  });
+  overlay_[index].render(
+      high_res_[index], [&](const Eigen::Matrix4f& projection, const Eigen::Matrix4f& T_view_base) {
+        if (options_.show_environment) environment_.draw(projection, T_view_base, flat);
+        if (options_.show_robot) {
+          arm_.draw(projection, T_view_base, solid);
+          if (marker_) marker_parts_.draw(projection, T_view_base, flat);
+        }
+        if (has_target_) target_.draw(projection, T_view_base, flat);
+      });
   const render::Image high = high_res_[index].read_rgba();
   return downsample_box(high, options_.supersample);
 }

@@ -44,7 +44,7 @@ struct SceneOptions {
   double noise_sigma = 1.0;  // grey levels (0..255 scale), 0 = none
   std::uint64_t seed = 1;
   bool show_robot = true;
-  bool show_environment = true;  // floor, table, the box to pick
+  bool show_environment = true;                     // floor, table, the box to pick
   std::optional<MarkerSpec> marker = MarkerSpec{};  // nullopt: no marker on the gripper
   render::Lighting lighting;
   Eigen::Vector3f background{0.55f, 0.58f, 0.62f};  // walls (where nothing is drawn)
@@ -62,7 +62,8 @@ class SceneRenderer {
   // The model must outlive the renderer. `body` is the real arm's look (the rig's body file).
   // Errors: invalid options, GL failures.
   static Result<SceneRenderer> create(const StereoRig& rig, const RobotModel& model,
-                                      const BodyDescription& body, const SceneOptions& options = {});
+                                      const BodyDescription& body,
+                                      const SceneOptions& options = {});
 
   const StereoRig& rig() const { return rig_; }
   const SceneOptions& options() const { return options_; }

@@ -53,8 +53,7 @@ Result<CameraModel> read_camera(const Context& ctx, const YAML::Node& node,
   for (const auto& entry : node) {
     const auto key = entry.first.as<std::string>();
     if (key != "image_size" && key != "fc" && key != "cc" && key != "alpha_c" && key != "kc") {
-      return ctx.error(field + "." + key,
-                       "unknown key (expected image_size, fc, cc, alpha_c, kc)");
+      return ctx.error(field + "." + key, "unknown key (expected image_size, fc, cc, alpha_c, kc)");
     }
   }
   CameraModel camera;
@@ -129,8 +128,8 @@ Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::stri
   if (!root.IsMap()) return ctx.error("top level", "expected a map");
   for (const auto& entry : root) {
     const auto key = entry.first.as<std::string>();
-    if (key != "name" && key != "robot" && key != "body" && key != "baseline_m" &&
-        key != "pose" && key != "cameras") {
+    if (key != "name" && key != "robot" && key != "body" && key != "baseline_m" && key != "pose" &&
+        key != "cameras") {
       return ctx.error(key, "unknown key (expected name, robot, body, baseline_m, pose, cameras)");
     }
   }

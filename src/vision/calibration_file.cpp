@@ -155,6 +155,10 @@ std::string ros_stereo_camera_info_yaml(const StereoCalibration& calibration, bo
 
 Result<StereoGeometry> load_stereo_geometry(const std::string& path) {
   const std::string where = "stereo calibration '" + path + "': ";
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) {
+    return Error{where + "no such file"};
+  }
   cv::FileStorage fs;
   try {
     if (!fs.open(path, cv::FileStorage::READ)) return Error{where + "cannot open or parse it"};

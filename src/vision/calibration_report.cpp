@@ -140,8 +140,9 @@ std::string padded(std::string text, std::size_t width) {
   return text;
 }
 
-// "533.093 ± 0.585", with digits suited to the parameter.
+// "533.093 ± 0.585", with digits suited to the parameter; "0 (held)" for a fixed one.
 std::string value_pm(double value, double std_dev, bool distortion) {
+  if (std_dev == 0.0) return format("%g (held)", value);
   return distortion ? format("%.5f ± %.5f", value, std_dev) : format("%.3f ± %.3f", value, std_dev);
 }
 

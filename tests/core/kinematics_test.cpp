@@ -49,9 +49,12 @@ TEST_F(PumaKinematics, MatchesTheRoboticsToolboxPublishedPoseAtQn) {
   //   -1  0  0   0.6575
   // and ikine_LM's answer q = (7.235e-08, -0.8335, 0.09396, 3.142, 0.8312, -3.142) for it.
   const Eigen::Isometry3d T = tool_pose(*model, *model->named_configuration("qn"));
-  EXPECT_NEAR(T.translation().x(), 0.5963, 5e-5);
-  EXPECT_NEAR(T.translation().y(), -0.1501, 5e-5);
-  EXPECT_NEAR(T.translation().z(), 0.6575, 5e-5);
+  // Half a unit of the fourth decimal, plus a hair: y = -d3 = -0.15005 exactly, which the
+  // printout rounds to -0.1501.
+  const double printed = 5e-5 + 1e-12;
+  EXPECT_NEAR(T.translation().x(), 0.5963, printed);
+  EXPECT_NEAR(T.translation().y(), -0.1501, printed);
+  EXPECT_NEAR(T.translation().z(), 0.6575, printed);
   Eigen::Matrix3d R_expected;
   R_expected << 0, 0, 1, 0, 1, 0, -1, 0, 0;
   EXPECT_LT((T.linear() - R_expected).cwiseAbs().maxCoeff(), 1e-12);

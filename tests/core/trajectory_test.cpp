@@ -146,12 +146,12 @@ TEST_F(PumaTrajectory, TheSlowestJointSetsEachSegmentsDuration) {
 }
 
 TEST_F(PumaTrajectory, OneJointAloneMovesInItsOwnMinimumTime) {
-  // Joint 1 moves 90 deg at 80 deg/s and 320 deg/s^2: 90 / 80 + 80 / 320 = 1.375 s.
+  // Joint 1 moves 90 deg at 80 deg/s and 480 deg/s^2: 90 / 80 + 80 / 480 = 1.2917 s.
   const Trajectory traj = make({{deg({0, 0, 0, 0, 0, 0})}, {deg({90, 0, 0, 0, 0, 0})}});
-  EXPECT_NEAR(traj.duration(), 1.375, 1e-12);
-  // Joint 5 moves 10 deg at 880 deg/s^2 (a triangle): 2 sqrt(10 / 880) s.
+  EXPECT_NEAR(traj.duration(), 90.0 / 80.0 + 80.0 / 480.0, 1e-12);
+  // Joint 5 moves 10 deg at 1320 deg/s^2 (a triangle): 2 sqrt(10 / 1320) s.
   const Trajectory small = make({{deg({0, 0, 0, 0, 0, 0})}, {deg({0, 0, 0, 0, 10, 0})}});
-  EXPECT_NEAR(small.duration(), 2.0 * std::sqrt(10.0 / 880.0), 1e-12);
+  EXPECT_NEAR(small.duration(), 2.0 * std::sqrt(10.0 / 1320.0), 1e-12);
 }
 
 TEST_F(PumaTrajectory, JointsAreSynchronizedOnTheStraightJointSpaceLine) {
@@ -326,7 +326,7 @@ TEST_F(PumaTrajectory, SampledRejectsABadRateOrTooManySamples) {
   const auto w = traj.sampled(100.0, 100);
   ASSERT_FALSE(w.ok());
   EXPECT_EQ(w.error().message,
-            "sampling the 1.375 s trajectory at 100 Hz needs 139 samples, more than the "
+            "sampling the 1.29167 s trajectory at 100 Hz needs 131 samples, more than the "
             "maximum of 100");
 }
 
@@ -481,7 +481,7 @@ TEST_F(TimedValidation, RejectsExcessiveAcceleration) {
   // At sample[2] the mean velocity goes from 0 to 100 deg/s over 10 ms: 10000 deg/s^2.
   EXPECT_EQ(rejection(w),
             "sample[2] (t = 0.11 s): joint 5 (wrist_bend) accelerates at 10000.00 deg/s^2, beyond "
-            "its max acceleration of 880.00 deg/s^2");
+            "its max acceleration of 1320.00 deg/s^2");
 }
 
 TEST_F(TimedValidation, RequiresStartingAndEndingAtRest) {
@@ -490,7 +490,7 @@ TEST_F(TimedValidation, RequiresStartingAndEndingAtRest) {
   start.q = {deg({0, 0, 0, 0, 0, 0}), deg({0, 0, 0, 0, 0.1, 0}), deg({0, 0, 0, 0, 0.1, 0})};
   EXPECT_EQ(rejection(start),
             "sample[0] (t = 0 s, starting from rest): joint 5 (wrist_bend) accelerates at "
-            "2000.00 deg/s^2, beyond its max acceleration of 880.00 deg/s^2");
+            "2000.00 deg/s^2, beyond its max acceleration of 1320.00 deg/s^2");
   TimedWaypoints end{{0.0, 0.99, 1.0}, {}, {}};
   end.q = {deg({0, 0, 0, 0, 0, 0}), deg({0, 0, 0, 0, 0, 0}), deg({0, 0, 0, 0, 0.1, 0})};
   EXPECT_THAT(rejection(end), HasSubstr("sample[2] (t = 1 s, ending at rest): joint 5 "

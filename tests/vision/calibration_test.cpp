@@ -118,6 +118,22 @@ TEST(MonoCalibration, NoiseFreeCornersGiveTheTruthExactly) {
   EXPECT_TRUE(result->camera.T_cam_base.isApprox(Eigen::Isometry3d::Identity()));
 }
 
+TEST(MonoCalibration, WorksWithTheAsymmetricCircleGrid) {
+  const CalibrationPattern circles = *parse_calibration_pattern("circles:4x11:0.02");
+  std::mt19937_64 rng(31);
+  const test::SyntheticRig rig = test::default_rig();
+  const auto poses = test::random_pattern_poses(rig, circles, 15, rng);
+  ASSERT_EQ(poses.size(), 15u);
+  std::vector<PatternView> views;
+  for (const Eigen::Isometry3d& pose : poses) {
+    views.push_back({"circles", test::project_pattern(rig.left, pose, circles, 0.1, rng)});
+  }
+  const auto result = calibrate_mono(circles, views, {640, 480});
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  expect_recovered(rig.left, result->camera, result->std_dev);
+  EXPECT_NEAR(result->rms_px, kNoiseRms, 0.01);
+}
+
 TEST(MonoCalibration, RejectsAnOutlierViewAndSaysWhy) {
   Synthetic s = synthetic(12, 0.1, 99);
   // View 5's corners displaced by a smooth 2 px warp (a bent board, a wrong detection).
