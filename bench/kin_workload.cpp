@@ -6,22 +6,13 @@
 #include <random>
 
 #include "core/kinematics.hpp"
+#include "core/random_configuration.hpp"
 
 namespace telear::bench {
 namespace {
 
 Eigen::VectorXd draw(const RobotModel& model, std::mt19937_64& rng) {
-  Eigen::VectorXd q(model.dof());
-  for (int i = 0; i < model.dof(); ++i) {
-    double lo = model.lower_limits()[i];
-    double hi = model.upper_limits()[i];
-    if (!std::isfinite(lo) || !std::isfinite(hi)) {
-      lo = -std::numbers::pi;
-      hi = std::numbers::pi;
-    }
-    q[i] = std::uniform_real_distribution<double>(lo, hi)(rng);
-  }
-  return q;
+  return random_configuration(model, rng);
 }
 
 }  // namespace

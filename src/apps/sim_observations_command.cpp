@@ -9,6 +9,7 @@
 
 #include "core/angles.hpp"
 #include "core/arm_body.hpp"
+#include "core/random_configuration.hpp"
 #include "core/robot_loader.hpp"
 #include "render/egl_context.hpp"
 #include "sim/calibration_targets.hpp"
@@ -109,16 +110,6 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
 
   const RobotModel& robot = **model;
   std::mt19937_64 rng(options.seed);
-  auto random_configuration = [&]() {
-    Eigen::VectorXd q(robot.dof());
-    for (int j = 0; j < robot.dof(); ++j) {
-      double lo = robot.lower_limits()(j), hi = robot.upper_limits()(j);
-      if (!std::isfinite(lo)) lo = -std::numbers::pi;
-      if (!std::isfinite(hi)) hi = std::numbers::pi;
-      q(j) = std::uniform_real_distribution<double>(lo, hi)(rng);
-    }
-    return q;
-  };
 
   RegistrationObservations observations;
   observations.robot = options.robot;
@@ -137,7 +128,7 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
                         "rig's pose",
                     2);
       }
-      q = random_configuration();
+      q = random_configuration(robot, rng);
       scene->set_configuration(q);
     } while (!marker_well_seen(*scene, min_cos, options.margin_px));
 

@@ -34,9 +34,19 @@ std::string format_joint_value(JointType type, double value) {
   return buffer;
 }
 
+std::string joint_label(const RobotModel& model, int joint) {
+  return "joint " + std::to_string(joint + 1) + " (" + model.joint(joint).name + ")";
+}
+
+std::string format_seconds(double seconds) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.6g s", seconds);
+  return buffer;
+}
+
 std::string describe_violation(const RobotModel& model, const LimitViolation& v) {
-  return "joint " + std::to_string(v.joint + 1) + " (" + model.joint(v.joint).name +
-         ") would be at " + format_joint_value(model, v.joint, v.value) + ", beyond its " +
+  return joint_label(model, v.joint) + " would be at " +
+         format_joint_value(model, v.joint, v.value) + ", beyond its " +
          (v.upper ? "upper" : "lower") + " limit of " + format_joint_value(model, v.joint, v.limit);
 }
 

@@ -31,4 +31,10 @@ std::string describe_violation(const RobotModel& model, const LimitViolation& vi
 std::string format_joint_value(const RobotModel& model, int joint, double value);
 std::string format_joint_value(JointType type, double value);
 
+// "joint 2 (shoulder)": 1-based, as operators count joints.
+std::string joint_label(const RobotModel& model, int joint);
+
+// "1.29167 s": a time in messages, six significant digits.
+std::string format_seconds(double seconds);
+
 }  // namespace telear

@@ -22,14 +22,6 @@ std::string format_number(double value, const char* format = "%g") {
   return buffer;
 }
 
-std::string format_time(double t) {
-  return format_number(t, "%.6g") + " s";
-}
-
-std::string joint_label(const RobotModel& model, int j) {
-  return "joint " + std::to_string(j + 1) + " (" + model.joint(j).name + ")";
-}
-
 std::string indexed(const char* what, size_t k) {
   return std::string(what) + "[" + std::to_string(k) + "]";
 }
@@ -91,11 +83,11 @@ Status validate_waypoints(const RobotModel& model, const std::vector<JointWaypoi
                    "minimum duration is not a finite number: " + format_number(w.min_duration)};
     }
     if (w.min_duration < 0.0) {
-      return Error{where + "minimum duration " + format_time(w.min_duration) + " is negative"};
+      return Error{where + "minimum duration " + format_seconds(w.min_duration) + " is negative"};
     }
     if (w.min_duration > options.max_segment_duration) {
-      return Error{where + "minimum duration " + format_time(w.min_duration) +
-                   " exceeds the maximum of " + format_time(options.max_segment_duration)};
+      return Error{where + "minimum duration " + format_seconds(w.min_duration) +
+                   " exceeds the maximum of " + format_seconds(options.max_segment_duration)};
     }
     if (w.gripper && !(std::isfinite(*w.gripper) && *w.gripper >= 0.0 && *w.gripper <= 1.0)) {
       return Error{where + "gripper opening " + format_number(*w.gripper) +
@@ -196,7 +188,7 @@ Result<TimedWaypoints> Trajectory::sampled(double rate_hz, int max_samples) cons
     total += steps[k];
   }
   if (total > max_samples) {
-    return Error{"sampling the " + format_time(duration()) + " trajectory at " +
+    return Error{"sampling the " + format_seconds(duration()) + " trajectory at " +
                  format_number(rate_hz) + " Hz needs " + format_number(total, "%.0f") +
                  " samples, more than the maximum of " + std::to_string(max_samples)};
   }
@@ -247,11 +239,12 @@ Status validate_timed_waypoints(const RobotModel& model, const TimedWaypoints& w
     const double t = w.times[k];
     if (!std::isfinite(t)) return Error{where + "time is not a finite number: " + format_number(t)};
     if (k == 0 && t < 0.0) {
-      return Error{where + "time " + format_time(t) + " is negative (times start at 0 or later)"};
+      return Error{where + "time " + format_seconds(t) +
+                   " is negative (times start at 0 or later)"};
     }
     if (k > 0 && !(t > w.times[k - 1])) {
-      return Error{where + "time " + format_time(t) + " is not after the previous sample's " +
-                   format_time(w.times[k - 1]) + " (times must strictly increase)"};
+      return Error{where + "time " + format_seconds(t) + " is not after the previous sample's " +
+                   format_seconds(w.times[k - 1]) + " (times must strictly increase)"};
     }
     if (std::string problem = joint_vector_problem(model, w.q[k]); !problem.empty()) {
       return Error{where + problem};
@@ -270,8 +263,8 @@ Status validate_timed_waypoints(const RobotModel& model, const TimedWaypoints& w
       const double v_max = model.max_velocities()[j];
       if (std::abs(v) > v_max * slack) {
         return Error{indexed("sample", k - 1) + " to " + indexed("sample", k) +
-                     " (t = " + format_time(w.times[k - 1]) + " to " + format_time(w.times[k]) +
-                     "): " + joint_label(model, j) + " moves at " +
+                     " (t = " + format_seconds(w.times[k - 1]) + " to " +
+                     format_seconds(w.times[k]) + "): " + joint_label(model, j) + " moves at " +
                      format_joint_value(model, j, v) + "/s, beyond its max velocity of " +
                      format_joint_value(model, j, v_max) + "/s"};
       }
@@ -290,7 +283,7 @@ Status validate_timed_waypoints(const RobotModel& model, const TimedWaypoints& w
         if (std::abs(a) > a_max * slack) {
           const char* note =
               k == 0 ? ", starting from rest" : (k == n - 1 ? ", ending at rest" : "");
-          return Error{indexed("sample", k) + " (t = " + format_time(w.times[k]) + note +
+          return Error{indexed("sample", k) + " (t = " + format_seconds(w.times[k]) + note +
                        "): " + joint_label(model, j) + " accelerates at " +
                        format_joint_value(model, j, a) + "/s^2, beyond its max acceleration of " +
                        format_joint_value(model, j, a_max) + "/s^2"};
@@ -305,12 +298,12 @@ Status validate_timed_waypoints(const RobotModel& model, const TimedWaypoints& w
       return Error{where + "time is not a finite number: " + format_number(g.time)};
     }
     if (g.time < w.times.front() || g.time > w.times.back()) {
-      return Error{where + "time " + format_time(g.time) + " is outside the samples' span " +
-                   format_time(w.times.front()) + " to " + format_time(w.times.back())};
+      return Error{where + "time " + format_seconds(g.time) + " is outside the samples' span " +
+                   format_seconds(w.times.front()) + " to " + format_seconds(w.times.back())};
     }
     if (e > 0 && g.time < w.gripper[e - 1].time) {
-      return Error{where + "time " + format_time(g.time) + " is before the previous event's " +
-                   format_time(w.gripper[e - 1].time)};
+      return Error{where + "time " + format_seconds(g.time) + " is before the previous event's " +
+                   format_seconds(w.gripper[e - 1].time)};
     }
     if (!(std::isfinite(g.opening) && g.opening >= 0.0 && g.opening <= 1.0)) {
       return Error{where + "opening " + format_number(g.opening) +

@@ -22,14 +22,6 @@ std::string format_number(double value, const char* format = "%g") {
   return buffer;
 }
 
-std::string format_time(double t) {
-  return format_number(t, "%.6g") + " s";
-}
-
-std::string joint_label(const RobotModel& model, int j) {
-  return "joint " + std::to_string(j + 1) + " (" + model.joint(j).name + ")";
-}
-
 bool is_printable_ascii(const std::string& text) {
   return std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });
 }
@@ -236,7 +228,7 @@ void SimulatedRobot::step() {
   const double t = now();
   const int n = model_->dof();
   if (mode_ == RobotMode::kJogging && t >= jog_expires_at_) {
-    begin_stop("the jog expired at t = " + format_time(jog_expires_at_),
+    begin_stop("the jog expired at t = " + format_seconds(jog_expires_at_),
                TrajectoryStatus::kCancelled);
   }
   switch (mode_) {
@@ -352,7 +344,7 @@ void SimulatedRobot::update_measured(double dt) {
           fault_ = joint_label(*model_, j) + " measured at " + format_joint_value(*model_, j, m.q) +
                    ", beyond its " + (upper ? "upper" : "lower") + " limit of " +
                    format_joint_value(*model_, j, bound) +
-                   ": hard-clamped to the limit at t = " + format_time(now());
+                   ": hard-clamped to the limit at t = " + format_seconds(now());
         }
       }
       m.q = bound;
@@ -408,8 +400,8 @@ void SimulatedRobot::sync_command_to_measured() {
 Status SimulatedRobot::check_can_move(const char* what) const {
   if (mode_ == RobotMode::kEStopped) {
     return Error{std::string(what) +
-                 " rejected: the e-stop is engaged (since t = " + format_time(estop_time_) + ": " +
-                 estop_reason_ + "); reset it once the arm is at rest"};
+                 " rejected: the e-stop is engaged (since t = " + format_seconds(estop_time_) +
+                 ": " + estop_reason_ + "); reset it once the arm is at rest"};
   }
   if (trajectory_) {
     return Error{std::string(what) + " rejected: trajectory '" + trajectory_->id +
@@ -425,12 +417,13 @@ Status SimulatedRobot::check_jog_expiry(double expires_at) const {
                  format_number(expires_at)};
   }
   if (expires_at <= t) {
-    return Error{"jog ignored: it expired at t = " + format_time(expires_at) + ", " +
-                 format_time(t - expires_at) + " before it arrived at t = " + format_time(t)};
+    return Error{"jog ignored: it expired at t = " + format_seconds(expires_at) + ", " +
+                 format_seconds(t - expires_at) + " before it arrived at t = " + format_seconds(t)};
   }
   if (expires_at - t > options_.max_jog_duration) {
-    return Error{"jog rejected: it expires " + format_time(expires_at - t) +
-                 " from now, later than the maximum of " + format_time(options_.max_jog_duration)};
+    return Error{"jog rejected: it expires " + format_seconds(expires_at - t) +
+                 " from now, later than the maximum of " +
+                 format_seconds(options_.max_jog_duration)};
   }
   return Status::Ok();
 }
@@ -548,9 +541,9 @@ Status SimulatedRobot::set_gripper(double opening) {
   std::lock_guard lock(mutex_);
   catch_up();
   if (mode_ == RobotMode::kEStopped) {
-    return Error{
-        "gripper command rejected: the e-stop is engaged (since t = " + format_time(estop_time_) +
-        ": " + estop_reason_ + "); reset it once the arm is at rest"};
+    return Error{"gripper command rejected: the e-stop is engaged (since t = " +
+                 format_seconds(estop_time_) + ": " + estop_reason_ +
+                 "); reset it once the arm is at rest"};
   }
   if (!(std::isfinite(opening) && opening >= 0.0 && opening <= 1.0)) {
     return Error{"gripper command rejected: opening " + format_number(opening) +

@@ -14,16 +14,6 @@ namespace {
 // TimedWaypointsLimits::relative_tolerance.
 constexpr double kRelativeTolerance = 1e-6;
 
-std::string format_time(double t) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.6g s", t);
-  return buffer;
-}
-
-std::string joint_label(const RobotModel& model, int j) {
-  return "joint " + std::to_string(j + 1) + " (" + model.joint(j).name + ")";
-}
-
 // Every segment's peak velocity and acceleration within this model's limits.
 Status check_profiles(const RobotModel& model, const Trajectory& trajectory) {
   const auto& waypoints = trajectory.waypoints();
@@ -33,8 +23,8 @@ Status check_profiles(const RobotModel& model, const Trajectory& trajectory) {
   for (size_t k = 0; k < profiles.size(); ++k) {
     const Eigen::VectorXd D = waypoints[k + 1].q - waypoints[k].q;
     const std::string where = "segment waypoint[" + std::to_string(k) + "] to waypoint[" +
-                              std::to_string(k + 1) + "] (t = " + format_time(times[k]) + " to " +
-                              format_time(times[k + 1]) + "): ";
+                              std::to_string(k + 1) + "] (t = " + format_seconds(times[k]) +
+                              " to " + format_seconds(times[k + 1]) + "): ";
     for (int j = 0; j < model.dof(); ++j) {
       const double v = std::abs(D[j]) * profiles[k].peak_rate;
       const double a = std::abs(D[j]) * profiles[k].acceleration;

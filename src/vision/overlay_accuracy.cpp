@@ -6,6 +6,7 @@
 #include <random>
 
 #include "core/kinematics.hpp"
+#include "core/random_configuration.hpp"
 
 namespace telear {
 
@@ -45,17 +46,7 @@ std::vector<Eigen::VectorXd> workspace_configurations(const RobotModel& model, i
   for (const NamedConfiguration& named : model.named_configurations()) result.push_back(named.q);
   std::mt19937_64 rng(seed);
   for (int c = 0; c < count; ++c) {
-    Eigen::VectorXd q(model.dof());
-    for (int i = 0; i < model.dof(); ++i) {
-      double lo = model.lower_limits()[i];
-      double hi = model.upper_limits()[i];
-      if (!std::isfinite(lo) || !std::isfinite(hi)) {
-        lo = -std::numbers::pi;
-        hi = std::numbers::pi;
-      }
-      q[i] = std::uniform_real_distribution<double>(lo, hi)(rng);
-    }
-    result.push_back(q);
+    result.push_back(random_configuration(model, rng));
   }
   return result;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/random_configuration.hpp"
 #include "core/robot_loader.hpp"
 
 namespace telear::test {
@@ -23,17 +24,7 @@ RobotModelPtr puma560() {
 }
 
 Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& rng) {
-  Eigen::VectorXd q(model.dof());
-  for (int i = 0; i < model.dof(); ++i) {
-    double lo = model.lower_limits()[i];
-    double hi = model.upper_limits()[i];
-    if (!std::isfinite(lo) || !std::isfinite(hi)) {
-      lo = -std::numbers::pi;
-      hi = std::numbers::pi;
-    }
-    q[i] = std::uniform_real_distribution<double>(lo, hi)(rng);
-  }
-  return q;
+  return telear::random_configuration(model, rng);
 }
 
 Eigen::Matrix4d dh_product(const std::vector<DhRow>& rows, const Eigen::VectorXd& q) {
