@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
+#include "vision/opencv_pose.hpp"
+
 namespace telear {
 namespace {
 
@@ -12,17 +14,6 @@ std::string format_px(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.3f px", value);
   return buffer;
-}
-
-Eigen::Isometry3d pose_from(const cv::Mat& rvec, const cv::Mat& tvec) {
-  cv::Mat R;
-  cv::Rodrigues(rvec, R);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) T.linear()(r, c) = R.at<double>(r, c);
-    T.translation()(r) = tvec.at<double>(r);
-  }
-  return T;
 }
 
 }  // namespace
@@ -157,7 +148,7 @@ Result<MonoCalibration> calibrate_mono(const CalibrationPattern& pattern,
       CalibratedView view;
       view.name = views[active[k]].name;
       view.rms_px = errors[k];
-      view.T_cam_target = pose_from(rvecs[k], tvecs[k]);
+      view.T_cam_target = pose_from_rvec_tvec(rvecs[k], tvecs[k]);
       const int row = static_cast<int>(6 * k);
       for (int i = 0; i < 3; ++i) {
         view.rotation_std(i) = std_extrinsics.at<double>(row + i);

@@ -7,6 +7,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "core/kinematics.hpp"
+#include "vision/opencv_pose.hpp"
 
 namespace telear {
 namespace {
@@ -163,13 +164,7 @@ std::optional<Eigen::Isometry3d> pnp(const CameraModel& camera,
   } catch (const cv::Exception&) {
     return std::nullopt;
   }
-  cv::Mat R;
-  cv::Rodrigues(rvec, R);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) T.linear()(i, j) = R.at<double>(i, j);
-    T.translation()[i] = tvec.at<double>(i);
-  }
+  const Eigen::Isometry3d T = pose_from_rvec_tvec(rvec, tvec);
   if (!T.matrix().allFinite()) return std::nullopt;
   return T;
 }

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
+#include "vision/opencv_pose.hpp"
+
 namespace telear {
 namespace {
 
@@ -222,17 +224,6 @@ Covariance joint_covariance(const std::vector<cv::Point3f>& object,
   return result;
 }
 
-Eigen::Isometry3d pose_from(const cv::Mat& rvec, const cv::Mat& tvec) {
-  cv::Mat R;
-  cv::Rodrigues(rvec, R);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) T.linear()(r, c) = R.at<double>(r, c);
-    T.translation()(r) = tvec.at<double>(r);
-  }
-  return T;
-}
-
 }  // namespace
 
 Status StereoCalibrationOptions::validate() const {
@@ -378,14 +369,14 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
 
     result.cameras.left = camera_from(s.K[0], s.dist[0], image_size);
     result.cameras.right = camera_from(s.K[1], s.dist[1], image_size);
-    result.cameras.right.T_cam_base = pose_from(s.om, s.T);
+    result.cameras.right.T_cam_base = pose_from_rvec_tvec(s.om, s.T);
     for (std::size_t k = 0; k < active.size(); ++k) {
       StereoCalibratedView view;
       view.left_name = active[k].left_name;
       view.right_name = active[k].right_name;
       view.left_rms_px = per_view.at<double>(static_cast<int>(k), 0);
       view.right_rms_px = per_view.at<double>(static_cast<int>(k), 1);
-      view.T_left_target = pose_from(s.poses[k].rvec, s.poses[k].tvec);
+      view.T_left_target = pose_from_rvec_tvec(s.poses[k].rvec, s.poses[k].tvec);
       result.views.push_back(std::move(view));
     }
     result.rejected = std::move(rejected);
