@@ -11,7 +11,9 @@
 // project, with the true cameras, at least `margin_px` inside both images. At each kept
 // configuration the "real" images are rendered per eye (sim/scene_renderer.hpp: true
 // distortion, sensor noise) and the marker's corners are DETECTED with cv::aruco
-// (DICT_4X4_50, sub-pixel corner refinement), as on a real rig. An eye where the marker is not
+// (DICT_4X4_50), as on a real rig, then refined to sub-pixel precision by fitting lines to
+// the black border's outer edges (cv::aruco's own refinement is only whole-pixel accurate on
+// a ~20 px marker). An eye where the marker is not
 // found gets an empty pixel list; a configuration seen by neither eye is skipped, and said so.
 // The file's point_in_flange are the marker's corners in the flange frame, in detection order.
 // Exit codes: 0 written, 2 bad input (one line on `err`), 1 rendering or writing failed.
