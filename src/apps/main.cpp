@@ -12,6 +12,7 @@
 #include "apps/render_bench_command.hpp"
 #include "apps/render_command.hpp"
 #include "apps/sim_command.hpp"
+#include "apps/sim_frame_command.hpp"
 #include "apps/sim_observations_command.hpp"
 
 int main(int argc, char** argv) {
@@ -186,6 +187,22 @@ int main(int argc, char** argv) {
   sim_capture_app->add_flag("--no-scene", sim_capture.no_scene,
                             "the target alone (no robot, floor or table)");
 
+  telear::cli::SimFrameOptions sim_frame;
+  CLI::App* sim_frame_app = sim_app->add_subcommand(
+      "frame", "one stereo pair of the simulated scene at a joint configuration (true cameras)");
+  sim_frame_app->add_option("--rig", sim_frame.rig, "rig file (data/rigs/*.yaml)")
+      ->capture_default_str();
+  sim_frame_app->add_option("--q", sim_frame.q, "joint values (rad, or deg with --deg) or a name")
+      ->capture_default_str();
+  sim_frame_app->add_flag("--deg", sim_frame.degrees, "joint values in degrees");
+  sim_frame_app->add_option("--gripper", sim_frame.gripper, "gripper opening, m")
+      ->capture_default_str();
+  sim_frame_app->add_option("--seed", sim_frame.seed, "seed of the sensor noise");
+  sim_frame_app->add_option("--noise", sim_frame.noise, "sensor noise, grey levels")
+      ->capture_default_str();
+  sim_frame_app->add_option("-o,--output", sim_frame.output, "PREFIX: writes PREFIX_left/right.png")
+      ->required();
+
   telear::cli::SimObservationsOptions sim_observations;
   CLI::App* sim_observations_app =
       sim_app->add_subcommand("observations",
@@ -250,6 +267,7 @@ int main(int argc, char** argv) {
   if (sim_capture_app->parsed()) {
     return telear::cli::run_sim_capture(sim_capture, std::cout, std::cerr);
   }
+  if (sim_frame_app->parsed()) return telear::cli::run_sim_frame(sim_frame, std::cout, std::cerr);
   if (register_app->parsed()) {
     return telear::cli::run_register(register_options, std::cout, std::cerr);
   }

@@ -1,0 +1,62 @@
+#include "apps/sim_frame_command.hpp"
+
+#include "apps/cli_parsing.hpp"
+#include "core/angles.hpp"
+#include "core/arm_body.hpp"
+#include "core/kinematics.hpp"
+#include "core/robot_loader.hpp"
+#include "render/egl_context.hpp"
+#include "render/image_io.hpp"
+#include "sim/scene_renderer.hpp"
+#include "sim/stereo_rig.hpp"
+
+namespace telear::cli {
+
+int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostream& err) {
+  auto fail = [&err](const std::string& message, int code) {
+    err << "telear sim frame: " << message << "\n";
+    return code;
+  };
+  if (options.output.empty()) return fail("-o PREFIX is required", 2);
+  if (!(options.gripper >= 0.0 && options.gripper <= 0.2)) {
+    return fail("--gripper must be an opening between 0 and 0.2 m", 2);
+  }
+  auto rig = sim::load_stereo_rig(options.rig);
+  if (!rig) return fail(rig.error().message, 2);
+  auto model = load_robot(rig->robot);
+  if (!model) return fail("rig '" + options.rig + "': robot: " + model.error().message, 2);
+  const RobotModel& robot = **model;
+  Eigen::VectorXd q;
+  if (auto named = robot.named_configuration(options.q)) {
+    q = *named;
+  } else {
+    auto values = parse_number_list(options.q, "--q", robot.dof());
+    if (!values) return fail(values.error().message, 2);
+    q = to_vector(*values);
+    if (options.degrees) q = q.unaryExpr([](double v) { return radians_from_degrees(v); });
+  }
+  auto body = rig->body_file.empty() ? body_description_for(robot)
+                                     : load_body_yaml_file(rig->body_file, robot);
+  if (!body) return fail(body.error().message, 2);
+
+  auto context = render::create_headless_context();
+  if (!context) return fail(context.error().message, 1);
+  sim::SceneOptions scene_options;
+  scene_options.seed = options.seed;
+  scene_options.noise_sigma = options.noise;
+  auto scene = sim::SceneRenderer::create(*rig, robot, *body, scene_options);
+  if (!scene) return fail(scene.error().message, 1);
+  scene->set_configuration(q);
+  scene->set_gripper_opening(static_cast<float>(options.gripper));
+  for (const auto& [eye, suffix] :
+       {std::pair{sim::Eye::kLeft, "_left.png"}, std::pair{sim::Eye::kRight, "_right.png"}}) {
+    const std::string path = options.output + suffix;
+    if (auto written = render::write_png(path, scene->render(eye, 0)); !written) {
+      return fail(written.error().message, 1);
+    }
+    out << "wrote " << path << "\n";
+  }
+  return 0;
+}
+
+}  // namespace telear::cli
