@@ -1,0 +1,65 @@
+// The accuracy chain of issue 4, end to end on the simulated rig, as a user runs it:
+// rendered calibration images -> telear calibrate -> rendered marker observations ->
+// telear register -> telear eval against the simulator's truth. Every target must pass:
+// fx, fy within 0.2 %, cc within 1 px, baseline within 0.5 mm, registration within 1 mm and
+// 0.1 deg, overlay error <= 0.5 px RMS and <= 1.5 px max per eye. Seeds are fixed, so the
+// run is deterministic (about 20 s on 2 cores, headless EGL).
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+
+namespace telear {
+namespace {
+
+using test::run_telear;
+
+TEST(SimAccuracyChain, RenderedImagesToRegisteredGhostMeetEveryTarget) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / ("sim_chain_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string d = dir.string();
+  const std::string rig = std::string(TELEAR_TEST_DATA_DIR) + "/rigs/puma560_rig.yaml";
+
+  auto step = [](const std::string& args) {
+    const auto r = run_telear(args);
+    EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+    return r.exit_code == 0;
+  };
+  ASSERT_TRUE(step("sim capture --rig " + rig + " --views 20 --seed 1 -o " + d + "/cap"));
+  ASSERT_TRUE(step("calibrate --left '" + d + "/cap/left*.png' --right '" + d +
+                   "/cap/right*.png' --pattern chessboard:9x6:0.03 -o " + d + "/stereo.yaml"));
+  ASSERT_TRUE(step("sim observations --rig " + rig + " --robot puma560 --configs 20 --seed 1 -o " +
+                   d + "/obs.yaml"));
+  ASSERT_TRUE(step("register --rig " + d + "/stereo.yaml --robot puma560 --observations " + d +
+                   "/obs.yaml -o " + d + "/registered.yaml"));
+  ASSERT_TRUE(step("eval --truth " + d + "/cap/truth.yaml --estimate " + d +
+                   "/registered.yaml --robot puma560 --json " + d + "/eval.json"));
+
+  std::ifstream in(d + "/eval.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  ASSERT_TRUE(report.contains("checks"));
+  ASSERT_GE(report["checks"].size(), 17u);
+  for (const auto& check : report["checks"]) {
+    EXPECT_TRUE(check["pass"].get<bool>())
+        << check["name"].get<std::string>() << " = " << check["value"].get<double>() << " (limit "
+        << check["limit"].get<double>() << ")";
+  }
+  EXPECT_TRUE(report["pass"].get<bool>());
+  for (const char* eye : {"left", "right"}) {
+    EXPECT_LT(report[eye]["overlay_rms_px"].get<double>(), 0.5) << eye;
+    EXPECT_LT(report[eye]["registration_mm"].get<double>(), 1.0) << eye;
+  }
+  EXPECT_NEAR(report["baseline_estimate_mm"].get<double>(), 60.0, 0.5);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace telear
