@@ -17,6 +17,7 @@
 
 #include "cli_runner.hpp"
 #include "core/kinematics.hpp"
+#include "synthetic_observations.hpp"
 #include "test_util/test_util.hpp"
 #include "vision/calibration_file.hpp"
 #include "vision/camera_file.hpp"
@@ -47,55 +48,17 @@ std::string truth_path() {
   return test::data_path("cameras/puma560_stereo.yaml");
 }
 
-StereoCameraModel truth_rig() {
-  Result<CameraFile> file = load_camera_file(truth_path());
-  EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().message);
-  return {file->left, *file->right};
-}
-
-bool inside(const CameraModel& camera, const std::optional<Eigen::Vector2d>& uv) {
-  return uv && uv->x() > 10 && uv->y() > 10 && uv->x() < camera.width - 10 &&
-         uv->y() < camera.height - 10;
-}
-
-// A 5 cm marker 5 cm out along the flange z axis at `count` random configurations where both
-// eyes see it, projected by the true cameras plus N(0, 0.1 px).
+// A flange marker at `count` random configurations where both eyes see it, projected by the
+// true cameras plus N(0, 0.1 px).
 RegistrationObservations synthetic_observations(int count, unsigned seed) {
-  const RobotModelPtr model = test::puma560();
-  const StereoCameraModel rig = truth_rig();
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, 0.1);
-  RegistrationObservations observations;
-  observations.robot = "puma560";
-  observations.point_in_flange = {
-      {-0.025, -0.025, 0.05}, {0.025, -0.025, 0.05}, {0.025, 0.025, 0.05}, {-0.025, 0.025, 0.05}};
-  KinematicsData data(*model);
-  while (static_cast<int>(observations.configurations.size()) < count) {
-    const Eigen::VectorXd q = test::random_configuration(*model, rng);
-    forward_kinematics(*model, data, q);
-    ObservedConfiguration configuration;
-    configuration.q = q;
-    bool visible = true;
-    for (const Eigen::Vector3d& p : observations.point_in_flange) {
-      const Eigen::Vector3d p_base = data.T_base_link.back() * p;
-      const auto l = rig.left.project(p_base);
-      const auto r = rig.right.project(p_base);
-      if (!inside(rig.left, l) || !inside(rig.right, r)) {
-        visible = false;
-        break;
-      }
-      configuration.left_pixels.push_back(*l + Eigen::Vector2d(noise(rng), noise(rng)));
-      configuration.right_pixels.push_back(*r + Eigen::Vector2d(noise(rng), noise(rng)));
-    }
-    if (visible) observations.configurations.push_back(configuration);
-  }
-  return observations;
+  return test::synthetic_observations(*test::puma560(), test::shipped_stereo_cameras(),
+                                      test::flange_marker_corners(), count, 0.1, seed);
 }
 
 // What a stereo `telear calibrate` hands over: the true intrinsics, no registration (identity
 // poses here), and the pair's geometry R, T.
 std::string calibrated_rig_yaml() {
-  StereoCameraModel rig = truth_rig();
+  StereoCameraModel rig = test::shipped_stereo_cameras();
   const Eigen::Isometry3d T_right_left = right_from_left(rig.left.T_cam_base, rig.right.T_cam_base);
   rig.left.T_cam_base = Eigen::Isometry3d::Identity();
   rig.right.T_cam_base = Eigen::Isometry3d::Identity();
@@ -187,7 +150,7 @@ TEST(RegisterEvalCli, BadInputIsOneLineAndNoOutputFile) {
   EXPECT_THAT(r.err, HasSubstr("telear register: observations '"));
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 
-  write(dir + "/mono.yaml", opencv_camera_yaml(truth_rig().left));
+  write(dir + "/mono.yaml", opencv_camera_yaml(test::shipped_stereo_cameras().left));
   r = run_telear("register --rig " + dir + "/mono.yaml --observations " + dir + "/two.yaml -o " +
                  out);
   EXPECT_EQ(r.exit_code, 2);

@@ -9,18 +9,13 @@
 #include <random>
 
 #include "core/kinematics.hpp"
+#include "synthetic_observations.hpp"
 #include "test_util/test_util.hpp"
 #include "vision/camera_file.hpp"
 #include "vision/registration.hpp"
 
 namespace telear {
 namespace {
-
-StereoCameraModel truth_rig() {
-  Result<CameraFile> file = load_camera_file(test::data_path("cameras/puma560_stereo.yaml"));
-  EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().message);
-  return {file->left, *file->right};
-}
 
 ArmBody puma_body(const RobotModel& model) {
   Result<BodyDescription> description = body_description_for(model);
@@ -46,7 +41,7 @@ TEST(OverlayAccuracy, SamplesCoverEveryLinkDensely) {
 
 TEST(OverlayAccuracy, IdenticalCamerasAndAKnownShift) {
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   const ArmBody body = puma_body(*model);
   AccuracyOptions options;
   options.configurations = 10;
@@ -82,36 +77,10 @@ TEST(OverlayAccuracy, IdenticalCamerasAndAKnownShift) {
 
 TEST(OverlayAccuracy, RegisteredRigStaysUnderTarget) {
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   // Marker corners at 20 random configurations where both eyes see them, 0.1 px noise.
-  const std::vector<Eigen::Vector3d> corners = {
-      {-0.025, -0.025, 0.05}, {0.025, -0.025, 0.05}, {0.025, 0.025, 0.05}, {-0.025, 0.025, 0.05}};
-  std::mt19937_64 rng(21);
-  std::normal_distribution<double> noise(0.0, 0.1);
-  RegistrationObservations observations;
-  observations.point_in_flange = corners;
-  KinematicsData data(*model);
-  auto inside = [](const CameraModel& c, const std::optional<Eigen::Vector2d>& uv) {
-    return uv && uv->x() > 10 && uv->y() > 10 && uv->x() < c.width - 10 && uv->y() < c.height - 10;
-  };
-  while (observations.configurations.size() < 20) {
-    ObservedConfiguration c;
-    c.q = test::random_configuration(*model, rng);
-    forward_kinematics(*model, data, c.q);
-    bool visible = true;
-    for (const Eigen::Vector3d& p : corners) {
-      const Eigen::Vector3d p_base = data.T_base_link.back() * p;
-      const auto l = truth.left.project(p_base);
-      const auto r = truth.right.project(p_base);
-      if (!inside(truth.left, l) || !inside(truth.right, r)) {
-        visible = false;
-        break;
-      }
-      c.left_pixels.push_back(*l + Eigen::Vector2d(noise(rng), noise(rng)));
-      c.right_pixels.push_back(*r + Eigen::Vector2d(noise(rng), noise(rng)));
-    }
-    if (visible) observations.configurations.push_back(c);
-  }
+  const RegistrationObservations observations =
+      test::synthetic_observations(*model, truth, test::flange_marker_corners(), 20, 0.1, 21);
   Result<RegistrationResult> registration =
       register_stereo(*model, truth.left, truth.right,
                       right_from_left(truth.left.T_cam_base, truth.right.T_cam_base), observations);

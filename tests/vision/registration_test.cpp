@@ -9,6 +9,7 @@
 #include <random>
 
 #include "core/kinematics.hpp"
+#include "synthetic_observations.hpp"
 #include "test_util/test_util.hpp"
 #include "vision/camera_file.hpp"
 #include "vision/observations_file.hpp"
@@ -16,57 +17,6 @@
 
 namespace telear {
 namespace {
-
-StereoCameraModel truth_rig() {
-  Result<CameraFile> file = load_camera_file(test::data_path("cameras/puma560_stereo.yaml"));
-  EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().message);
-  return {file->left, *file->right};
-}
-
-// A 5 cm marker 5 cm out along the flange's z axis, corners in cv::aruco's order.
-std::vector<Eigen::Vector3d> marker_corners() {
-  return {
-      {-0.025, -0.025, 0.05}, {0.025, -0.025, 0.05}, {0.025, 0.025, 0.05}, {-0.025, 0.025, 0.05}};
-}
-
-bool inside(const CameraModel& camera, const std::optional<Eigen::Vector2d>& uv) {
-  return uv && uv->x() > 10 && uv->y() > 10 && uv->x() < camera.width - 10 &&
-         uv->y() < camera.height - 10;
-}
-
-// `count` configurations at which every point is inside both images, projected by the true
-// cameras with N(0, noise_px) noise.
-RegistrationObservations synthetic_observations(const RobotModel& model,
-                                                const StereoCameraModel& rig,
-                                                const std::vector<Eigen::Vector3d>& points,
-                                                int count, double noise_px, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, noise_px);
-  RegistrationObservations observations;
-  observations.robot = model.name();
-  observations.point_in_flange = points;
-  KinematicsData data(model);
-  while (static_cast<int>(observations.configurations.size()) < count) {
-    const Eigen::VectorXd q = test::random_configuration(model, rng);
-    forward_kinematics(model, data, q);
-    ObservedConfiguration configuration;
-    configuration.q = q;
-    bool visible = true;
-    for (const Eigen::Vector3d& p : points) {
-      const Eigen::Vector3d p_base = data.T_base_link.back() * p;
-      const auto l = rig.left.project(p_base);
-      const auto r = rig.right.project(p_base);
-      if (!inside(rig.left, l) || !inside(rig.right, r)) {
-        visible = false;
-        break;
-      }
-      configuration.left_pixels.push_back(*l + Eigen::Vector2d(noise(rng), noise(rng)));
-      configuration.right_pixels.push_back(*r + Eigen::Vector2d(noise(rng), noise(rng)));
-    }
-    if (visible) observations.configurations.push_back(configuration);
-  }
-  return observations;
-}
 
 Eigen::Isometry3d T_right_left_of(const StereoCameraModel& rig) {
   return right_from_left(rig.left.T_cam_base, rig.right.T_cam_base);
@@ -81,9 +31,9 @@ StereoCameraModel unregistered(StereoCameraModel rig) {
 
 TEST(Registration, RecoversTheTrueBasePoseFromMarkerCorners) {
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   const RegistrationObservations observations =
-      synthetic_observations(*model, truth, marker_corners(), 15, 0.1, 7);
+      test::synthetic_observations(*model, truth, test::flange_marker_corners(), 15, 0.1, 7);
   const StereoCameraModel start = unregistered(truth);
   Result<RegistrationResult> result =
       register_stereo(*model, start.left, start.right, T_right_left_of(truth), observations);
@@ -111,9 +61,9 @@ TEST(Registration, RecoversTheTrueBasePoseFromMarkerCorners) {
 TEST(Registration, EstimatedIntrinsicsStillMeetTheTargets) {
   // Intrinsics off by what a good calibration leaves (fx, fy 0.1 %, cc 0.5 px, k1 0.5 %).
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   const RegistrationObservations observations =
-      synthetic_observations(*model, truth, marker_corners(), 20, 0.1, 11);
+      test::synthetic_observations(*model, truth, test::flange_marker_corners(), 20, 0.1, 11);
   StereoCameraModel estimate = unregistered(truth);
   for (CameraModel* camera : {&estimate.left, &estimate.right}) {
     camera->fx *= 1.001;
@@ -139,10 +89,10 @@ TEST(Registration, EstimatedIntrinsicsStillMeetTheTargets) {
 
 TEST(Registration, OperatorClickedToolTipsGiveTheSamePose) {
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   // One point per configuration: the tool centre point (here the flange origin offset).
-  const RegistrationObservations marker =
-      synthetic_observations(*model, truth, {model->T_flange_tool().translation()}, 12, 0.3, 5);
+  const RegistrationObservations marker = test::synthetic_observations(
+      *model, truth, {model->T_flange_tool().translation()}, 12, 0.3, 5);
   std::vector<ToolTipClick> clicks;
   for (const ObservedConfiguration& c : marker.configurations) {
     clicks.push_back({c.q, c.left_pixels[0], c.right_pixels[0]});
@@ -165,9 +115,9 @@ TEST(Registration, OperatorClickedToolTipsGiveTheSamePose) {
 
 TEST(Registration, TooFewConfigurationsSaysWhich) {
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   RegistrationObservations observations =
-      synthetic_observations(*model, truth, marker_corners(), 3, 0.1, 3);
+      test::synthetic_observations(*model, truth, test::flange_marker_corners(), 3, 0.1, 3);
   observations.configurations[2] = observations.configurations[0];  // a repeat
   Result<RegistrationResult> result =
       register_stereo(*model, truth.left, truth.right, T_right_left_of(truth), observations);
@@ -188,7 +138,7 @@ TEST(Registration, TooFewConfigurationsSaysWhich) {
 
 TEST(Registration, CollinearToolTipsAreDegenerate) {
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   // One point fixed to the flange but lying on joint 1's axis (at q = 0), and only joint 1
   // moving: the flange origins are distinct, the observed point never moves.
   RegistrationObservations observations;
@@ -214,9 +164,9 @@ TEST(Registration, CollinearToolTipsAreDegenerate) {
 
 TEST(Registration, BadInputNamesTheProblem) {
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   const RegistrationObservations good =
-      synthetic_observations(*model, truth, marker_corners(), 4, 0.1, 9);
+      test::synthetic_observations(*model, truth, test::flange_marker_corners(), 4, 0.1, 9);
 
   RegistrationObservations unequal = good;
   unequal.configurations[1].right_pixels.pop_back();
@@ -246,9 +196,9 @@ TEST(Registration, BadInputNamesTheProblem) {
 
 TEST(ObservationsFile, RoundTripsAndReportsMalformedInput) {
   const RobotModelPtr model = test::puma560();
-  const StereoCameraModel truth = truth_rig();
+  const StereoCameraModel truth = test::shipped_stereo_cameras();
   RegistrationObservations observations =
-      synthetic_observations(*model, truth, marker_corners(), 3, 0.1, 13);
+      test::synthetic_observations(*model, truth, test::flange_marker_corners(), 3, 0.1, 13);
   observations.configurations[1].right_pixels.clear();
   Result<RegistrationObservations> parsed =
       parse_observations_yaml(observations_yaml(observations), "mem");
