@@ -14,6 +14,11 @@ packages=(
   libopencv-dev
   # render: GL headers and loader, headless EGL with Mesa's llvmpipe, GLFW windows, stb images
   libgl-dev libegl-dev libepoxy-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libstb-dev
+  # net: gRPC services and clients, TurboJPEG for the video stream; the Python example client
+  libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc libturbojpeg0-dev
+  libjpeg62-turbo-dev python3-grpcio python3-grpc-tools python3-protobuf
+  # console: Dear ImGui (GLFW + OpenGL3 backends); Xvfb for window tests without a display
+  libimgui-dev xvfb xauth
   # tests and benchmarks (Orocos KDL is the benchmark baseline)
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
   # tests: OpenCV's real stereo chessboard images (examples/data), ~95 MB, not needed to build
