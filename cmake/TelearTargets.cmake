@@ -20,6 +20,9 @@ function(telear_test name)
   target_link_libraries(${name} PRIVATE ${T_LIBS} telear::test_util GTest::gtest GTest::gmock
                                         GTest::gtest_main)
   telear_warnings(${name})
+  # Each test is labelled with its layer (the tests/ sub-folder), so `ctest -L net` runs one.
+  get_filename_component(layer ${CMAKE_CURRENT_SOURCE_DIR} NAME)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
-                       PROPERTIES ENVIRONMENT "TELEAR_DATA_DIR=${TELEAR_DATA_DIR}")
+                       PROPERTIES ENVIRONMENT "TELEAR_DATA_DIR=${TELEAR_DATA_DIR}"
+                                  LABELS ${layer})
 endfunction()
