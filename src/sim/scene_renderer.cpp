@@ -46,8 +46,8 @@ Mesh make_tiled_floor(double size_m, int tiles) {
   return mesh;
 }
 
-// A wooden table (top and four legs) and the box to pick on it.
-Mesh make_table_and_object(const WorkspaceObject& object) {
+// A wooden table (top and four legs); the box to pick is a part of its own (it can be carried).
+Mesh make_table() {
   Mesh mesh;
   const Eigen::Vector3f wood(0.55f, 0.38f, 0.22f);
   const Eigen::Vector3f leg(0.25f, 0.2f, 0.16f);
@@ -60,8 +60,14 @@ Mesh make_table_and_object(const WorkspaceObject& object) {
       append_box(mesh, c, Eigen::Vector3f(0.04f, 0.04f, 0.37f), leg);
     }
   }
+  return mesh;
+}
+
+// The box to pick, centred on its own frame's origin.
+Mesh make_object(const WorkspaceObject& object) {
+  Mesh mesh;
   const float e = static_cast<float>(object.edge_m);
-  append_box(mesh, object.centre_base.cast<float>(), Eigen::Vector3f(e, e, e),
+  append_box(mesh, Eigen::Vector3f::Zero(), Eigen::Vector3f(e, e, e),
              Eigen::Vector3f(0.8f, 0.18f, 0.12f));
   return mesh;
 }
@@ -159,10 +165,12 @@ Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const RobotMod
   scene.arm_ = std::move(*arm);
 
   const Mesh floor = make_tiled_floor(8.0, 20);
-  const Mesh table = make_table_and_object(workspace_object());
-  auto environment = render::MeshSetRenderer::create({&floor, &table});
+  const Mesh table = make_table();
+  const Mesh object = make_object(workspace_object());
+  auto environment = render::MeshSetRenderer::create({&floor, &table, &object});
   if (!environment) return environment.error();
   scene.environment_ = std::move(*environment);
+  scene.set_object_pose(Eigen::Isometry3d(Eigen::Translation3d(workspace_object().centre_base)));
 
   if (options.marker) {
     auto marker = make_aruco_marker(*options.marker);
@@ -199,6 +207,24 @@ std::array<Eigen::Vector3d, 4> SceneRenderer::marker_corners_base() const {
   const Eigen::Isometry3d T = T_base_flange();
   for (int k = 0; k < 4; ++k) corners[k] = T * marker_->corners_flange[k];
   return corners;
+}
+
+Eigen::Isometry3d SceneRenderer::T_base_grip() const {
+  if (!body_.gripper) return T_base_flange();
+  const auto& gripper = *body_.gripper;
+  Eigen::Isometry3d T = pose_->kinematics().T_base_link[gripper.link];
+  T.translation() = T * gripper.centre.cast<double>();
+  return T;
+}
+
+double SceneRenderer::gripper_opening_m(double opening) const {
+  if (!body_.gripper) return 0.0;
+  return std::clamp(opening, 0.0, 1.0) * body_.gripper->max_opening;
+}
+
+void SceneRenderer::set_object_pose(const Eigen::Isometry3d& T_base_object) {
+  T_base_object_ = T_base_object;
+  environment_.set_matrix(2, T_base_object.matrix().cast<float>());
 }
 
 Status SceneRenderer::set_target(const CalibrationTarget& target,

@@ -73,7 +73,16 @@ class SceneRenderer {
   void set_gripper_opening(float opening_m) { pose_->set_gripper_opening(opening_m); }
   // Pose of the last link (flange / tool frame) in the base frame, at the current joints.
   Eigen::Isometry3d T_base_flange() const;
+  // The gripper's centre frame (between the fingers, the gripper link's axes) in the base
+  // frame at the current joints; the flange when the body has no gripper.
+  Eigen::Isometry3d T_base_grip() const;
+  // Finger gap (m) of a gripper opening 0..1 (0 without a gripper).
+  double gripper_opening_m(double opening) const;
   const std::optional<ArucoMarker>& marker() const { return marker_; }
+  // Where the box is (base frame, its centre): on the table at first; a grasp moves it
+  // (sim/grasp_model.hpp).
+  void set_object_pose(const Eigen::Isometry3d& T_base_object);
+  const Eigen::Isometry3d& object_pose() const { return T_base_object_; }
   // Marker corners in the base frame at the current joints.
   std::array<Eigen::Vector3d, 4> marker_corners_base() const;
 
@@ -98,6 +107,7 @@ class SceneRenderer {
   render::MeshSetRenderer marker_parts_;
   std::optional<ArucoMarker> marker_;
   Eigen::Isometry3d T_base_target_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d T_base_object_ = Eigen::Isometry3d::Identity();
   bool has_target_ = false;
   render::Overlay overlay_[2];
   render::OffscreenTarget high_res_[2];
