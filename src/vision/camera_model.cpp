@@ -189,4 +189,19 @@ CameraModel look_at_camera(int width, int height, double vertical_fov,
   return camera;
 }
 
+CameraModel resized_camera(const CameraModel& camera, int width, int height) {
+  assert(width > 0 && height > 0);
+  const double sx = static_cast<double>(width) / camera.width;
+  const double sy = static_cast<double>(height) / camera.height;
+  CameraModel resized = camera;
+  resized.width = width;
+  resized.height = height;
+  resized.fx = sx * camera.fx;
+  resized.fy = sy * camera.fy;
+  resized.cx = sx * (camera.cx + 0.5) - 0.5;
+  resized.cy = sy * (camera.cy + 0.5) - 0.5;
+  // alpha_c is unchanged: u = fx (x + alpha_c y) + cx scales as a whole with sx.
+  return resized;
+}
+
 }  // namespace telear

@@ -98,6 +98,12 @@ struct StereoCameraModel {
 // T_cam_base. The error names the field and says why.
 Status validate_camera(const CameraModel& camera);
 
+// The same camera seen through an image resized to width x height (a stream scaled by the
+// vision server): pixel (i, j) of the new image covers [i, i + 1) / s of the old, so
+// fx' = sx fx, cx' = sx (cx + 0.5) - 0.5 (likewise y); skew and distortion (which act on
+// normalized coordinates) and the pose are unchanged. width, height > 0 (asserted).
+CameraModel resized_camera(const CameraModel& camera, int width, int height);
+
 // A distortion-free camera at `eye_base` looking at `target_base`, with `up_base` pointing up
 // in the image, vertical field of view `vertical_fov` (rad), square pixels, centred
 // principal point (cx = (width - 1) / 2). `eye_base` must differ from `target_base` and

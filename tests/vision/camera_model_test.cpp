@@ -166,5 +166,20 @@ TEST(CameraModel, LookAtPutsTheTargetAtTheImageCentreWithUpUp) {
   EXPECT_NEAR(c.fy, 240.0 / std::tan(0.5), 1e-9);
 }
 
+TEST(CameraModel, AResizedCameraSeesEveryPointWhereTheScaledImageHasIt) {
+  CameraModel c = test_camera();
+  c.alpha_c = 0.002;
+  const CameraModel half = resized_camera(c, c.width / 2, c.height / 2);
+  EXPECT_EQ(half.width, c.width / 2);
+  for (const Eigen::Vector3d p :
+       {Eigen::Vector3d(0.1, -0.05, 1.0), Eigen::Vector3d(-0.3, 0.2, 2.0)}) {
+    const Eigen::Vector2d full_px = *c.project(c.T_cam_base.inverse() * p);
+    const Eigen::Vector2d half_px = *half.project(c.T_cam_base.inverse() * p);
+    // Pixel centres: full pixel u covers half-image [u / 2, (u + 1) / 2).
+    EXPECT_NEAR(half_px.x(), 0.5 * (full_px.x() + 0.5) - 0.5, 1e-9);
+    EXPECT_NEAR(half_px.y(), 0.5 * (full_px.y() + 0.5) - 0.5, 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace telear
