@@ -63,14 +63,15 @@ struct RobotInfo {
 // One state message, as the client received it.
 struct RobotStateSample {
   RobotState state;  // sim/robot_state.hpp; `time` = capture time in seconds (server clock)
-  std::uint64_t sequence = 0;
-  std::int64_t capture_ns = 0;      // server clock
+  std::uint64_t sequence = 0;   // this client's count of states received, from 1, across reconnects
+  std::int64_t capture_ns = 0;  // server clock
   std::int64_t server_send_ns = 0;  // server clock
   std::int64_t receive_ns = 0;      // client clock
   std::string lease_holder;
   std::string last_trajectory_id;
   TrajectoryStatus last_trajectory_status = TrajectoryStatus::kRunning;
   std::string last_trajectory_message;
+  std::int64_t clock_offset_ns = 0;  // server minus client, the estimate when received
   // Client clock: capture time converted with the offset estimate (loopback: equal).
   std::int64_t capture_client_ns() const;
 };

@@ -1,0 +1,143 @@
+#!/usr/bin/python3
+"""A telear robot client in Python: read the state, take the lease, run a short trajectory.
+
+Run with Debian's python3-grpcio and python3-grpc-tools (/usr/bin/python3, see
+docs/network.md):
+
+    /usr/bin/python3 examples/python/robot_example.py --address 127.0.0.1:50051 \\
+        --token-file token.txt
+
+The Python stubs are generated at run time from proto/ into a temporary directory with
+grpc_tools.protoc, so the example always matches the wire format of its checkout.
+
+The trajectory moves the waist 0.1 rad and back. It is sampled from a cosine time scaling
+s(t) = (1 - cos(pi t / T)) / 2, which starts and ends at rest; its peak speed d pi / (2 T)
+and acceleration d pi^2 / (2 T^2) are kept under half the joint's limits (GetInfo), so the
+server's validation (velocity and acceleration as finite differences) passes.
+"""
+
+import argparse
+import math
+import os
+import sys
+import tempfile
+import threading
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PROTO_DIR = os.path.normpath(os.path.join(HERE, "..", "..", "proto"))
+
+
+def load_stubs(out_dir):
+    """Generates telear/v1/*_pb2*.py into out_dir and imports them."""
+    from grpc_tools import protoc  # python3-grpc-tools
+
+    args = ["protoc", "-I", PROTO_DIR, "--python_out", out_dir, "--grpc_python_out", out_dir,
+            "telear/v1/common.proto", "telear/v1/robot.proto"]
+    if protoc.main(args) != 0:
+        sys.exit("robot_example: protoc failed on " + PROTO_DIR)
+    sys.path.insert(0, out_dir)
+    from telear.v1 import robot_pb2, robot_pb2_grpc  # noqa: E402
+    return robot_pb2, robot_pb2_grpc
+
+
+def cosine_samples(q0, joint, delta, duration_s, rate_hz):
+    """(t, q) samples from q0 to q0 + delta on one joint and back, at rest at both ends."""
+    n = int(math.ceil(duration_s * rate_hz))
+    samples = []
+    for leg, (a, b) in enumerate(((0.0, delta), (delta, 0.0))):
+        for k in range(0 if leg == 0 else 1, n + 1):
+            t = k / n * duration_s
+            s = 0.5 * (1.0 - math.cos(math.pi * t / duration_s))
+            q = list(q0)
+            q[joint] += a + (b - a) * s
+            samples.append((leg * duration_s + t, q))
+    return samples
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--address", default="127.0.0.1:50051")
+    parser.add_argument("--token-file", required=True)
+    parser.add_argument("--name", default="python-example")
+    args = parser.parse_args()
+
+    import grpc  # python3-grpcio
+
+    with open(args.token_file) as f:
+        token = f.readline().strip()
+    metadata = [("authorization", "Bearer " + token), ("telear-client", args.name)]
+
+    with tempfile.TemporaryDirectory() as stubs_dir:
+        pb, pb_grpc = load_stubs(stubs_dir)
+        channel = grpc.insecure_channel(args.address)
+        stub = pb_grpc.RobotServiceStub(channel)
+
+        # 1. The robot and its current state (one message of the state stream).
+        info = stub.GetInfo(pb.GetInfoRequest(), metadata=metadata, timeout=5)
+        stream = stub.StreamState(pb.StreamStateRequest(rate_hz=50), metadata=metadata)
+        state = next(stream)
+        stream.cancel()
+        q0 = list(state.q)
+        print(f"robot {info.model_name} ({info.driver}), {len(info.joints)} joints, "
+              f"mode {pb.RobotMode.Name(state.mode)}, q = {[round(v, 4) for v in q0]}")
+
+        # 2. The lease, renewed at a third of its period by a heartbeat thread.
+        lease = stub.AcquireLease(pb.AcquireLeaseRequest(client_name=args.name),
+                                  metadata=metadata, timeout=5)
+        period_s = lease.heartbeat_period_ns * 1e-9
+        stop = threading.Event()
+
+        def heartbeat():
+            while not stop.wait(period_s / 3):
+                stub.RenewLease(pb.RenewLeaseRequest(lease_id=lease.lease_id),
+                                metadata=metadata, timeout=period_s)
+
+        beat = threading.Thread(target=heartbeat, daemon=True)
+        beat.start()
+        print(f"lease {lease.lease_id[:8]}... held by {lease.holder}, heartbeat "
+              f"{period_s * 1e3:.0f} ms")
+
+        try:
+            # 3. A short trajectory: the waist 0.1 rad towards the middle of its range and back.
+            joint = 0
+            limits = info.joints[joint]
+            middle = 0.5 * (limits.min_position + limits.max_position)
+            delta = 0.1 if q0[joint] <= middle else -0.1
+            v_max, a_max = 0.5 * limits.max_velocity, 0.5 * limits.max_acceleration
+            duration_s = max(abs(delta) * math.pi / (2 * v_max),
+                             math.sqrt(abs(delta) * math.pi ** 2 / (2 * a_max)), 0.5)
+            request = pb.ExecuteTrajectoryRequest(
+                lease_id=lease.lease_id,
+                trajectory_id=f"python-example-{os.getpid()}-{int(time.time())}")
+            for t, q in cosine_samples(q0, joint, delta, duration_s, rate_hz=50):
+                request.waypoints.add(time_from_start_ns=round(t * 1e9), q=q)
+            ack = stub.ExecuteTrajectory(request, metadata=metadata, timeout=5)
+            print(f"trajectory '{ack.trajectory_id}' accepted: {len(request.waypoints)} "
+                  f"waypoints, {ack.duration_s:.3f} s")
+
+            # 4. Wait until the server reports it finished.
+            stream = stub.StreamState(pb.StreamStateRequest(rate_hz=50), metadata=metadata,
+                                      timeout=ack.duration_s + 10)
+            for state in stream:
+                if state.last_trajectory_id == ack.trajectory_id:
+                    break
+            stream.cancel()
+            status = pb.TrajectoryStatus.Name(state.last_trajectory_status)
+            print(f"trajectory '{ack.trajectory_id}': {status}, q = "
+                  f"{[round(v, 4) for v in state.q]}")
+            if state.last_trajectory_status != pb.TRAJECTORY_STATUS_COMPLETED:
+                print("not completed: " + state.last_trajectory_message, file=sys.stderr)
+                return 1
+        finally:
+            # 5. Give the lease back.
+            stop.set()
+            beat.join()
+            stub.ReleaseLease(pb.ReleaseLeaseRequest(lease_id=lease.lease_id),
+                              metadata=metadata, timeout=5)
+            print("lease released")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,105 @@
+#include "apps/robot_server_command.hpp"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "apps/cli_parsing.hpp"
+#include "core/robot_loader.hpp"
+#include "net/robot_server.hpp"
+#include "net/sim_robot_driver.hpp"
+
+namespace telear::cli {
+
+namespace {
+
+// The robot's URDF text for GetInfo: the model file itself when it is a URDF, else a URDF
+// beside it with the same name (data/robots/puma560.yaml -> puma560.urdf); empty when none.
+std::string find_urdf_text(const RobotModel& model) {
+  std::filesystem::path path = model.source();
+  if (path.extension() != ".urdf") path.replace_extension(".urdf");
+  std::ifstream in(path);
+  if (!in) return "";
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,
+                     std::ostream& err) {
+  auto model = load_robot(options.robot);
+  if (!model) {
+    err << "telear robot-server: " << model.error().message << "\n";
+    return 1;
+  }
+  net::SimRobotDriverOptions driver_options;
+  driver_options.urdf = find_urdf_text(**model);
+  if (!options.initial_q.empty()) {
+    if (auto named = (*model)->named_configuration(options.initial_q)) {
+      driver_options.robot.initial_q = *named;
+    } else {
+      auto values = parse_number_list(options.initial_q, "--q", (*model)->dof());
+      if (!values) {
+        err << "telear robot-server: " << values.error().message << "\n";
+        return 1;
+      }
+      driver_options.robot.initial_q = to_vector(*values);
+    }
+  }
+  if (options.heartbeat_ms <= 0) {
+    err << "telear robot-server: --heartbeat-ms must be positive, got " << options.heartbeat_ms
+        << "\n";
+    return 1;
+  }
+
+  net::RobotServerOptions server_options;
+  server_options.listen_address = options.listen;
+  server_options.token_file = options.token_file;
+  server_options.allow_observers = options.allow_observers;
+  server_options.tls_cert_file = options.tls_cert;
+  server_options.tls_key_file = options.tls_key;
+  const std::int64_t heartbeat_ns = std::int64_t{options.heartbeat_ms} * 1'000'000;
+  server_options.lease.default_heartbeat_ns = heartbeat_ns;
+  server_options.lease.min_heartbeat_ns =
+      std::min(server_options.lease.min_heartbeat_ns, heartbeat_ns);
+  server_options.lease.max_heartbeat_ns =
+      std::max(server_options.lease.max_heartbeat_ns, heartbeat_ns);
+
+  // The log (one line per command) goes to stderr: stdout carries only the ready line.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("robot-server"));
+
+  // Block the stop signals before any thread starts (the driver's servo, gRPC's pool), so
+  // every thread inherits the mask and sigwait below is the one place they arrive.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  auto driver = net::SimRobotDriver::Create(*model, std::move(driver_options));
+  if (!driver) {
+    err << "telear robot-server: " << driver.error().message << "\n";
+    return 1;
+  }
+  auto server = net::RobotServer::Start(std::move(driver).value(), server_options);
+  if (!server) {
+    err << "telear robot-server: " << server.error().message << "\n";
+    return 1;
+  }
+  out << "robot server listening on " << (*server)->address() << std::endl;
+
+  int signal = 0;
+  sigwait(&signals, &signal);
+  err << "telear robot-server: " << (signal == SIGINT ? "SIGINT" : "SIGTERM")
+      << ", shutting down\n";
+  (*server)->shutdown();
+  return 0;
+}
+
+}  // namespace telear::cli

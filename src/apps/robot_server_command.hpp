@@ -1,0 +1,25 @@
+#pragma once
+// `telear robot-server`: the robot service (net/robot_server.hpp) with the simulated robot
+// as its driver, until SIGINT or SIGTERM. Prints "robot server listening on HOST:PORT" on
+// `out` once it accepts connections (scripts wait for that line; with port 0 it carries the
+// ephemeral port), and shuts down cleanly on the signal: streams are ended, the arm stops.
+
+#include <ostream>
+#include <string>
+
+namespace telear::cli {
+
+struct RobotServerCommandOptions {
+  std::string listen = "127.0.0.1:50051";
+  std::string token_file;
+  bool allow_observers = true;
+  std::string tls_cert, tls_key;
+  std::string robot = "puma560";
+  int heartbeat_ms = 250;  // default lease heartbeat period
+  std::string initial_q;   // joint values or a named configuration; empty: zero
+};
+
+int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,
+                     std::ostream& err);
+
+}  // namespace telear::cli

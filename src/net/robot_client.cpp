@@ -1,0 +1,536 @@
+#include "net/robot_client.hpp"
+
+#include <grpcpp/grpcpp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+#include <type_traits>
+#include <utility>
+
+#include "net/clock.hpp"
+#include "net/latest_slot.hpp"
+#include "net/robot_messages.hpp"
+#include "telear/v1/robot.grpc.pb.h"
+
+namespace telear::net {
+
+namespace {
+
+using Stub = v1::RobotService::Stub;
+
+std::chrono::nanoseconds seconds(double s) {
+  return std::chrono::nanoseconds(s_to_ns(s));
+}
+
+// A channel whose own reconnect back-off follows the options, so that a restarted server is
+// found again within reconnect_max_backoff_s (gRPC's default waits up to 120 s).
+std::shared_ptr<grpc::Channel> make_robot_channel(const ClientOptions& options) {
+  grpc::ChannelArguments args;
+  const int initial_ms = std::max(1, static_cast<int>(options.reconnect_initial_backoff_s * 1e3));
+  const int max_ms = std::max(initial_ms, static_cast<int>(options.reconnect_max_backoff_s * 1e3));
+  args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, initial_ms);
+  args.SetInt(GRPC_ARG_MIN_RECONNECT_BACKOFF_MS, initial_ms);
+  args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, max_ms);
+  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
+  if (!options.tls_root_certificate_file.empty()) {
+    std::ifstream in(options.tls_root_certificate_file, std::ios::binary);
+    std::ostringstream pem;
+    pem << in.rdbuf();
+    grpc::SslCredentialsOptions ssl;
+    ssl.pem_root_certs = pem.str();
+    credentials = grpc::SslCredentials(ssl);
+  }
+  return grpc::CreateCustomChannel(options.address, credentials, args);
+}
+
+RobotInfo info_from_proto(const v1::RobotInfo& message) {
+  RobotInfo info;
+  info.model_name = message.model_name();
+  info.urdf = message.urdf();
+  for (const v1::JointInfo& j : message.joints()) {
+    info.joints.push_back(JointInfo{j.name(), j.prismatic(), j.min_position(), j.max_position(),
+                                    j.max_velocity(), j.max_acceleration()});
+  }
+  for (const v1::NamedConfiguration& c : message.named_configurations()) {
+    info.named_configurations.emplace_back(
+        c.name(), Eigen::Map<const Eigen::VectorXd>(c.q().data(), c.q_size()));
+  }
+  info.driver = message.driver();
+  info.heartbeat_period_s = ns_to_s(message.heartbeat_period_ns());
+  info.start_tolerance = message.start_tolerance();
+  info.max_waypoints = message.max_waypoints();
+  return info;
+}
+
+void fill_jog(const MotionCommand& command, v1::JogRequest& request) {
+  std::visit(
+      [&request](const auto& c) {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, JointIncrement>) {
+          request.mutable_joint_increment()->set_joint(c.joint);
+          request.mutable_joint_increment()->set_delta(c.delta);
+        } else if constexpr (std::is_same_v<T, JointTarget>) {
+          request.mutable_joint_target()->mutable_q()->Assign(c.q.data(), c.q.data() + c.q.size());
+        } else if constexpr (std::is_same_v<T, CartesianIncrement>) {
+          auto* inc = request.mutable_cartesian_increment();
+          inc->set_frame(c.frame == MotionFrame::kWrist  ? v1::MOTION_FRAME_WRIST
+                         : c.frame == MotionFrame::kTool ? v1::MOTION_FRAME_TOOL
+                                                         : v1::MOTION_FRAME_BASE);
+          inc->mutable_translation_m()->Assign(c.dX.data(), c.dX.data() + 3);
+          inc->mutable_rotation_rad()->Assign(c.dM.data(), c.dM.data() + 3);
+        } else {
+          const Eigen::Vector3d X = c.T_base_tool.translation();
+          const Eigen::AngleAxisd aa(c.T_base_tool.rotation());
+          const Eigen::Vector3d M = aa.axis() * aa.angle();
+          auto* target = request.mutable_cartesian_target();
+          target->mutable_position_m()->Assign(X.data(), X.data() + 3);
+          target->mutable_rotation_rad()->Assign(M.data(), M.data() + 3);
+        }
+      },
+      command);
+}
+
+}  // namespace
+
+std::int64_t RobotStateSample::capture_client_ns() const {
+  return capture_ns - clock_offset_ns;
+}
+
+struct RobotClient::Impl {
+  explicit Impl(RobotClientOptions o)
+      : options(std::move(o)),
+        channel(make_robot_channel(options)),
+        stub(v1::RobotService::NewStub(channel)) {}
+
+  RobotClientOptions options;
+  std::shared_ptr<grpc::Channel> channel;
+  std::unique_ptr<Stub> stub;
+  LatestSlot<RobotStateSample> states;
+
+  mutable std::mutex mutex;  // everything below but the atomics
+  ClockOffsetEstimator estimator;
+  grpc::ClientContext* stream_context = nullptr;
+  bool running = false;
+  std::condition_variable wake;  // stop() and release wake the sleeping threads
+  std::thread stream_thread, ping_thread;
+
+  std::string lease_id;
+  bool lease_held = false;
+  bool heartbeat_stop = false;
+  std::string lease_error;
+  std::int64_t heartbeat_ns = 0;
+  std::thread heartbeat_thread;
+
+  std::atomic<int> reconnects{0};
+  std::atomic<std::int64_t> last_message_ns{0};
+  std::atomic<std::uint64_t> command_bytes{0};
+
+  void prepare(grpc::ClientContext& context, bool deadline = true) const {
+    if (!options.token.empty()) context.AddMetadata("authorization", "Bearer " + options.token);
+    context.AddMetadata("telear-client", options.client_name);
+    if (deadline)
+      context.set_deadline(std::chrono::system_clock::now() + seconds(options.rpc_timeout_s));
+  }
+
+  Error error(const std::string& command, const grpc::Status& status) const {
+    switch (status.error_code()) {
+      case grpc::StatusCode::UNAVAILABLE:
+        return Error{command + ": robot server at " + options.address +
+                     " unreachable: " + status.error_message()};
+      case grpc::StatusCode::DEADLINE_EXCEEDED:
+        return Error{command + ": robot server at " + options.address + " did not answer within " +
+                     std::to_string(options.rpc_timeout_s) + " s"};
+      default:
+        // The server's message may already name the command ("acquire lease: ...").
+        if (status.error_message().rfind(command + ": ", 0) == 0) {
+          return Error{status.error_message()};
+        }
+        return Error{command + ": " + status.error_message()};
+    }
+  }
+
+  template <typename Request, typename Response>
+  grpc::Status call(grpc::Status (Stub::*method)(grpc::ClientContext*, const Request&, Response*),
+                    const Request& request, Response* response, bool is_command) {
+    grpc::ClientContext context;
+    prepare(context);
+    if (is_command) command_bytes += request.ByteSizeLong();
+    return (stub.get()->*method)(&context, request, response);
+  }
+
+  std::string current_lease_id() const {
+    std::lock_guard lock(mutex);
+    return lease_id;
+  }
+
+  std::int64_t to_server_ns(std::int64_t client_ns) const {
+    std::lock_guard lock(mutex);
+    return estimator.to_server_ns(client_ns);
+  }
+
+  // Sleeps up to `duration`; false when woken by stop (running turned false).
+  bool sleep_while_running(std::chrono::nanoseconds duration) {
+    std::unique_lock lock(mutex);
+    wake.wait_for(lock, duration, [&] { return !running; });
+    return running;
+  }
+
+  void stream_loop();
+  void ping_loop();
+  void heartbeat_loop();
+  Result<double> ping();
+};
+
+void RobotClient::Impl::stream_loop() {
+  double backoff = options.reconnect_initial_backoff_s;
+  bool delivered_before = false;
+  v1::StreamStateRequest request;
+  request.set_rate_hz(options.state_rate_hz);
+  while (true) {
+    grpc::ClientContext context;
+    prepare(context, false);
+    {
+      std::lock_guard lock(mutex);
+      if (!running) return;
+      stream_context = &context;
+    }
+    auto reader = stub->StreamState(&context, request);
+    v1::RobotState message;
+    bool delivered = false;
+    while (reader->Read(&message)) {
+      const std::int64_t received = monotonic_ns();
+      if (!delivered) {
+        if (delivered_before) ++reconnects;
+        delivered = delivered_before = true;
+        backoff = options.reconnect_initial_backoff_s;
+      }
+      RobotStateSample sample;
+      sample.state = state_from_proto(message);
+      sample.sequence = states.count() + 1;
+      sample.capture_ns = message.capture_ns();
+      sample.server_send_ns = message.server_send_ns();
+      sample.receive_ns = received;
+      sample.lease_holder = message.lease_holder();
+      sample.last_trajectory_id = message.last_trajectory_id();
+      sample.last_trajectory_status = from_proto(message.last_trajectory_status());
+      sample.last_trajectory_message = message.last_trajectory_message();
+      {
+        std::lock_guard lock(mutex);
+        sample.clock_offset_ns = estimator.to_server_ns(0);
+      }
+      last_message_ns = received;
+      states.put(std::move(sample));
+    }
+    reader->Finish();
+    {
+      std::lock_guard lock(mutex);
+      stream_context = nullptr;
+    }
+    if (!sleep_while_running(seconds(backoff))) return;
+    backoff = std::min(2.0 * backoff, options.reconnect_max_backoff_s);
+  }
+}
+
+Result<double> RobotClient::Impl::ping() {
+  v1::PingRequest request;
+  v1::PingResponse response;
+  request.set_client_send_ns(monotonic_ns());
+  const grpc::Status status = call(&Stub::Ping, request, &response, false);
+  const std::int64_t received = monotonic_ns();
+  if (!status.ok()) return error("ping", status);
+  PingSample sample{response.client_send_ns(), response.server_receive_ns(),
+                    response.server_send_ns(), received};
+  {
+    std::lock_guard lock(mutex);
+    estimator.add(sample);
+  }
+  return ns_to_s(received - request.client_send_ns());
+}
+
+void RobotClient::Impl::ping_loop() {
+  do {
+    (void)ping();
+  } while (sleep_while_running(seconds(options.ping_period_s)));
+}
+
+void RobotClient::Impl::heartbeat_loop() {
+  std::int64_t last_renewal = monotonic_ns();
+  while (true) {
+    std::string id;
+    std::int64_t period;
+    {
+      std::unique_lock lock(mutex);
+      period = heartbeat_ns;
+      wake.wait_for(lock, std::chrono::nanoseconds(period / 3), [&] { return heartbeat_stop; });
+      if (heartbeat_stop) return;
+      id = lease_id;
+    }
+    v1::RenewLeaseRequest request;
+    request.set_lease_id(id);
+    v1::Lease response;
+    // Renewals are not counted as command bytes: both ways of moving the arm renew alike.
+    const grpc::Status status = call(&Stub::RenewLease, request, &response, false);
+    const std::int64_t now = monotonic_ns();
+    if (status.ok()) {
+      last_renewal = now;
+      continue;
+    }
+    const bool refused = status.error_code() == grpc::StatusCode::PERMISSION_DENIED ||
+                         status.error_code() == grpc::StatusCode::UNAUTHENTICATED;
+    if (refused || now - last_renewal >= period) {
+      std::lock_guard lock(mutex);
+      lease_held = false;
+      lease_error = "lease lost: " + error("renew lease", status).message;
+      return;
+    }
+  }
+}
+
+// [SECTION] RobotClient
+
+RobotClient::RobotClient(RobotClientOptions options)
+    : impl_(std::make_unique<Impl>(std::move(options))) {}
+
+RobotClient::~RobotClient() {
+  if (lease_held()) (void)release_lease();
+  stop();
+  std::thread heartbeat;
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->heartbeat_stop = true;
+    heartbeat = std::move(impl_->heartbeat_thread);
+  }
+  impl_->wake.notify_all();
+  if (heartbeat.joinable()) heartbeat.join();
+}
+
+const RobotClientOptions& RobotClient::options() const {
+  return impl_->options;
+}
+
+void RobotClient::start() {
+  std::lock_guard lock(impl_->mutex);
+  if (impl_->running) return;
+  impl_->running = true;
+  impl_->stream_thread = std::thread([this] { impl_->stream_loop(); });
+  impl_->ping_thread = std::thread([this] { impl_->ping_loop(); });
+}
+
+void RobotClient::stop() {
+  std::thread stream, ping;
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->running = false;
+    if (impl_->stream_context) impl_->stream_context->TryCancel();
+    stream = std::move(impl_->stream_thread);
+    ping = std::move(impl_->ping_thread);
+  }
+  impl_->wake.notify_all();
+  if (stream.joinable()) stream.join();
+  if (ping.joinable()) ping.join();
+}
+
+bool RobotClient::connected() const {
+  const std::int64_t last = impl_->last_message_ns;
+  return last != 0 && monotonic_ns() - last < 1'000'000'000;
+}
+
+int RobotClient::reconnects() const {
+  return impl_->reconnects;
+}
+
+Result<RobotInfo> RobotClient::get_info() {
+  v1::RobotInfo response;
+  const grpc::Status status = impl_->call(&Stub::GetInfo, v1::GetInfoRequest(), &response, false);
+  if (!status.ok()) return impl_->error("get info", status);
+  return info_from_proto(response);
+}
+
+std::optional<RobotStateSample> RobotClient::latest_state() const {
+  auto taken = impl_->states.try_take();
+  if (!taken) return std::nullopt;
+  return *taken->item;
+}
+
+std::optional<RobotStateSample> RobotClient::wait_state(std::uint64_t after_sequence,
+                                                        double timeout_s) const {
+  auto taken = impl_->states.wait_take(after_sequence, seconds(timeout_s));
+  if (!taken) return std::nullopt;
+  return *taken->item;
+}
+
+std::optional<ClockOffset> RobotClient::clock_offset() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->estimator.estimate();
+}
+
+Result<double> RobotClient::ping() {
+  return impl_->ping();
+}
+
+Status RobotClient::acquire_lease(double heartbeat_period_s) {
+  if (lease_held()) return Status::Ok();
+  v1::AcquireLeaseRequest request;
+  request.set_client_name(impl_->options.client_name);
+  request.set_heartbeat_period_ns(s_to_ns(heartbeat_period_s));
+  v1::Lease response;
+  const grpc::Status status = impl_->call(&Stub::AcquireLease, request, &response, true);
+  if (!status.ok()) return impl_->error("acquire lease", status);
+  std::thread previous;
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->lease_id = response.lease_id();
+    impl_->heartbeat_ns = response.heartbeat_period_ns();
+    impl_->lease_held = true;
+    impl_->lease_error.clear();
+    impl_->heartbeat_stop = false;
+    previous = std::move(impl_->heartbeat_thread);  // a lost lease's thread has returned
+  }
+  if (previous.joinable()) previous.join();
+  std::lock_guard lock(impl_->mutex);
+  impl_->heartbeat_thread = std::thread([this] { impl_->heartbeat_loop(); });
+  return Status::Ok();
+}
+
+Status RobotClient::release_lease() {
+  std::thread heartbeat;
+  std::string id;
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->heartbeat_stop = true;
+    heartbeat = std::move(impl_->heartbeat_thread);
+    id = impl_->lease_id;
+  }
+  impl_->wake.notify_all();
+  if (heartbeat.joinable()) heartbeat.join();
+  if (id.empty()) return Status::Ok();
+  v1::ReleaseLeaseRequest request;
+  request.set_lease_id(id);
+  v1::ReleaseLeaseResponse response;
+  const grpc::Status status = impl_->call(&Stub::ReleaseLease, request, &response, true);
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->lease_held = false;
+    impl_->lease_id.clear();
+  }
+  if (!status.ok()) return impl_->error("release lease", status);
+  return Status::Ok();
+}
+
+bool RobotClient::lease_held() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->lease_held;
+}
+
+std::string RobotClient::lease_error() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->lease_error;
+}
+
+namespace {
+
+JogAck jog_ack(const v1::JogResponse& response) {
+  JogAck ack;
+  ack.target_q =
+      Eigen::Map<const Eigen::VectorXd>(response.target_q().data(), response.target_q_size());
+  ack.singularity_warning = response.singularity_warning();
+  ack.ik_config = response.ik_config();
+  return ack;
+}
+
+}  // namespace
+
+Result<JogAck> RobotClient::jog(const MotionCommand& command, double valid_for_s) {
+  v1::JogRequest request;
+  request.set_lease_id(impl_->current_lease_id());
+  request.set_expires_ns(impl_->to_server_ns(monotonic_ns() + s_to_ns(valid_for_s)));
+  fill_jog(command, request);
+  v1::JogResponse response;
+  const grpc::Status status = impl_->call(&Stub::Jog, request, &response, true);
+  if (!status.ok()) return impl_->error("jog", status);
+  return jog_ack(response);
+}
+
+Result<JogAck> RobotClient::jog_velocity(const Eigen::VectorXd& qd, double valid_for_s) {
+  v1::JogRequest request;
+  request.set_lease_id(impl_->current_lease_id());
+  request.set_expires_ns(impl_->to_server_ns(monotonic_ns() + s_to_ns(valid_for_s)));
+  request.mutable_joint_velocity()->mutable_qd()->Assign(qd.data(), qd.data() + qd.size());
+  v1::JogResponse response;
+  const grpc::Status status = impl_->call(&Stub::Jog, request, &response, true);
+  if (!status.ok()) return impl_->error("jog", status);
+  return jog_ack(response);
+}
+
+Result<TrajectoryAck> RobotClient::execute(const std::string& trajectory_id,
+                                           const TimedWaypoints& waypoints) {
+  v1::ExecuteTrajectoryRequest request;
+  request.set_lease_id(impl_->current_lease_id());
+  request.set_trajectory_id(trajectory_id);
+  for (size_t k = 0; k < waypoints.times.size() && k < waypoints.q.size(); ++k) {
+    v1::Waypoint* w = request.add_waypoints();
+    w->set_time_from_start_ns(std::llround(waypoints.times[k] * 1e9));
+    w->mutable_q()->Assign(waypoints.q[k].data(), waypoints.q[k].data() + waypoints.q[k].size());
+  }
+  for (const GripperEvent& event : waypoints.gripper) {
+    v1::GripperCommand* g = request.add_gripper();
+    g->set_time_from_start_ns(std::llround(event.time * 1e9));
+    g->set_opening(event.opening);
+  }
+  v1::ExecuteTrajectoryResponse response;
+  const grpc::Status status = impl_->call(&Stub::ExecuteTrajectory, request, &response, true);
+  if (!status.ok()) return impl_->error("execute", status);
+  return TrajectoryAck{response.trajectory_id(), response.duplicate(),
+                       from_proto(response.status()), response.duration_s()};
+}
+
+Status RobotClient::cancel(const std::string& reason) {
+  v1::CancelRequest request;
+  request.set_lease_id(impl_->current_lease_id());
+  request.set_reason(reason);
+  v1::CancelResponse response;
+  const grpc::Status status = impl_->call(&Stub::Cancel, request, &response, true);
+  if (!status.ok()) return impl_->error("cancel", status);
+  return Status::Ok();
+}
+
+Status RobotClient::set_gripper(double opening) {
+  v1::SetGripperRequest request;
+  request.set_lease_id(impl_->current_lease_id());
+  request.set_opening(opening);
+  v1::SetGripperResponse response;
+  const grpc::Status status = impl_->call(&Stub::SetGripper, request, &response, true);
+  if (!status.ok()) return impl_->error("set gripper", status);
+  return Status::Ok();
+}
+
+Status RobotClient::estop(const std::string& reason) {
+  v1::EStopRequest request;
+  request.set_reason(reason);
+  v1::EStopResponse response;
+  const grpc::Status status = impl_->call(&Stub::EStop, request, &response, true);
+  if (!status.ok()) return impl_->error("e-stop", status);
+  return Status::Ok();
+}
+
+Status RobotClient::reset_estop() {
+  v1::ResetEStopRequest request;
+  request.set_lease_id(impl_->current_lease_id());
+  v1::ResetEStopResponse response;
+  const grpc::Status status = impl_->call(&Stub::ResetEStop, request, &response, true);
+  if (!status.ok()) return impl_->error("reset e-stop", status);
+  return Status::Ok();
+}
+
+std::uint64_t RobotClient::command_bytes_sent() const {
+  return impl_->command_bytes;
+}
+
+}  // namespace telear::net

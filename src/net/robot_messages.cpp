@@ -1,0 +1,134 @@
+#include "net/robot_messages.hpp"
+
+#include "net/clock.hpp"
+
+namespace telear::net {
+
+namespace {
+
+void copy(const Eigen::VectorXd& v, google::protobuf::RepeatedField<double>* out) {
+  out->Assign(v.data(), v.data() + v.size());
+}
+
+Eigen::VectorXd vector(const google::protobuf::RepeatedField<double>& values) {
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), values.size());
+}
+
+}  // namespace
+
+v1::RobotMode to_proto(RobotMode mode) {
+  switch (mode) {
+    case RobotMode::kIdle:
+      return v1::ROBOT_MODE_IDLE;
+    case RobotMode::kJogging:
+      return v1::ROBOT_MODE_JOGGING;
+    case RobotMode::kTrajectory:
+      return v1::ROBOT_MODE_TRAJECTORY;
+    case RobotMode::kStopping:
+      return v1::ROBOT_MODE_STOPPING;
+    case RobotMode::kEStopped:
+      return v1::ROBOT_MODE_ESTOPPED;
+  }
+  return v1::ROBOT_MODE_UNSPECIFIED;
+}
+
+RobotMode from_proto(v1::RobotMode mode) {
+  switch (mode) {
+    case v1::ROBOT_MODE_JOGGING:
+      return RobotMode::kJogging;
+    case v1::ROBOT_MODE_TRAJECTORY:
+      return RobotMode::kTrajectory;
+    case v1::ROBOT_MODE_STOPPING:
+      return RobotMode::kStopping;
+    case v1::ROBOT_MODE_ESTOPPED:
+      return RobotMode::kEStopped;
+    default:
+      return RobotMode::kIdle;
+  }
+}
+
+v1::TrajectoryStatus to_proto(TrajectoryStatus status) {
+  switch (status) {
+    case TrajectoryStatus::kRunning:
+      return v1::TRAJECTORY_STATUS_RUNNING;
+    case TrajectoryStatus::kCompleted:
+      return v1::TRAJECTORY_STATUS_COMPLETED;
+    case TrajectoryStatus::kCancelled:
+      return v1::TRAJECTORY_STATUS_CANCELLED;
+    case TrajectoryStatus::kAborted:
+      return v1::TRAJECTORY_STATUS_ABORTED;
+  }
+  return v1::TRAJECTORY_STATUS_UNSPECIFIED;
+}
+
+TrajectoryStatus from_proto(v1::TrajectoryStatus status) {
+  switch (status) {
+    case v1::TRAJECTORY_STATUS_COMPLETED:
+      return TrajectoryStatus::kCompleted;
+    case v1::TRAJECTORY_STATUS_CANCELLED:
+      return TrajectoryStatus::kCancelled;
+    case v1::TRAJECTORY_STATUS_ABORTED:
+      return TrajectoryStatus::kAborted;
+    default:
+      return TrajectoryStatus::kRunning;
+  }
+}
+
+void fill_model_info(const RobotModel& model, v1::RobotInfo& info) {
+  info.set_model_name(model.name());
+  for (const Joint& joint : model.joints()) {
+    v1::JointInfo* j = info.add_joints();
+    j->set_name(joint.name);
+    j->set_prismatic(joint.type == JointType::kPrismatic);
+    j->set_min_position(joint.limits.lower);
+    j->set_max_position(joint.limits.upper);
+    j->set_max_velocity(joint.limits.max_velocity);
+    j->set_max_acceleration(joint.limits.max_acceleration);
+  }
+  for (const NamedConfiguration& named : model.named_configurations()) {
+    v1::NamedConfiguration* c = info.add_named_configurations();
+    c->set_name(named.name);
+    copy(named.q, c->mutable_q());
+  }
+}
+
+void fill_state(const RobotState& state, v1::RobotState& message) {
+  message.set_mode(to_proto(state.mode));
+  copy(state.q, message.mutable_q());
+  copy(state.qd, message.mutable_qd());
+  copy(state.q_commanded, message.mutable_q_commanded());
+  message.set_gripper_opening(state.gripper);
+  message.set_gripper_target(state.gripper_target);
+  message.set_estop(state.estop);
+  message.set_estop_reason(state.estop_reason);
+  message.set_trajectory_id(state.trajectory_id);
+  message.set_trajectory_progress(state.trajectory_progress);
+  message.set_trajectory_time_s(state.trajectory_time);
+  message.set_trajectory_duration_s(state.trajectory_duration);
+  message.set_fault(state.fault.value_or(""));
+  message.set_stop_reason(state.stop_reason);
+}
+
+RobotState state_from_proto(const v1::RobotState& message) {
+  RobotState state;
+  state.time = ns_to_s(message.capture_ns());
+  state.mode = from_proto(message.mode());
+  state.q = vector(message.q());
+  state.qd = vector(message.qd());
+  state.q_commanded = vector(message.q_commanded());
+  state.qd_commanded = state.qd;  // not on the wire; the measured velocity stands in
+  state.gripper = message.gripper_opening();
+  state.gripper_target = message.gripper_target();
+  state.gripper_moving = state.gripper != state.gripper_target;
+  state.estop = message.estop();
+  state.estop_reason = message.estop_reason();
+  state.trajectory_id = message.trajectory_id();
+  state.trajectory_time = message.trajectory_time_s();
+  state.trajectory_duration = message.trajectory_duration_s();
+  state.trajectory_progress = message.trajectory_progress();
+  state.stop_reason = message.stop_reason();
+  if (!message.fault().empty()) state.fault = message.fault();
+  return state;
+}
+
+}  // namespace telear::net

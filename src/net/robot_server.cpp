@@ -1,0 +1,116 @@
+#include "net/robot_server.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+#include "net/bearer_auth.hpp"
+#include "net/robot_service.hpp"
+
+namespace telear::net {
+
+namespace {
+
+Result<std::string> read_file(const std::string& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{std::string("cannot read the ") + what + " '" + path + "'"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+Status RobotServerOptions::validate() const {
+  if (listen_address.empty() || listen_address.rfind(':') == std::string::npos) {
+    return Error{"listen_address '" + listen_address + "' is not host:port"};
+  }
+  if (token.empty() && token_file.empty()) {
+    return Error{"no token: give a token file (commands need a bearer token)"};
+  }
+  if (tls_cert_file.empty() != tls_key_file.empty()) {
+    return Error{"TLS needs both a certificate and a key file, got only the " +
+                 std::string(tls_cert_file.empty() ? "key" : "certificate")};
+  }
+  if (max_receive_bytes < 1024) {
+    return Error{"max_receive_bytes must be at least 1024, got " +
+                 std::to_string(max_receive_bytes)};
+  }
+  if (!(lease.min_heartbeat_ns > 0 && lease.min_heartbeat_ns <= lease.default_heartbeat_ns &&
+        lease.default_heartbeat_ns <= lease.max_heartbeat_ns)) {
+    return Error{"lease heartbeat bounds must satisfy 0 < min <= default <= max"};
+  }
+  if (limits.max_waypoints < 1) return Error{"max_waypoints must be at least 1"};
+  if (!(shutdown_deadline_s >= 0.0)) return Error{"shutdown_deadline_s must be >= 0"};
+  return Status::Ok();
+}
+
+Result<std::unique_ptr<RobotServer>> RobotServer::Start(std::unique_ptr<RobotDriver> driver,
+                                                        RobotServerOptions options) {
+  if (Status s = options.validate(); !s) return Error{"robot server: " + s.error().message};
+  std::string token = options.token;
+  if (token.empty()) {
+    auto loaded = load_token_file(options.token_file);
+    if (!loaded) return Error{"robot server: " + loaded.error().message};
+    token = std::move(loaded).value();
+  }
+  std::shared_ptr<grpc::ServerCredentials> credentials = grpc::InsecureServerCredentials();
+  if (!options.tls_cert_file.empty()) {
+    auto cert = read_file(options.tls_cert_file, "TLS certificate");
+    if (!cert) return Error{"robot server: " + cert.error().message};
+    auto key = read_file(options.tls_key_file, "TLS key");
+    if (!key) return Error{"robot server: " + key.error().message};
+    grpc::SslServerCredentialsOptions ssl;
+    ssl.pem_key_cert_pairs.push_back({*key, *cert});
+    credentials = grpc::SslServerCredentials(ssl);
+  }
+
+  std::unique_ptr<RobotServer> server(new RobotServer());
+  server->options_ = options;
+  server->driver_ = std::move(driver);
+  server->service_ = std::make_unique<RobotService>(
+      *server->driver_, BearerAuth(token, options.allow_observers), options.lease, options.limits);
+
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(options.listen_address, credentials, &server->port_);
+  builder.SetMaxReceiveMessageSize(options.max_receive_bytes);
+  builder.RegisterService(server->service_.get());
+  server->server_ = builder.BuildAndStart();
+  if (!server->server_ || server->port_ == 0) {
+    server->service_->begin_shutdown();
+    return Error{"robot server: cannot listen on " + options.listen_address +
+                 " (address in use, or not an address of this machine)"};
+  }
+  spdlog::info("robot server listening on {} (driver {}, robot {}, {}, observers {})",
+               server->address(), server->driver_->name(), server->driver_->model()->name(),
+               options.tls_cert_file.empty() ? "plaintext" : "TLS",
+               options.allow_observers ? "allowed" : "refused");
+  return server;
+}
+
+RobotServer::~RobotServer() {
+  shutdown();
+}
+
+std::string RobotServer::address() const {
+  const std::string& listen = options_.listen_address;
+  return listen.substr(0, listen.rfind(':')) + ":" + std::to_string(port_);
+}
+
+void RobotServer::shutdown() {
+  if (shut_down_) return;
+  shut_down_ = true;
+  service_->begin_shutdown();  // ends the streams, so Shutdown need not wait for them
+  const auto deadline = std::chrono::system_clock::now() +
+                        std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                            std::chrono::duration<double>(options_.shutdown_deadline_s));
+  server_->Shutdown(deadline);
+  server_->Wait();
+  driver_->stop("the robot server is shutting down");
+  spdlog::info("robot server on {} shut down", address());
+}
+
+}  // namespace telear::net

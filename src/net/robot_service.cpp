@@ -1,0 +1,403 @@
+#include "net/robot_service.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <utility>
+
+#include "net/clock.hpp"
+#include "net/robot_messages.hpp"
+
+namespace telear::net {
+
+namespace {
+
+constexpr double kMaxStateRateHz = 250.0;
+constexpr double kDefaultStateRateHz = 50.0;
+
+const char* code_name(grpc::StatusCode code) {
+  switch (code) {
+    case grpc::StatusCode::OK:
+      return "OK";
+    case grpc::StatusCode::UNAUTHENTICATED:
+      return "UNAUTHENTICATED";
+    case grpc::StatusCode::PERMISSION_DENIED:
+      return "PERMISSION_DENIED";
+    case grpc::StatusCode::INVALID_ARGUMENT:
+      return "INVALID_ARGUMENT";
+    case grpc::StatusCode::FAILED_PRECONDITION:
+      return "FAILED_PRECONDITION";
+    case grpc::StatusCode::UNAVAILABLE:
+      return "UNAVAILABLE";
+    default:
+      return "ERROR";
+  }
+}
+
+// Untrusted text for messages and the log: non-printable bytes become '?' and long text is
+// cut (the validation's message gives the real length).
+std::string printable(const std::string& text, size_t shown = 64) {
+  std::string out = text.substr(0, shown);
+  for (char& c : out) {
+    if (c < 0x20 || c > 0x7e) c = '?';
+  }
+  return text.size() > shown ? out + "..." : out;
+}
+
+std::string quoted(const std::string& id) {
+  return "'" + printable(id) + "'";
+}
+
+std::string format(const char* fmt, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, fmt, value);
+  return text;
+}
+
+grpc::Status invalid(const Error& error) {
+  return {grpc::StatusCode::INVALID_ARGUMENT, error.message};
+}
+
+std::chrono::steady_clock::time_point steady_time(std::int64_t ns) {
+  return std::chrono::steady_clock::time_point(std::chrono::nanoseconds(ns));
+}
+
+}  // namespace
+
+std::string describe_caller(const grpc::ServerContext& context) {
+  const auto& metadata = context.client_metadata();
+  const auto it = metadata.find("telear-client");
+  const std::string name = it == metadata.end()
+                               ? "unnamed client"
+                               : printable(std::string(it->second.data(), it->second.size()));
+  return name + " (" + context.peer() + ")";
+}
+
+RobotService::RobotService(RobotDriver& driver, BearerAuth auth, LeaseOptions lease_options,
+                           CommandLimits limits)
+    : driver_(driver),
+      auth_(std::move(auth)),
+      limits_(limits),
+      lease_(lease_options, [this](const LeaseLapse& lapse) { on_lease_lapse(lapse); }) {}
+
+RobotService::~RobotService() {
+  begin_shutdown();
+}
+
+void RobotService::begin_shutdown() {
+  {
+    std::lock_guard lock(shutdown_mutex_);
+    shutting_down_ = true;
+  }
+  shutdown_cv_.notify_all();
+  lease_.stop();
+}
+
+void RobotService::on_lease_lapse(const LeaseLapse& lapse) {
+  const std::string reason = "the lease of '" + lapse.holder +
+                             "' lapsed: not renewed within its heartbeat period (dead-man)";
+  driver_.stop(reason);
+  spdlog::warn("robot lease of '{}' lapsed; controlled stop began {:.2f} ms after the expiry",
+               lapse.holder, static_cast<double>(lapse.stop_started_ns - lapse.expired_ns) * 1e-6);
+}
+
+grpc::Status RobotService::finish(grpc::ServerContext* context, const std::string& what,
+                                  grpc::Status status) {
+  const std::string who = describe_caller(*context);
+  if (status.ok()) {
+    spdlog::info("robot command from {}: {}: accepted", who, what);
+  } else {
+    spdlog::warn("robot command from {}: {}: rejected ({}): {}", who, what,
+                 code_name(status.error_code()), status.error_message());
+  }
+  return status;
+}
+
+grpc::Status RobotService::admit(grpc::ServerContext* context, const std::string& what,
+                                 const std::string& lease_id) {
+  if (grpc::Status s = auth_.authorize_command(*context); !s.ok()) return finish(context, what, s);
+  if (auto holder = lease_.check(lease_id); !holder) {
+    return finish(context, what,
+                  {grpc::StatusCode::PERMISSION_DENIED, what + ": " + holder.error().message});
+  }
+  return grpc::Status::OK;
+}
+
+grpc::StatusCode RobotService::driver_rejection_code() const {
+  const RobotState state = driver_.snapshot().state;
+  const bool busy = state.estop || !state.trajectory_id.empty();
+  return busy ? grpc::StatusCode::FAILED_PRECONDITION : grpc::StatusCode::INVALID_ARGUMENT;
+}
+
+// [SECTION] State
+
+grpc::Status RobotService::GetInfo(grpc::ServerContext* context, const v1::GetInfoRequest*,
+                                   v1::RobotInfo* response) {
+  if (grpc::Status s = auth_.authorize_read(*context); !s.ok()) return s;
+  fill_model_info(*driver_.model(), *response);
+  response->set_urdf(driver_.urdf());
+  response->set_driver(driver_.name());
+  response->set_heartbeat_period_ns(lease_.options().default_heartbeat_ns);
+  response->set_start_tolerance(driver_.start_tolerance());
+  response->set_max_waypoints(limits_.max_waypoints);
+  response->set_server_time_ns(monotonic_ns());
+  return grpc::Status::OK;
+}
+
+grpc::Status RobotService::StreamState(grpc::ServerContext* context,
+                                       const v1::StreamStateRequest* request,
+                                       grpc::ServerWriter<v1::RobotState>* writer) {
+  if (grpc::Status s = auth_.authorize_read(*context); !s.ok()) return s;
+  double rate = request->rate_hz();
+  if (rate == 0.0) rate = kDefaultStateRateHz;
+  if (!(rate >= 1.0 && rate <= kMaxStateRateHz)) {
+    return {grpc::StatusCode::INVALID_ARGUMENT,
+            "state rate " + format("%g", rate) + " Hz is outside 1..250 Hz (0: 50 Hz)"};
+  }
+  const auto period_ns = static_cast<std::int64_t>(1e9 / rate);
+  std::int64_t next_ns = monotonic_ns();
+  std::uint64_t sequence = 0;
+  v1::RobotState message;
+  while (true) {
+    {
+      std::unique_lock lock(shutdown_mutex_);
+      shutdown_cv_.wait_until(lock, steady_time(next_ns), [&] { return shutting_down_; });
+      if (shutting_down_) {
+        return {grpc::StatusCode::UNAVAILABLE, "the robot server is shutting down"};
+      }
+    }
+    if (context->IsCancelled()) return grpc::Status::CANCELLED;
+    const DriverSnapshot snapshot = driver_.snapshot();
+    message.Clear();
+    fill_state(snapshot.state, message);
+    message.set_sequence(++sequence);
+    message.set_capture_ns(snapshot.capture_ns);
+    message.set_lease_holder(lease_.holder());
+    std::string last_id;
+    {
+      std::lock_guard lock(last_mutex_);
+      last_id = last_trajectory_id_;
+    }
+    if (!last_id.empty()) {
+      if (auto record = driver_.trajectory_record(last_id);
+          record && record->status != TrajectoryStatus::kRunning) {
+        message.set_last_trajectory_id(record->id);
+        message.set_last_trajectory_status(to_proto(record->status));
+        message.set_last_trajectory_message(record->message);
+      }
+    }
+    message.set_server_send_ns(monotonic_ns());
+    if (!writer->Write(message)) return grpc::Status::OK;  // the client went away
+    // Keep the rate; after a stall (a slow client) skip the missed ticks, never burst.
+    next_ns = std::max(next_ns + period_ns, monotonic_ns());
+  }
+}
+
+grpc::Status RobotService::Ping(grpc::ServerContext* context, const v1::PingRequest* request,
+                                v1::PingResponse* response) {
+  const std::int64_t received_ns = monotonic_ns();
+  if (grpc::Status s = auth_.authorize_read(*context); !s.ok()) return s;
+  response->set_client_send_ns(request->client_send_ns());
+  response->set_server_receive_ns(received_ns);
+  response->set_server_send_ns(monotonic_ns());
+  return grpc::Status::OK;
+}
+
+// [SECTION] Lease
+
+grpc::Status RobotService::AcquireLease(grpc::ServerContext* context,
+                                        const v1::AcquireLeaseRequest* request,
+                                        v1::Lease* response) {
+  std::string holder = printable(request->client_name());
+  if (holder.empty()) holder = "unnamed client";
+  const std::string what = "acquire lease as '" + holder + "'";
+  if (grpc::Status s = auth_.authorize_command(*context); !s.ok()) return finish(context, what, s);
+  if (request->heartbeat_period_ns() < 0) {
+    return finish(context, what,
+                  {grpc::StatusCode::INVALID_ARGUMENT,
+                   "acquire lease: the heartbeat period is negative (0: the server's default)"});
+  }
+  auto grant = lease_.acquire(holder, request->heartbeat_period_ns());
+  if (!grant) {
+    return finish(context, what,
+                  {grpc::StatusCode::PERMISSION_DENIED, "acquire lease: " + grant.error().message});
+  }
+  response->set_lease_id(grant->lease_id);
+  response->set_holder(grant->holder);
+  response->set_heartbeat_period_ns(grant->heartbeat_ns);
+  response->set_expires_ns(grant->expires_ns);
+  return finish(context,
+                what + " (heartbeat " +
+                    format("%.0f ms", static_cast<double>(grant->heartbeat_ns) * 1e-6) + ")",
+                grpc::Status::OK);
+}
+
+grpc::Status RobotService::RenewLease(grpc::ServerContext* context,
+                                      const v1::RenewLeaseRequest* request, v1::Lease* response) {
+  // Renewals are not logged when they succeed: several per second would drown the log.
+  if (grpc::Status s = auth_.authorize_command(*context); !s.ok()) {
+    return finish(context, "renew lease", s);
+  }
+  auto grant = lease_.renew(request->lease_id());
+  if (!grant) {
+    return finish(context, "renew lease",
+                  {grpc::StatusCode::PERMISSION_DENIED, "renew lease: " + grant.error().message});
+  }
+  response->set_lease_id(grant->lease_id);
+  response->set_holder(grant->holder);
+  response->set_heartbeat_period_ns(grant->heartbeat_ns);
+  response->set_expires_ns(grant->expires_ns);
+  return grpc::Status::OK;
+}
+
+grpc::Status RobotService::ReleaseLease(grpc::ServerContext* context,
+                                        const v1::ReleaseLeaseRequest* request,
+                                        v1::ReleaseLeaseResponse*) {
+  const std::string what = "release lease";
+  if (grpc::Status s = auth_.authorize_command(*context); !s.ok()) return finish(context, what, s);
+  auto holder = lease_.release(request->lease_id());
+  if (!holder) {
+    return finish(
+        context, what,
+        {grpc::StatusCode::PERMISSION_DENIED, "release lease: " + holder.error().message});
+  }
+  // Nobody is in charge any more: any motion stops, as on a lapse.
+  driver_.stop("the lease was released by '" + holder.value() + "'");
+  return finish(context, what, grpc::Status::OK);
+}
+
+// [SECTION] Motion
+
+grpc::Status RobotService::Jog(grpc::ServerContext* context, const v1::JogRequest* request,
+                               v1::JogResponse* response) {
+  const std::int64_t arrived_ns = monotonic_ns();
+  std::string what = "jog";
+  if (grpc::Status s = admit(context, what, request->lease_id()); !s.ok()) return s;
+  auto jog = jog_command_from_request(*driver_.model(), *request);
+  if (!jog) return finish(context, what, invalid(jog.error()));
+  what += " (" + jog->description + ")";
+  if (Status s = check_jog_expiry(request->expires_ns(), arrived_ns, limits_); !s) {
+    return finish(context, what, invalid(s.error()));
+  }
+  if (jog->motion) {
+    auto outcome = driver_.jog(*jog->motion, request->expires_ns());
+    if (!outcome) {
+      return finish(context, what, {driver_rejection_code(), outcome.error().message});
+    }
+    const Eigen::VectorXd& q = outcome->q;
+    response->mutable_target_q()->Assign(q.data(), q.data() + q.size());
+    if (outcome->singularity) response->set_singularity_warning(outcome->singularity->message);
+    response->set_ik_config(outcome->ik_config);
+  } else if (Status s = driver_.jog_velocity(jog->velocity, request->expires_ns()); !s) {
+    return finish(context, what, {driver_rejection_code(), s.error().message});
+  }
+  return finish(context, what, grpc::Status::OK);
+}
+
+grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
+                                             const v1::ExecuteTrajectoryRequest* request,
+                                             v1::ExecuteTrajectoryResponse* response) {
+  const std::string& id = request->trajectory_id();
+  std::string what = "execute trajectory " + quoted(id) + " (" +
+                     std::to_string(request->waypoints_size()) + " waypoints)";
+  if (grpc::Status s = admit(context, what, request->lease_id()); !s.ok()) return s;
+  if (Status s = check_trajectory_id(id, limits_); !s) {
+    return finish(context, what, invalid(s.error()));
+  }
+  std::lock_guard lock(execute_mutex_);
+  response->set_trajectory_id(id);
+  if (const auto first = accepted_.find(id); first != accepted_.end()) {
+    const auto record = driver_.trajectory_record(id);
+    response->set_duplicate(true);
+    response->set_status(to_proto(record ? record->status : TrajectoryStatus::kRunning));
+    response->set_duration_s(first->second.duration_s);
+    response->set_accepted_ns(first->second.accepted_ns);
+    return finish(context, what + ": a duplicate of the first acceptance, not executed again",
+                  grpc::Status::OK);
+  }
+  auto waypoints = timed_waypoints_from_request(*driver_.model(), *request, limits_);
+  if (!waypoints) return finish(context, what, invalid(waypoints.error()));
+
+  const RobotState state = driver_.snapshot().state;
+  if (state.estop) {
+    return finish(context, what,
+                  {grpc::StatusCode::FAILED_PRECONDITION,
+                   "trajectory " + quoted(id) + " rejected: the e-stop is engaged (" +
+                       state.estop_reason + "); reset it first"});
+  }
+  if (state.mode != RobotMode::kIdle) {
+    const std::string busy = state.trajectory_id.empty()
+                                 ? std::string("the arm is ") + to_string(state.mode)
+                                 : "trajectory " + quoted(state.trajectory_id) + " is running";
+    return finish(
+        context, what,
+        {grpc::StatusCode::FAILED_PRECONDITION, "trajectory " + quoted(id) + " rejected: " + busy +
+                                                    "; wait until the arm is at rest (or cancel)"});
+  }
+  if (Status s = check_start_state(*driver_.model(), id, waypoints->q.front(), state.q,
+                                   driver_.start_tolerance());
+      !s) {
+    return finish(context, what, invalid(s.error()));
+  }
+  auto accepted = driver_.execute(id, *waypoints);
+  if (!accepted) return finish(context, what, {driver_rejection_code(), accepted.error().message});
+  accepted_[id] = FirstAcceptance{accepted->accepted_ns, accepted->record.duration};
+  {
+    std::lock_guard last_lock(last_mutex_);
+    last_trajectory_id_ = id;
+  }
+  response->set_duplicate(accepted->duplicate);
+  response->set_status(to_proto(accepted->record.status));
+  response->set_duration_s(accepted->record.duration);
+  response->set_accepted_ns(accepted->accepted_ns);
+  return finish(context, what + ", " + format("%.3f s", accepted->record.duration),
+                grpc::Status::OK);
+}
+
+grpc::Status RobotService::Cancel(grpc::ServerContext* context, const v1::CancelRequest* request,
+                                  v1::CancelResponse*) {
+  const std::string reason = request->reason().empty() ? "cancelled" : request->reason();
+  const std::string what = "cancel (" + reason + ")";
+  if (grpc::Status s = admit(context, what, request->lease_id()); !s.ok()) return s;
+  driver_.stop(reason);
+  return finish(context, what, grpc::Status::OK);
+}
+
+grpc::Status RobotService::SetGripper(grpc::ServerContext* context,
+                                      const v1::SetGripperRequest* request,
+                                      v1::SetGripperResponse*) {
+  const std::string what = "set gripper to " + format("%.3f", request->opening());
+  if (grpc::Status s = admit(context, what, request->lease_id()); !s.ok()) return s;
+  if (Status s = check_gripper_opening(request->opening()); !s) {
+    return finish(context, what, invalid(s.error()));
+  }
+  if (Status s = driver_.set_gripper(request->opening()); !s) {
+    return finish(context, what, {driver_rejection_code(), s.error().message});
+  }
+  return finish(context, what, grpc::Status::OK);
+}
+
+grpc::Status RobotService::EStop(grpc::ServerContext* context, const v1::EStopRequest* request,
+                                 v1::EStopResponse*) {
+  const std::string reason =
+      request->reason().empty() ? "e-stop from " + describe_caller(*context) : request->reason();
+  const std::string what = "e-stop (" + reason + ")";
+  // Anyone authenticated may stop the arm, lease or not.
+  if (grpc::Status s = auth_.authorize_command(*context); !s.ok()) return finish(context, what, s);
+  driver_.estop(reason);
+  return finish(context, what, grpc::Status::OK);
+}
+
+grpc::Status RobotService::ResetEStop(grpc::ServerContext* context,
+                                      const v1::ResetEStopRequest* request,
+                                      v1::ResetEStopResponse*) {
+  const std::string what = "reset e-stop";
+  if (grpc::Status s = admit(context, what, request->lease_id()); !s.ok()) return s;
+  if (Status s = driver_.reset_estop(); !s) {
+    return finish(context, what, {grpc::StatusCode::FAILED_PRECONDITION, s.error().message});
+  }
+  return finish(context, what, grpc::Status::OK);
+}
+
+}  // namespace telear::net

@@ -1,0 +1,51 @@
+#!/usr/bin/python3
+"""CTest: runs examples/python/robot_example.py against a real `telear robot-server`.
+
+Usage: robot_python_example_test.py TELEAR_BINARY EXAMPLE_SCRIPT
+
+Starts the server on 127.0.0.1:0 with a fresh token file, reads the bound port from its
+"robot server listening on HOST:PORT" line, runs the example with /usr/bin/python3, then
+stops the server with SIGTERM and checks that it shut down cleanly (exit status 0).
+"""
+
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+
+
+def main():
+    telear, example = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory() as tmp:
+        token_file = os.path.join(tmp, "token")
+        with open(token_file, "w") as f:
+            f.write("python-example-token\n")
+        server = subprocess.Popen(
+            [telear, "robot-server", "--listen", "127.0.0.1:0", "--token-file", token_file],
+            stdout=subprocess.PIPE, text=True)
+        try:
+            line = server.stdout.readline()
+            match = re.fullmatch(r"robot server listening on (\S+)\n", line)
+            if not match:
+                print("unexpected first line from the server: " + repr(line), file=sys.stderr)
+                return 1
+            example_run = subprocess.run(
+                ["/usr/bin/python3", example, "--address", match.group(1), "--token-file",
+                 token_file], timeout=60)
+            if example_run.returncode != 0:
+                print(f"the example failed with status {example_run.returncode}", file=sys.stderr)
+                return 1
+        finally:
+            server.send_signal(signal.SIGTERM)
+            status = server.wait(timeout=10)
+        if status != 0:
+            print(f"the server exited with status {status} after SIGTERM", file=sys.stderr)
+            return 1
+    print("robot example passed; the server shut down cleanly")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
