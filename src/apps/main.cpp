@@ -11,9 +11,11 @@
 #include "apps/register_command.hpp"
 #include "apps/render_bench_command.hpp"
 #include "apps/render_command.hpp"
+#include "apps/robot_server_command.hpp"
 #include "apps/sim_command.hpp"
 #include "apps/sim_frame_command.hpp"
 #include "apps/sim_observations_command.hpp"
+#include "apps/vision_server_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"telear: augmented-reality telerobotics (docs/cli.md)", "telear"};
@@ -228,6 +230,64 @@ int main(int argc, char** argv) {
                    "anti-aliasing samples per pixel and axis (1..8)")
       ->capture_default_str();
 
+  // [SECTION] robot-server (docs/network.md)
+  telear::cli::RobotServerCommandOptions robot_server;
+  CLI::App* robot_server_app = app.add_subcommand(
+      "robot-server", "the robot service over gRPC, the simulated robot as its driver");
+  robot_server_app->add_option("--listen", robot_server.listen, "HOST:PORT; port 0: ephemeral")
+      ->capture_default_str();
+  robot_server_app
+      ->add_option("--token-file", robot_server.token_file,
+                   "file whose first line is the bearer token commands must carry")
+      ->required();
+  robot_server_app->add_flag("--allow-observers,!--no-observers", robot_server.allow_observers,
+                             "state readable without a token (default) or not");
+  robot_server_app->add_option("--tls-cert", robot_server.tls_cert, "TLS certificate (PEM)");
+  robot_server_app->add_option("--tls-key", robot_server.tls_key, "TLS private key (PEM)");
+  robot_server_app->add_option("--robot", robot_server.robot, "shipped robot name or file")
+      ->capture_default_str();
+  robot_server_app
+      ->add_option("--heartbeat-ms", robot_server.heartbeat_ms,
+                   "default lease heartbeat period: a lease not renewed within it stops the arm")
+      ->capture_default_str();
+  robot_server_app->add_option("--q", robot_server.initial_q,
+                               "initial joint values (rad) or a named configuration");
+
+  // [SECTION] vision-server (docs/network.md)
+  telear::cli::VisionServerCommandOptions vision_server;
+  CLI::App* vision_server_app = app.add_subcommand(
+      "vision-server", "the stereo vision stream over gRPC (sim rig, video files, cameras)");
+  vision_server_app->add_option("--listen", vision_server.listen, "HOST:PORT; port 0: ephemeral")
+      ->capture_default_str();
+  vision_server_app->add_option("--source", vision_server.source, "sim, files, v4l2 or synthetic")
+      ->capture_default_str();
+  vision_server_app->add_option("--rig", vision_server.rig, "sim: rig file (data/rigs/*.yaml)")
+      ->capture_default_str();
+  vision_server_app->add_option("--robot-server", vision_server.robot_server,
+                                "sim: HOST:PORT of the robot server whose state the arm follows");
+  vision_server_app->add_option("--token-file", vision_server.token_file,
+                                "calls need this bearer token (also sent to the robot server)");
+  vision_server_app->add_option("--robot-token-file", vision_server.robot_token_file,
+                                "token for the robot server, when it differs");
+  vision_server_app->add_option("--left", vision_server.left, "files: the left eye's video");
+  vision_server_app->add_option("--right", vision_server.right, "files: the right eye's video");
+  vision_server_app->add_option("--cameras", vision_server.cameras, "v4l2: L,R device indices")
+      ->capture_default_str();
+  vision_server_app->add_option("--calibration", vision_server.calibration,
+                                "stereo camera file returned by GetCameraInfo");
+  vision_server_app->add_option("--fps", vision_server.fps,
+                                "capture rate (0: the source's default, 30 or a file's own)");
+  vision_server_app->add_option("--resolution", vision_server.resolution,
+                                "WxH capture size (v4l2, files, synthetic)");
+  vision_server_app->add_option("--quality", vision_server.quality, "JPEG quality 1..100")
+      ->capture_default_str();
+  vision_server_app
+      ->add_option("--supersample", vision_server.supersample,
+                   "sim: anti-aliasing samples per pixel and axis (1..8)")
+      ->capture_default_str();
+  vision_server_app->add_option("--noise", vision_server.noise, "sim: sensor noise, grey levels")
+      ->capture_default_str();
+
   // [SECTION] bench (one subcommand per benchmark: render, ...)
   CLI::App* bench_app = app.add_subcommand("bench", "measured figures beside the seed's");
   bench_app->require_subcommand(1);
@@ -274,6 +334,12 @@ int main(int argc, char** argv) {
   if (eval_app->parsed()) return telear::cli::run_eval(eval_options, std::cout, std::cerr);
   if (sim_observations_app->parsed()) {
     return telear::cli::run_sim_observations(sim_observations, std::cout, std::cerr);
+  }
+  if (robot_server_app->parsed()) {
+    return telear::cli::run_robot_server(robot_server, std::cout, std::cerr);
+  }
+  if (vision_server_app->parsed()) {
+    return telear::cli::run_vision_server(vision_server, std::cout, std::cerr);
   }
   if (bench_render->parsed()) {
     return telear::cli::run_bench_render(bench_render_options, std::cout, std::cerr);

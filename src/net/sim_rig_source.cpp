@@ -1,0 +1,102 @@
+#include "net/sim_rig_source.hpp"
+
+#include "core/arm_body.hpp"
+#include "core/robot_loader.hpp"
+#include "render/egl_context.hpp"
+#include "sim/scene_renderer.hpp"
+#include "sim/stereo_rig.hpp"
+
+namespace telear::net {
+
+struct SimRigSource::Loaded {
+  sim::StereoRig rig;
+  RobotModelPtr model;
+  BodyDescription body;
+};
+
+// The context is declared first so it is destroyed last, after the renderer's GL objects.
+struct SimRigSource::Gl {
+  std::unique_ptr<render::GlContext> context;
+  sim::SceneRenderer scene;
+};
+
+SimRigSource::~SimRigSource() {
+  release();
+}
+
+void SimRigSource::release() {
+  if (!gl_) return;
+  gl_->scene = sim::SceneRenderer();  // its GL objects, while the context is current
+  gl_.reset();
+}
+
+Result<std::unique_ptr<SimRigSource>> SimRigSource::create(SimRigSourceOptions options) {
+  if (!(options.fps > 0.0 && options.fps <= 1000.0)) {
+    return Error{"sim rig source: fps must be in (0, 1000]"};
+  }
+  if (options.supersample < 1 || options.supersample > 8) {
+    return Error{"sim rig source: supersample must be in 1..8"};
+  }
+  auto rig = sim::load_stereo_rig(options.rig);
+  if (!rig) return rig.error();
+  auto model = load_robot(rig->robot);
+  if (!model) return Error{"rig '" + options.rig + "': robot: " + model.error().message};
+  auto body = rig->body_file.empty() ? body_description_for(**model)
+                                     : load_body_yaml_file(rig->body_file, **model);
+  if (!body) return body.error();
+
+  std::unique_ptr<SimRigSource> source(new SimRigSource());
+  source->options_ = std::move(options);
+  source->loaded_ = std::make_unique<Loaded>(Loaded{*rig, *model, *body});
+  const RobotModel& robot = *source->loaded_->model;
+  source->last_state_.q =
+      robot.named_configuration("qr").value_or(Eigen::VectorXd::Zero(robot.dof()));
+  source->last_state_.gripper = 0.5;
+  source->pacer_ = std::make_unique<FramePacer>(source->options_.fps);
+  return source;
+}
+
+int SimRigSource::width() const {
+  return loaded_->rig.cameras.left.width;
+}
+int SimRigSource::height() const {
+  return loaded_->rig.cameras.left.height;
+}
+
+Status SimRigSource::prepare() {
+  auto context = render::create_headless_context();
+  if (!context) return Error{"sim rig source: " + context.error().message};
+  sim::SceneOptions scene_options;
+  scene_options.supersample = options_.supersample;
+  scene_options.noise_sigma = options_.noise_sigma;
+  scene_options.seed = options_.seed;
+  auto scene =
+      sim::SceneRenderer::create(loaded_->rig, *loaded_->model, loaded_->body, scene_options);
+  if (!scene) return Error{"sim rig source: " + scene.error().message};
+  gl_ = std::make_unique<Gl>(Gl{std::move(*context), std::move(*scene)});
+  return {};
+}
+
+Result<StereoCapture> SimRigSource::capture() {
+  if (!gl_) return Error{"sim rig source: capture() before prepare()"};
+  pacer_->wait();
+  if (options_.scene_state) {
+    if (auto state = options_.scene_state()) {
+      if (state->q.size() == loaded_->model->dof() && state->q.allFinite()) last_state_ = *state;
+    }
+  }
+  const double max_opening =
+      loaded_->body.gripper ? static_cast<double>(loaded_->body.gripper->max_opening) : 0.08;
+  gl_->scene.set_configuration(last_state_.q);
+  gl_->scene.set_gripper_opening(static_cast<float>(last_state_.gripper * max_opening));
+  StereoCapture out;
+  out.frame_number = ++frame_;
+  out.left = gl_->scene.render(sim::Eye::kLeft, out.frame_number);
+  out.capture_ns_left = monotonic_ns();
+  out.right = gl_->scene.render(sim::Eye::kRight, out.frame_number);
+  out.capture_ns_right = monotonic_ns();
+  out.scene = last_state_;
+  return out;
+}
+
+}  // namespace telear::net

@@ -1,0 +1,336 @@
+#include "net/vision_client.hpp"
+
+#include <grpcpp/grpcpp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "net/clock.hpp"
+#include "net/jpeg_codec.hpp"
+#include "net/latest_slot.hpp"
+#include "telear/v1/vision.grpc.pb.h"
+#include "vision/camera_file.hpp"
+
+namespace telear::net {
+namespace {
+
+// One message as it came off the wire, stamped on arrival.
+struct Received {
+  telear::v1::StereoFrame message;
+  std::int64_t receive_ns = 0;
+  std::size_t bytes = 0;
+};
+
+std::shared_ptr<grpc::Channel> make_channel(const ClientOptions& options) {
+  grpc::ChannelArguments args;
+  // Stereo 1280x720 JPEG pairs are a few hundred KB; leave room for large frames.
+  args.SetMaxReceiveMessageSize(64 * 1024 * 1024);
+  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
+  if (!options.tls_root_certificate_file.empty()) {
+    std::ifstream in(options.tls_root_certificate_file);
+    std::ostringstream pem;
+    pem << in.rdbuf();
+    grpc::SslCredentialsOptions ssl;
+    ssl.pem_root_certs = pem.str();
+    credentials = grpc::SslCredentials(ssl);
+  }
+  return grpc::CreateCustomChannel(options.address, credentials, args);
+}
+
+CameraModel model_from_intrinsics(const telear::v1::CameraIntrinsics& in) {
+  CameraModel camera;
+  camera.width = in.width();
+  camera.height = in.height();
+  if (in.fc_size() == 2) {
+    camera.fx = in.fc(0);
+    camera.fy = in.fc(1);
+  }
+  if (in.cc_size() == 2) {
+    camera.cx = in.cc(0);
+    camera.cy = in.cc(1);
+  }
+  camera.alpha_c = in.alpha_c();
+  if (in.kc_size() == 5) {
+    camera.kc = Distortion::from_array({in.kc(0), in.kc(1), in.kc(2), in.kc(3), in.kc(4)});
+  }
+  return camera;
+}
+
+double seconds_between(std::int64_t from_ns, std::int64_t to_ns) {
+  return ns_to_s(to_ns - from_ns);
+}
+
+}  // namespace
+
+struct VisionClient::Impl {
+  VisionClientOptions options;
+  std::shared_ptr<grpc::Channel> channel;
+  std::unique_ptr<telear::v1::VisionService::Stub> stub;
+
+  LatestSlot<Received> received;
+  LatestSlot<DecodedStereoFrame> decoded;
+  std::thread receive_thread, decode_thread, ping_thread;
+
+  std::mutex mutex;  // guards running, active_context; `wake` interrupts back-off and ping waits
+  std::condition_variable wake;
+  bool running = false;
+  grpc::ClientContext* active_context = nullptr;
+
+  mutable std::mutex offset_mutex;
+  ClockOffsetEstimator estimator;
+
+  std::atomic<std::uint64_t> frames_received{0}, frames_decoded{0}, bytes_received{0};
+  std::atomic<int> reconnects{0};
+  std::atomic<std::int64_t> last_receive_ns{0};
+
+  void add_metadata(grpc::ClientContext& context) const {
+    if (!options.token.empty()) context.AddMetadata("authorization", "Bearer " + options.token);
+  }
+  bool is_running() {
+    std::lock_guard lock(mutex);
+    return running;
+  }
+  // Sleeps up to `seconds`, returns at once on stop(); false once stopped.
+  bool sleep_unless_stopped(double seconds) {
+    std::unique_lock lock(mutex);
+    wake.wait_for(lock, std::chrono::nanoseconds(s_to_ns(seconds)), [&] { return !running; });
+    return running;
+  }
+  std::int64_t to_client(std::int64_t server_ns) const {
+    std::lock_guard lock(offset_mutex);
+    return estimator.to_client_ns(server_ns);
+  }
+
+  void receive_loop();
+  void decode_loop();
+  void ping_loop();
+};
+
+// [SECTION] receive: the stream, reconnecting with exponential back-off
+
+void VisionClient::Impl::receive_loop() {
+  telear::v1::StreamFramesRequest request;
+  request.set_max_rate_hz(options.max_rate_hz);
+  request.set_jpeg_quality(options.jpeg_quality);
+  request.set_width(options.width);
+  request.set_height(options.height);
+  double backoff_s = options.reconnect_initial_backoff_s;
+  bool first = true;
+  while (true) {
+    grpc::ClientContext context;
+    add_metadata(context);
+    {
+      std::lock_guard lock(mutex);
+      if (!running) break;
+      active_context = &context;
+    }
+    if (!first) ++reconnects;
+    first = false;
+    auto reader = stub->StreamFrames(&context, request);
+    Received item;
+    while (reader->Read(&item.message)) {
+      item.receive_ns = monotonic_ns();
+      item.bytes = item.message.ByteSizeLong();
+      last_receive_ns = item.receive_ns;
+      ++frames_received;
+      bytes_received += item.bytes;
+      received.put(std::move(item));
+      item = Received{};
+      backoff_s = options.reconnect_initial_backoff_s;  // a working stream resets the back-off
+    }
+    reader->Finish();
+    {
+      std::lock_guard lock(mutex);
+      active_context = nullptr;
+    }
+    if (!sleep_unless_stopped(backoff_s)) break;
+    backoff_s = std::min(backoff_s * 2.0, options.reconnect_max_backoff_s);
+  }
+}
+
+// [SECTION] decode: the newest received message, both eyes, latencies
+
+void VisionClient::Impl::decode_loop() {
+  JpegDecoder decoder;
+  std::uint64_t last = 0;
+  while (true) {
+    auto taken = received.wait_take(last, std::chrono::milliseconds(100));
+    if (!taken) {
+      if (received.closed()) break;
+      continue;
+    }
+    last = taken->number;
+    const Received& in = *taken->item;
+    const telear::v1::StereoFrame& m = in.message;
+    auto left = decoder.decode(m.left().jpeg());
+    auto right = left ? decoder.decode(m.right().jpeg()) : Result<render::Image>(left.error());
+    if (!left || !right) continue;  // a corrupt frame is dropped; the next one replaces it
+
+    DecodedStereoFrame out;
+    out.decoded_ns = monotonic_ns();
+    out.frame_id = m.frame_id();
+    out.left = std::move(*left);
+    out.right = std::move(*right);
+    out.capture_ns_left = to_client(m.left().capture_ns());
+    out.capture_ns_right = to_client(m.right().capture_ns());
+    out.frames_skipped_server = m.frames_skipped();
+    out.frames_skipped_client = taken->skipped;
+    out.jpeg_bytes = m.left().jpeg().size() + m.right().jpeg().size();
+    out.message_bytes = in.bytes;
+    // Stages on the client clock; the pair counts as captured when its later eye was.
+    const std::int64_t capture = std::max(out.capture_ns_left, out.capture_ns_right);
+    const std::int64_t encode_start = to_client(m.encode_start_ns());
+    const std::int64_t encode_end = to_client(m.encode_end_ns());
+    const std::int64_t send = to_client(m.server_send_ns());
+    out.latency.capture_to_encode_s = seconds_between(capture, encode_start);
+    out.latency.encode_s = seconds_between(encode_start, encode_end);
+    out.latency.send_queue_s = seconds_between(encode_end, send);
+    out.latency.network_s = seconds_between(send, in.receive_ns);
+    out.latency.decode_s = seconds_between(in.receive_ns, out.decoded_ns);
+    out.latency.total_s = seconds_between(capture, out.decoded_ns);
+    if (m.scene_q_size() > 0) {
+      out.scene_q = Eigen::Map<const Eigen::VectorXd>(m.scene_q().data(), m.scene_q_size());
+      out.scene_state_ns = m.scene_state_ns() != 0 ? to_client(m.scene_state_ns()) : 0;
+    }
+    decoded.put(std::move(out));
+    ++frames_decoded;
+  }
+}
+
+// [SECTION] ping: the clock offset
+
+void VisionClient::Impl::ping_loop() {
+  do {
+    grpc::ClientContext context;
+    add_metadata(context);
+    context.set_deadline(std::chrono::system_clock::now() +
+                         std::chrono::nanoseconds(s_to_ns(options.rpc_timeout_s)));
+    telear::v1::PingRequest request;
+    telear::v1::PingResponse reply;
+    request.set_client_send_ns(monotonic_ns());
+    if (stub->Ping(&context, request, &reply).ok()) {
+      PingSample sample{request.client_send_ns(), reply.server_receive_ns(), reply.server_send_ns(),
+                        monotonic_ns()};
+      std::lock_guard lock(offset_mutex);
+      estimator.add(sample);
+    }
+  } while (sleep_unless_stopped(options.ping_period_s));
+}
+
+// [SECTION] public API
+
+VisionClient::VisionClient(VisionClientOptions options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = std::move(options);
+  impl_->channel = make_channel(impl_->options);
+  impl_->stub = telear::v1::VisionService::NewStub(impl_->channel);
+}
+
+VisionClient::~VisionClient() {
+  stop();
+}
+
+void VisionClient::start() {
+  {
+    std::lock_guard lock(impl_->mutex);
+    if (impl_->running || impl_->received.closed()) return;  // running, or stopped for good
+    impl_->running = true;
+  }
+  impl_->receive_thread = std::thread([this] { impl_->receive_loop(); });
+  impl_->decode_thread = std::thread([this] { impl_->decode_loop(); });
+  if (impl_->options.ping_period_s > 0) {
+    impl_->ping_thread = std::thread([this] { impl_->ping_loop(); });
+  }
+}
+
+void VisionClient::stop() {
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->running = false;
+    if (impl_->active_context != nullptr) impl_->active_context->TryCancel();
+  }
+  impl_->wake.notify_all();
+  impl_->received.close();
+  impl_->decoded.close();
+  for (std::thread* t : {&impl_->receive_thread, &impl_->decode_thread, &impl_->ping_thread}) {
+    if (t->joinable()) t->join();
+  }
+}
+
+bool VisionClient::connected() const {
+  const std::int64_t last = impl_->last_receive_ns;
+  return last != 0 && monotonic_ns() - last < s_to_ns(1.0);
+}
+
+int VisionClient::reconnects() const {
+  return impl_->reconnects;
+}
+
+Result<CameraInfoReply> VisionClient::get_camera_info() {
+  grpc::ClientContext context;
+  impl_->add_metadata(context);
+  context.set_deadline(std::chrono::system_clock::now() +
+                       std::chrono::nanoseconds(s_to_ns(impl_->options.rpc_timeout_s)));
+  telear::v1::CameraInfo info;
+  const grpc::Status status =
+      impl_->stub->GetCameraInfo(&context, telear::v1::GetCameraInfoRequest(), &info);
+  if (!status.ok()) {
+    if (status.error_code() == grpc::StatusCode::UNAVAILABLE ||
+        status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED) {
+      return Error{"vision server at " + impl_->options.address +
+                   " unreachable: " + status.error_message()};
+    }
+    return Error{"GetCameraInfo: " + status.error_message()};
+  }
+  CameraInfoReply reply;
+  reply.found = info.found();
+  reply.source = info.source();
+  reply.source_width = info.source_width();
+  reply.source_height = info.source_height();
+  reply.source_fps = info.source_fps();
+  if (!reply.found) return reply;
+  // The file itself carries everything (poses included); the fields are the fallback.
+  auto file = parse_camera_yaml(info.calibration_yaml(), "vision server calibration");
+  if (file && file->is_stereo()) {
+    reply.cameras.left = file->left;
+    reply.cameras.right = *file->right;
+  } else {
+    reply.cameras.left = model_from_intrinsics(info.left());
+    reply.cameras.right = model_from_intrinsics(info.right());
+  }
+  return reply;
+}
+
+std::optional<std::shared_ptr<const DecodedStereoFrame>> VisionClient::latest_frame() const {
+  auto taken = impl_->decoded.try_take(0);
+  if (!taken) return std::nullopt;
+  return taken->item;
+}
+
+std::optional<std::pair<std::shared_ptr<const DecodedStereoFrame>, std::uint64_t>>
+VisionClient::wait_frame(std::uint64_t after, double timeout_s) const {
+  auto taken = impl_->decoded.wait_take(after, std::chrono::nanoseconds(s_to_ns(timeout_s)));
+  if (!taken) return std::nullopt;
+  return std::make_pair(taken->item, taken->number);
+}
+
+std::optional<ClockOffset> VisionClient::clock_offset() const {
+  std::lock_guard lock(impl_->offset_mutex);
+  return impl_->estimator.estimate();
+}
+
+std::uint64_t VisionClient::frames_received() const {
+  return impl_->frames_received;
+}
+std::uint64_t VisionClient::frames_decoded() const {
+  return impl_->frames_decoded;
+}
+std::uint64_t VisionClient::bytes_received() const {
+  return impl_->bytes_received;
+}
+
+}  // namespace telear::net

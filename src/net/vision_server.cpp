@@ -1,0 +1,117 @@
+#include "net/vision_server.hpp"
+
+#include <grpcpp/grpcpp.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+#include "net/bearer_auth.hpp"
+#include "net/vision_service.hpp"
+#include "vision/camera_file.hpp"
+
+namespace telear::net {
+
+struct VisionServer::Impl {
+  std::unique_ptr<VisionPipeline> pipeline;
+  std::unique_ptr<VisionServiceImpl> service;
+  std::unique_ptr<grpc::Server> server;
+  std::string address;
+  int port = 0;
+  double grace_s = 0.5;
+  bool stopped = false;
+};
+
+VisionServer::VisionServer() : impl_(std::make_unique<Impl>()) {}
+
+VisionServer::~VisionServer() {
+  stop();
+}
+
+Result<std::unique_ptr<VisionServer>> VisionServer::start(VisionServerOptions options) {
+  if (!options.source) return Error{"vision server: no source"};
+  if (options.jpeg_quality < 1 || options.jpeg_quality > 100) {
+    return Error{"vision server: JPEG quality " + std::to_string(options.jpeg_quality) +
+                 " is outside 1..100"};
+  }
+  const auto colon = options.listen_address.rfind(':');
+  if (colon == std::string::npos || colon + 1 >= options.listen_address.size()) {
+    return Error{"vision server: listen address '" + options.listen_address + "' is not HOST:PORT"};
+  }
+  VisionServiceConfig config;
+  config.max_streams = options.max_streams;
+  config.log = options.log;
+  if (!options.token_file.empty()) {
+    auto token = load_token_file(options.token_file);
+    if (!token) return Error{"vision server: " + token.error().message};
+    config.auth.emplace(*token, false);
+  }
+  if (!options.calibration_file.empty()) {
+    auto file = load_camera_file(options.calibration_file);
+    if (!file) return Error{"vision server: " + file.error().message};
+    if (!file->is_stereo()) {
+      return Error{"vision server: calibration '" + options.calibration_file +
+                   "' is a mono camera file; a stereo file (left: and right:) is needed"};
+    }
+    std::ifstream in(options.calibration_file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    config.calibration = std::move(*file);
+    config.calibration_yaml = text.str();
+  }
+
+  std::unique_ptr<VisionServer> server(new VisionServer());
+  Impl& impl = *server->impl_;
+  impl.grace_s = options.shutdown_grace_s;
+  VisionPipelineOptions pipeline_options;
+  pipeline_options.default_quality = options.jpeg_quality;
+  impl.pipeline = std::make_unique<VisionPipeline>(std::move(options.source), pipeline_options);
+  if (auto started = impl.pipeline->start(); !started) {
+    return Error{"vision server: " + started.error().message};
+  }
+  impl.service = std::make_unique<VisionServiceImpl>(*impl.pipeline, std::move(config));
+
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(options.listen_address, grpc::InsecureServerCredentials(), &port);
+  builder.RegisterService(impl.service.get());
+  impl.server = builder.BuildAndStart();
+  if (!impl.server || port == 0) {
+    impl.pipeline->stop();
+    return Error{"vision server: cannot listen on " + options.listen_address +
+                 " (address in use, or not a local address?)"};
+  }
+  impl.port = port;
+  impl.address = options.listen_address.substr(0, colon) + ":" + std::to_string(port);
+  return server;
+}
+
+void VisionServer::stop() {
+  if (!impl_ || impl_->stopped) return;
+  impl_->stopped = true;
+  if (impl_->service) impl_->service->begin_shutdown();
+  if (impl_->pipeline) {
+    // Close the slots first: every stream waiting for a frame returns at once.
+    impl_->pipeline->stop();
+  }
+  if (impl_->server) {
+    impl_->server->Shutdown(std::chrono::system_clock::now() +
+                            std::chrono::milliseconds(static_cast<int>(impl_->grace_s * 1000)));
+    impl_->server->Wait();
+  }
+}
+
+int VisionServer::port() const {
+  return impl_->port;
+}
+std::string VisionServer::address() const {
+  return impl_->address;
+}
+const VisionPipeline& VisionServer::pipeline() const {
+  return *impl_->pipeline;
+}
+int VisionServer::active_streams() const {
+  return impl_->service ? impl_->service->active_streams() : 0;
+}
+
+}  // namespace telear::net

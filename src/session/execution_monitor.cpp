@@ -1,0 +1,97 @@
+#include "session/execution_monitor.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "core/angles.hpp"
+#include "core/joint_limits.hpp"
+#include "core/kinematics.hpp"
+
+namespace telear::session {
+namespace {
+
+std::string amount(const RobotModel& model, int joint, double value) {
+  char text[96];
+  if (model.joint(joint).type == JointType::kRevolute) {
+    std::snprintf(text, sizeof text, "%.3f rad (%.1f deg)", value, degrees_from_radians(value));
+  } else {
+    std::snprintf(text, sizeof text, "%.4f m (%.1f mm)", value, value * 1000.0);
+  }
+  return text;
+}
+
+std::string seconds(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f s", value);
+  return text;
+}
+
+}  // namespace
+
+ExecutionMonitor::ExecutionMonitor(RobotModelPtr model, Trajectory trajectory, double start_time,
+                                   MonitorOptions options)
+    : model_(std::move(model)),
+      trajectory_(std::move(trajectory)),
+      start_time_(start_time),
+      options_(options) {
+  assert(model_ && model_->dof() == trajectory_.dof() &&
+         "ExecutionMonitor: model missing or of another dof than the trajectory");
+  assert(options_.tolerance > 0.0 && "ExecutionMonitor: tolerance must be positive");
+}
+
+const TrackingStatus& ExecutionMonitor::update(double robot_time, const Eigen::VectorXd& q_real) {
+  return update_at_plan_time(robot_time - start_time_, q_real);
+}
+
+const TrackingStatus& ExecutionMonitor::update_at_plan_time(double plan_time,
+                                                            const Eigen::VectorXd& q_real) {
+  TrackingStatus& s = status_;
+  const double duration = trajectory_.duration();
+  const double t = std::isfinite(plan_time) ? std::clamp(plan_time, 0.0, duration) : 0.0;
+  s.plan_time = t;
+  s.progress = duration > 0.0 ? t / duration : 1.0;
+  if (s.cancel) return s;  // latched: the decision and its message stay
+
+  if (Status valid = check_joint_vector(*model_, q_real); !valid || !std::isfinite(plan_time)) {
+    s.error.resize(0);
+    s.max_abs_error = 0.0;
+    s.worst_joint = -1;
+    s.cancel = true;
+    s.cancel_message = "execution monitor: the robot reported an invalid state (" +
+                       (valid ? std::string("time not finite") : valid.error().message) +
+                       "); cancelling";
+    return s;
+  }
+  trajectory_.sample(t, q_plan_);
+  s.error = q_real - q_plan_;
+  Eigen::Index worst = 0;
+  s.max_abs_error = s.error.cwiseAbs().maxCoeff(&worst);
+  s.worst_joint = static_cast<int>(worst);
+  ++s.samples;
+  sum_squares_ += s.max_abs_error * s.max_abs_error;
+  s.rms_error = std::sqrt(sum_squares_ / s.samples);
+  if (s.max_abs_error > s.max_error_so_far || s.max_error_joint < 0) {
+    s.max_error_so_far = s.max_abs_error;
+    s.max_error_joint = s.worst_joint;
+    s.max_error_plan_time = t;
+  }
+  if (s.max_abs_error > options_.tolerance) {
+    const int j = s.worst_joint;
+    s.cancel = true;
+    s.complete = false;
+    s.cancel_message = "execution monitor: at " + seconds(t) + " of " + seconds(duration) +
+                       " into the plan, " + joint_label(*model_, j) + " is " +
+                       amount(*model_, j, s.max_abs_error) + " from the plan (real " +
+                       format_joint_value(*model_, j, q_real[j]) + ", plan " +
+                       format_joint_value(*model_, j, q_plan_[j]) + "), beyond the tolerance of " +
+                       amount(*model_, j, options_.tolerance) + "; cancelling";
+    return s;
+  }
+  s.complete = t >= duration;
+  return s;
+}
+
+}  // namespace telear::session

@@ -1,0 +1,311 @@
+#include "session/plan.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "core/joint_limits.hpp"
+#include "session/ghost_arm.hpp"
+
+namespace telear::session {
+namespace {
+
+std::string number(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+std::string waypoint_name(std::size_t index) {
+  return "waypoint[" + std::to_string(index) + "]";
+}
+
+struct ParseError {
+  std::string message;
+};
+
+double scalar(const YAML::Node& node, const std::string& what) {
+  if (!node.IsScalar()) throw ParseError{what + ": must be a number"};
+  double value = 0.0;
+  try {
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ParseError{what + ": must be a number, got '" + node.Scalar() + "'"};
+  }
+  if (!std::isfinite(value)) throw ParseError{what + ": must be finite, got " + node.Scalar()};
+  return value;
+}
+
+void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& known,
+                         const std::string& where) {
+  for (const auto& entry : map) {
+    const std::string key = entry.first.as<std::string>();
+    if (known.count(key) == 0) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw ParseError{where + (where.empty() ? "" : ".") + key + ": unknown key (known: " + list +
+                       ")"};
+    }
+  }
+}
+
+}  // namespace
+
+Plan::Plan(RobotModelPtr model) : model_(std::move(model)) {
+  assert(model_ && "Plan: model must not be null");
+}
+
+Status Plan::check_waypoint(const PlanWaypoint& w, const std::string& where) const {
+  if (w.q.size() != model_->dof()) {
+    return Error{where + ": expected " + std::to_string(model_->dof()) + " joint values, got " +
+                 std::to_string(w.q.size())};
+  }
+  for (int j = 0; j < model_->dof(); ++j) {
+    if (!std::isfinite(w.q[j])) {
+      return Error{where + ": " + joint_label(*model_, j) + " is not finite (NaN or inf)"};
+    }
+  }
+  if (const auto violation = first_limit_violation(*model_, w.q)) {
+    return Error{where + ": " + describe_violation(*model_, *violation)};
+  }
+  if (!std::isfinite(w.min_duration) || w.min_duration < 0.0 ||
+      w.min_duration > options_.max_segment_duration) {
+    return Error{where + ": min_duration " + number(w.min_duration) + " s is outside 0.." +
+                 number(options_.max_segment_duration) + " s"};
+  }
+  if (w.gripper && (!std::isfinite(*w.gripper) || *w.gripper < 0.0 || *w.gripper > 1.0)) {
+    return Error{where + ": gripper opening " + number(*w.gripper) +
+                 " is outside 0 (closed) .. 1 (open)"};
+  }
+  return Status::Ok();
+}
+
+Status Plan::check_index(std::size_t index, const char* what) const {
+  if (index >= waypoints_.size()) {
+    return Error{std::string(what) + ": no " + waypoint_name(index) + " (the plan has " +
+                 std::to_string(waypoints_.size()) + " waypoints)"};
+  }
+  return Status::Ok();
+}
+
+Status Plan::add(PlanWaypoint waypoint, std::optional<std::size_t> index) {
+  const std::size_t at = index.value_or(waypoints_.size());
+  if (at > waypoints_.size()) {
+    return Error{"add: cannot insert at " + waypoint_name(at) + " (the plan has " +
+                 std::to_string(waypoints_.size()) + " waypoints)"};
+  }
+  if (Status s = check_waypoint(waypoint, "add: " + waypoint_name(at)); !s) return s;
+  if (static_cast<int>(waypoints_.size()) >= options_.max_waypoints) {
+    return Error{"add: the plan already has the maximum of " +
+                 std::to_string(options_.max_waypoints) + " waypoints"};
+  }
+  waypoints_.insert(waypoints_.begin() + static_cast<std::ptrdiff_t>(at), std::move(waypoint));
+  return Status::Ok();
+}
+
+Status Plan::add_from(const GhostArm& ghost, double min_duration, std::string label,
+                      bool with_gripper, std::optional<std::size_t> index) {
+  assert(ghost.model().dof() == model_->dof() && "Plan::add_from(): ghost of another model");
+  PlanWaypoint w;
+  w.q = ghost.q();
+  if (with_gripper) w.gripper = ghost.gripper();
+  w.min_duration = min_duration;
+  w.label = std::move(label);
+  return add(std::move(w), index);
+}
+
+Status Plan::replace(std::size_t index, PlanWaypoint waypoint) {
+  return replace_as(index, std::move(waypoint), "replace");
+}
+
+Status Plan::replace_as(std::size_t index, PlanWaypoint waypoint, const char* what) {
+  if (Status s = check_index(index, what); !s) return s;
+  if (Status s = check_waypoint(waypoint, std::string(what) + ": " + waypoint_name(index)); !s) {
+    return s;
+  }
+  waypoints_[index] = std::move(waypoint);
+  return Status::Ok();
+}
+
+Status Plan::remove(std::size_t index) {
+  if (Status s = check_index(index, "remove"); !s) return s;
+  waypoints_.erase(waypoints_.begin() + static_cast<std::ptrdiff_t>(index));
+  return Status::Ok();
+}
+
+Status Plan::move(std::size_t from, std::size_t to) {
+  if (Status s = check_index(from, "move"); !s) return s;
+  if (Status s = check_index(to, "move"); !s) return s;
+  PlanWaypoint w = std::move(waypoints_[from]);
+  waypoints_.erase(waypoints_.begin() + static_cast<std::ptrdiff_t>(from));
+  waypoints_.insert(waypoints_.begin() + static_cast<std::ptrdiff_t>(to), std::move(w));
+  return Status::Ok();
+}
+
+Status Plan::set_min_duration(std::size_t index, double seconds) {
+  if (Status s = check_index(index, "set duration"); !s) return s;
+  PlanWaypoint w = waypoints_[index];
+  w.min_duration = seconds;
+  return replace_as(index, std::move(w), "set duration");
+}
+
+Status Plan::set_gripper(std::size_t index, std::optional<double> opening) {
+  if (Status s = check_index(index, "set gripper"); !s) return s;
+  PlanWaypoint w = waypoints_[index];
+  w.gripper = opening;
+  return replace_as(index, std::move(w), "set gripper");
+}
+
+Status Plan::set_label(std::size_t index, std::string label) {
+  if (Status s = check_index(index, "set label"); !s) return s;
+  waypoints_[index].label = std::move(label);
+  return Status::Ok();
+}
+
+Status Plan::set_scales(double velocity_scale, double acceleration_scale) {
+  for (const auto& [name, value] :
+       {std::pair{"velocity_scale", velocity_scale}, {"acceleration_scale", acceleration_scale}}) {
+    if (!std::isfinite(value) || value <= 0.0 || value > 1.0) {
+      return Error{std::string(name) + " " + number(value) + " is outside (0, 1]"};
+    }
+  }
+  options_.velocity_scale = velocity_scale;
+  options_.acceleration_scale = acceleration_scale;
+  return Status::Ok();
+}
+
+std::vector<JointWaypoint> Plan::joint_waypoints() const {
+  std::vector<JointWaypoint> list;
+  list.reserve(waypoints_.size());
+  for (const PlanWaypoint& w : waypoints_) list.emplace_back(w.q, w.min_duration, w.gripper);
+  return list;
+}
+
+Result<Trajectory> Plan::trajectory() const {
+  if (waypoints_.empty()) return Error{"the plan is empty; add at least one waypoint"};
+  return Trajectory::Create(*model_, joint_waypoints(), options_);
+}
+
+Result<TimedWaypoints> Plan::timed_waypoints(double rate_hz) const {
+  auto trajectory = this->trajectory();
+  if (!trajectory) return trajectory.error();
+  return trajectory->sampled(rate_hz);
+}
+
+std::string Plan::to_yaml() const {
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << YAML::BeginMap;
+  out << YAML::Key << "robot" << YAML::Value << model_->name();
+  out << YAML::Key << "velocity_scale" << YAML::Value << options_.velocity_scale;
+  out << YAML::Key << "acceleration_scale" << YAML::Value << options_.acceleration_scale;
+  out << YAML::Key << "waypoints" << YAML::Value << YAML::BeginSeq;
+  for (const PlanWaypoint& w : waypoints_) {
+    out << YAML::Flow << YAML::BeginMap;
+    if (!w.label.empty()) out << YAML::Key << "label" << YAML::Value << w.label;
+    out << YAML::Key << "q_rad" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (int j = 0; j < w.q.size(); ++j) out << w.q[j];
+    out << YAML::EndSeq;
+    if (w.gripper) out << YAML::Key << "gripper" << YAML::Value << *w.gripper;
+    if (w.min_duration != 0.0)
+      out << YAML::Key << "min_duration_s" << YAML::Value << w.min_duration;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+Result<Plan> Plan::from_yaml(RobotModelPtr model, const std::string& text,
+                             const std::string& source) {
+  const std::string where = "plan '" + source + "': ";
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    return Error{where + "not valid YAML: " + e.what()};
+  }
+  Plan plan(std::move(model));
+  try {
+    if (!root.IsMap()) throw ParseError{"expected a map with robot and waypoints"};
+    reject_unknown_keys(root, {"robot", "velocity_scale", "acceleration_scale", "waypoints"}, "");
+    if (!root["robot"] || !root["robot"].IsScalar()) {
+      throw ParseError{"robot: missing (the model's name, e.g. robot: " + plan.model().name() +
+                       ")"};
+    }
+    const std::string robot = root["robot"].Scalar();
+    if (robot != plan.model().name()) {
+      throw ParseError{"robot: the plan is for '" + robot + "', not for the loaded model '" +
+                       plan.model().name() + "'"};
+    }
+    const double velocity_scale =
+        root["velocity_scale"] ? scalar(root["velocity_scale"], "velocity_scale") : 1.0;
+    const double acceleration_scale =
+        root["acceleration_scale"] ? scalar(root["acceleration_scale"], "acceleration_scale") : 1.0;
+    if (Status s = plan.set_scales(velocity_scale, acceleration_scale); !s) {
+      throw ParseError{s.error().message};
+    }
+    const YAML::Node list = root["waypoints"];
+    if (!list) throw ParseError{"waypoints: missing"};
+    if (list.IsNull()) return plan;  // an empty plan is a valid file
+    if (!list.IsSequence()) throw ParseError{"waypoints: must be a list"};
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string name = waypoint_name(i);
+      const YAML::Node node = list[i];
+      if (!node.IsMap()) throw ParseError{name + ": must be a map with q_rad"};
+      reject_unknown_keys(node, {"label", "q_rad", "gripper", "min_duration_s"}, name);
+      PlanWaypoint w;
+      const YAML::Node q = node["q_rad"];
+      if (!q) throw ParseError{name + ".q_rad: missing"};
+      if (!q.IsSequence()) throw ParseError{name + ".q_rad: must be a list of numbers"};
+      if (static_cast<int>(q.size()) != plan.model().dof()) {
+        throw ParseError{name + ".q_rad: expected " + std::to_string(plan.model().dof()) +
+                         " numbers, got " + std::to_string(q.size())};
+      }
+      w.q.resize(plan.model().dof());
+      for (int j = 0; j < plan.model().dof(); ++j) {
+        w.q[j] = scalar(q[static_cast<std::size_t>(j)], name + ".q_rad[" + std::to_string(j) + "]");
+      }
+      if (node["gripper"]) w.gripper = scalar(node["gripper"], name + ".gripper");
+      if (node["min_duration_s"]) {
+        w.min_duration = scalar(node["min_duration_s"], name + ".min_duration_s");
+      }
+      if (node["label"]) {
+        if (!node["label"].IsScalar()) throw ParseError{name + ".label: must be text"};
+        w.label = node["label"].Scalar();
+      }
+      if (Status s = plan.check_waypoint(w, name); !s) throw ParseError{s.error().message};
+      if (Status s = plan.add(std::move(w)); !s) throw ParseError{s.error().message};
+    }
+  } catch (const ParseError& e) {
+    return Error{where + e.message};
+  } catch (const YAML::Exception& e) {
+    return Error{where + e.what()};
+  }
+  return plan;
+}
+
+Status Plan::save(const std::string& path) const {
+  std::ofstream file(path);
+  if (!file) return Error{"plan '" + path + "': cannot be written"};
+  file << "# telear plan (docs/session.md): joint waypoints in radians, durations in seconds\n"
+       << to_yaml();
+  file.flush();
+  if (!file) return Error{"plan '" + path + "': write failed"};
+  return Status::Ok();
+}
+
+Result<Plan> Plan::load(RobotModelPtr model, const std::string& path) {
+  std::ifstream file(path);
+  if (!file) return Error{"plan '" + path + "': cannot be opened"};
+  std::ostringstream text;
+  text << file.rdbuf();
+  return from_yaml(std::move(model), text.str(), path);
+}
+
+}  // namespace telear::session

@@ -1,0 +1,178 @@
+#include "session/plan_validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/angles.hpp"
+#include "core/joint_limits.hpp"
+#include "core/kinematics.hpp"
+#include "core/motion_command.hpp"
+
+namespace telear::session {
+namespace {
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+// "0.120 rad (6.9 deg)" or "0.0120 m (12.0 mm)".
+std::string distance(const RobotModel& model, int joint, double value) {
+  if (model.joint(joint).type == JointType::kRevolute) {
+    return format("%.3f rad", value) + " (" + format("%.1f deg", degrees_from_radians(value)) + ")";
+  }
+  return format("%.4f m", value) + " (" + format("%.1f mm", value * 1000.0) + ")";
+}
+
+std::string tolerance_text(const RobotModel& model, int joint, double value) {
+  return model.joint(joint).type == JointType::kRevolute ? format("%.3f rad", value)
+                                                         : format("%.4f m", value);
+}
+
+}  // namespace
+
+const char* to_string(IssueSeverity severity) {
+  return severity == IssueSeverity::kError ? "error" : "warning";
+}
+
+int ValidationReport::error_count() const {
+  return static_cast<int>(std::count_if(issues.begin(), issues.end(), [](const auto& i) {
+    return i.severity == IssueSeverity::kError;
+  }));
+}
+
+int ValidationReport::warning_count() const {
+  return static_cast<int>(issues.size()) - error_count();
+}
+
+std::string ValidationReport::summary() const {
+  const int errors = error_count(), warnings = warning_count();
+  std::string text;
+  if (errors == 0) {
+    text = "ok";
+    if (warnings > 0) text += ", ";
+  } else {
+    text = std::to_string(errors) + (errors == 1 ? " error" : " errors");
+    if (warnings > 0) text += ", ";
+  }
+  if (warnings > 0) text += std::to_string(warnings) + (warnings == 1 ? " warning" : " warnings");
+  if (issues.empty()) return text;
+  text += ":";
+  for (const ValidationIssue& issue : issues) {
+    text += std::string("\n  ") + to_string(issue.severity) + ": " + issue.message;
+  }
+  return text;
+}
+
+ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::VectorXd>& q_real,
+                               const ValidationOptions& options) {
+  const RobotModel& model = plan.model();
+  std::vector<ValidationIssue> errors, warnings;
+  auto error = [&](int waypoint, int joint, std::string message) {
+    errors.push_back({IssueSeverity::kError, waypoint, joint, std::move(message)});
+  };
+  auto warning = [&](int waypoint, int joint, std::string message) {
+    warnings.push_back({IssueSeverity::kWarning, waypoint, joint, std::move(message)});
+  };
+  auto finish = [&]() {
+    ValidationReport report;
+    report.issues = std::move(errors);
+    report.issues.insert(report.issues.end(), warnings.begin(), warnings.end());
+    return report;
+  };
+
+  if (plan.empty()) {
+    error(-1, -1, "the plan is empty; add at least one waypoint (the ghost's pose)");
+    return finish();
+  }
+  const auto& waypoints = plan.waypoints();
+  bool waypoints_valid = true;
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    const std::string name = "waypoint[" + std::to_string(i) + "]";
+    if (Status s = plan.check_waypoint(waypoints[i], name); !s) {
+      int joint = -1;
+      if (waypoints[i].q.size() == model.dof()) {
+        if (const auto v = first_limit_violation(model, waypoints[i].q)) joint = v->joint;
+      }
+      error(static_cast<int>(i), joint, s.error().message);
+      waypoints_valid = false;
+    }
+  }
+  if (waypoints.size() == 1) {
+    warning(0, -1, "the plan has a single waypoint: executing it moves nothing");
+  }
+
+  if (!q_real) {
+    warning(0, -1, "the real robot's state is unknown: the plan's start was not checked");
+  } else if (Status s = check_joint_vector(model, *q_real); !s) {
+    error(0, -1, "the real robot's reported state is invalid: " + s.error().message);
+  } else if (waypoints.front().q.size() == model.dof()) {
+    const Eigen::VectorXd gap = (waypoints.front().q - *q_real).cwiseAbs();
+    Eigen::Index worst = 0;
+    const double largest = gap.maxCoeff(&worst);
+    const int j = static_cast<int>(worst);
+    if (!(largest <= options.start_tolerance)) {
+      error(0, j,
+            "the plan starts " + distance(model, j, largest) + " from the real robot at joint " +
+                std::to_string(j + 1) + " (" + model.joint(j).name + "; tolerance " +
+                tolerance_text(model, j, options.start_tolerance) +
+                "); move the robot to the plan's start or reset the ghost");
+    }
+  }
+
+  if (!waypoints_valid) return finish();
+
+  auto trajectory = plan.trajectory();
+  if (!trajectory) {
+    error(-1, -1,
+          "the plan cannot be timed within the joint limits: " + trajectory.error().message);
+    return finish();
+  }
+  auto sampled = trajectory->sampled(options.sample_rate_hz, options.max_samples);
+  if (!sampled) {
+    error(-1, -1, "the plan cannot be sent: " + sampled.error().message);
+  } else {
+    TimedWaypointsLimits limits;
+    limits.max_samples = options.max_samples;
+    if (Status s = validate_timed_waypoints(model, *sampled, limits); !s) {
+      error(-1, -1, "the robot would refuse the sampled plan: " + s.error().message);
+    }
+  }
+
+  // Near-singular segments: one warning per segment, at its closest sample.
+  KinematicsData data(model);
+  const int samples = std::max(2, options.singularity_samples);
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    const Eigen::VectorXd& q0 = waypoints[i == 0 ? 0 : i - 1].q;
+    const Eigen::VectorXd& q1 = waypoints[i].q;
+    if (i > 0 && q0 == q1) continue;  // a dwell: checked as its own waypoint already
+    double lowest = std::numeric_limits<double>::infinity();
+    double where = 0.0;
+    const int count = (i == 0) ? 1 : samples;
+    for (int k = 0; k < count; ++k) {
+      const double s = count == 1 ? 1.0 : static_cast<double>(k) / (count - 1);
+      const double sigma = jacobian_min_singular_value(model, data, q0 + s * (q1 - q0));
+      if (sigma < lowest) {
+        lowest = sigma;
+        where = s;
+      }
+    }
+    if (lowest < options.singularity_warning_threshold) {
+      const std::string at = i == 0 ? "waypoint[0]"
+                                    : "the segment waypoint[" + std::to_string(i - 1) +
+                                          "] -> waypoint[" + std::to_string(i) + "] (at " +
+                                          format("%.0f", 100.0 * where) + " % of it)";
+      warning(static_cast<int>(i == 0 ? 0 : i - 1), -1,
+              at + " is near a singularity: smallest Jacobian singular value " +
+                  format("%.3g", lowest) + " (warning below " +
+                  format("%g", options.singularity_warning_threshold) +
+                  "); check that part of the preview");
+    }
+  }
+  return finish();
+}
+
+}  // namespace telear::session

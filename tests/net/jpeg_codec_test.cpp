@@ -1,0 +1,116 @@
+#include "net/jpeg_codec.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace telear::net {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A smooth gradient with a square: JPEG's easy case, so q95 must come back close.
+render::Image test_image(int width, int height) {
+  render::Image image(width, height, 3);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const bool square = x > width / 4 && x < width / 2 && y > height / 4 && y < height / 2;
+      image.at(x, y, 0) = static_cast<std::uint8_t>(255 * x / width);
+      image.at(x, y, 1) = static_cast<std::uint8_t>(255 * y / height);
+      image.at(x, y, 2) = square ? 220 : 40;
+    }
+  }
+  return image;
+}
+
+double mean_abs_diff(const render::Image& a, const render::Image& b) {
+  double sum = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) sum += std::abs(a.pixels[i] - b.pixels[i]);
+  return sum / static_cast<double>(a.pixels.size());
+}
+
+TEST(JpegCodec, RoundTripKeepsSizeAndContent) {
+  const render::Image image = test_image(160, 120);
+  JpegEncoder encoder;
+  JpegDecoder decoder;
+  auto jpeg = encoder.encode(image, 95);
+  ASSERT_TRUE(jpeg) << jpeg.error().message;
+  EXPECT_EQ(static_cast<unsigned char>((*jpeg)[0]), 0xFF);  // SOI marker
+  EXPECT_EQ(static_cast<unsigned char>((*jpeg)[1]), 0xD8);
+  EXPECT_LT(jpeg->size(), image.pixels.size());
+  auto decoded = decoder.decode(*jpeg);
+  ASSERT_TRUE(decoded) << decoded.error().message;
+  EXPECT_EQ(decoded->width, 160);
+  EXPECT_EQ(decoded->height, 120);
+  EXPECT_EQ(decoded->channels, 3);
+  EXPECT_LT(mean_abs_diff(image, *decoded), 3.0);
+}
+
+TEST(JpegCodec, LowerQualityIsSmaller) {
+  const render::Image image = test_image(320, 240);
+  JpegEncoder encoder;
+  auto high = encoder.encode(image, 95);
+  auto low = encoder.encode(image, 20);
+  ASSERT_TRUE(high && low);
+  EXPECT_LT(low->size(), high->size());
+}
+
+TEST(JpegCodec, EncodeRejectsBadQualityAndImages) {
+  JpegEncoder encoder;
+  auto bad_quality = encoder.encode(test_image(32, 32), 0);
+  ASSERT_FALSE(bad_quality);
+  EXPECT_THAT(bad_quality.error().message, HasSubstr("quality 0 is outside 1..100"));
+  auto grey = encoder.encode(render::Image(32, 32, 1), 80);
+  ASSERT_FALSE(grey);
+  EXPECT_THAT(grey.error().message, HasSubstr("expected a non-empty RGB8 image, got 32x32x1"));
+}
+
+TEST(JpegCodec, DecodeRejectsGarbageWithAMessage) {
+  JpegDecoder decoder;
+  auto empty = decoder.decode("");
+  ASSERT_FALSE(empty);
+  EXPECT_THAT(empty.error().message, HasSubstr("no data"));
+  auto garbage = decoder.decode("this is not a JPEG at all, just text");
+  ASSERT_FALSE(garbage);
+  EXPECT_THAT(garbage.error().message, HasSubstr("JPEG decode: not a readable JPEG header"));
+}
+
+TEST(JpegCodec, DecodeRejectsTruncatedAndCorruptData) {
+  JpegEncoder encoder;
+  JpegDecoder decoder;
+  auto jpeg = encoder.encode(test_image(160, 120), 90);
+  ASSERT_TRUE(jpeg);
+  const std::string truncated = jpeg->substr(0, jpeg->size() / 2);
+  auto cut = decoder.decode(truncated);
+  ASSERT_FALSE(cut);
+  EXPECT_THAT(cut.error().message, HasSubstr("JPEG decode: corrupt 160x120 image"));
+
+  // Bytes flipped in the entropy-coded data (after the headers): never a crash, either an
+  // error or an image of the header's size.
+  std::string flipped = *jpeg;
+  for (std::size_t i = flipped.size() / 2; i + 2 < flipped.size(); i += 17) flipped[i] ^= 0x5A;
+  auto corrupt = decoder.decode(flipped);
+  if (corrupt) {
+    EXPECT_EQ(corrupt->width, 160);
+    EXPECT_EQ(corrupt->height, 120);
+  } else {
+    EXPECT_THAT(corrupt.error().message, HasSubstr("JPEG decode"));
+  }
+  // The decoder is still usable after a failure.
+  EXPECT_TRUE(decoder.decode(*jpeg));
+}
+
+TEST(JpegCodec, DecodeRefusesImagesBeyondThePixelLimit) {
+  JpegEncoder encoder;
+  JpegDecoder decoder;
+  auto jpeg = encoder.encode(test_image(160, 120), 80);
+  ASSERT_TRUE(jpeg);
+  auto refused = decoder.decode(*jpeg, 100 * 100);
+  ASSERT_FALSE(refused);
+  EXPECT_THAT(refused.error().message,
+              HasSubstr("image size 160x120 is beyond the limit of 10000 pixels"));
+}
+
+}  // namespace
+}  // namespace telear::net

@@ -1,0 +1,379 @@
+// The vision server started for real on 127.0.0.1 (ephemeral port), with clients over gRPC.
+// No timing is asserted: rates are compared as ratios between two clients of the same run,
+// and "newest first" as frame numbers.
+
+#include <gmock/gmock.h>
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "net/synthetic_source.hpp"
+#include "net/vision_client.hpp"
+#include "net/vision_server.hpp"
+#include "sim/stereo_rig.hpp"
+#include "telear/v1/vision.grpc.pb.h"
+#include "test_util/test_util.hpp"
+#include "vision/camera_file.hpp"
+
+namespace telear::net {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::HasSubstr;
+
+std::unique_ptr<StereoSource> synthetic(int width, int height, double fps) {
+  SyntheticSourceOptions options;
+  options.width = width;
+  options.height = height;
+  options.fps = fps;
+  auto source = SyntheticSource::create(options);
+  EXPECT_TRUE(source) << source.error().message;
+  return std::move(*source);
+}
+
+std::unique_ptr<VisionServer> start_server(VisionServerOptions options) {
+  options.listen_address =
+      options.listen_address == "127.0.0.1:50052" ? "127.0.0.1:0" : options.listen_address;
+  auto server = VisionServer::start(std::move(options));
+  EXPECT_TRUE(server) << server.error().message;
+  return server ? std::move(*server) : nullptr;
+}
+
+std::unique_ptr<VisionServer> start_synthetic(int width = 320, int height = 240, double fps = 60) {
+  VisionServerOptions options;
+  options.source = synthetic(width, height, fps);
+  return start_server(std::move(options));
+}
+
+// A raw gRPC reader: reads one message at a time, at the test's pace. BDP probing is off so
+// the transport's window stays small (what a slow reader has not read stays in the server).
+struct RawReader {
+  explicit RawReader(const std::string& address, const std::string& token = "") {
+    grpc::ChannelArguments args;
+    args.SetInt(GRPC_ARG_HTTP2_BDP_PROBE, 0);
+    args.SetMaxReceiveMessageSize(64 << 20);
+    stub = telear::v1::VisionService::NewStub(
+        grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args));
+    if (!token.empty()) context.AddMetadata("authorization", "Bearer " + token);
+  }
+  void open(const telear::v1::StreamFramesRequest& request = {}) {
+    reader = stub->StreamFrames(&context, request);
+  }
+  std::unique_ptr<telear::v1::VisionService::Stub> stub;
+  grpc::ClientContext context;
+  std::unique_ptr<grpc::ClientReader<telear::v1::StereoFrame>> reader;
+};
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          ("telear_vision_test_" + std::to_string(::getpid()) + "_" + name))
+      .string();
+}
+
+TEST(VisionServer, FramesArriveInOrderWithConsistentSkipCounts) {
+  auto server = start_synthetic(160, 120, 100);
+  ASSERT_TRUE(server);
+  RawReader raw(server->address());
+  raw.open();
+  telear::v1::StereoFrame frame;
+  std::uint64_t previous = 0;
+  for (int i = 0; i < 30; ++i) {
+    ASSERT_TRUE(raw.reader->Read(&frame));
+    EXPECT_GT(frame.frame_id(), previous);
+    if (previous != 0) {
+      EXPECT_EQ(frame.frames_skipped(), frame.frame_id() - previous - 1);
+    }
+    EXPECT_EQ(frame.left().width(), 160);
+    EXPECT_EQ(frame.right().height(), 120);
+    EXPECT_LE(frame.left().capture_ns(), frame.encode_start_ns());
+    EXPECT_LE(frame.encode_start_ns(), frame.encode_end_ns());
+    EXPECT_LE(frame.encode_end_ns(), frame.server_send_ns());
+    previous = frame.frame_id();
+  }
+  raw.context.TryCancel();
+}
+
+TEST(VisionServer, SlowClientSkipsFramesAndDoesNotSlowAFastOne) {
+  auto server = start_synthetic(640, 480, 60);
+  ASSERT_TRUE(server);
+  RawReader fast(server->address()), slow(server->address());
+  fast.open();
+  slow.open();
+  std::uint64_t fast_count = 0, slow_count = 0, slow_skipped = 0;
+  std::atomic<bool> done{false};
+  std::thread slow_thread([&] {
+    telear::v1::StereoFrame frame;
+    std::uint64_t previous = 0;
+    while (!done && slow.reader->Read(&frame)) {
+      ++slow_count;
+      slow_skipped += frame.frames_skipped();
+      EXPECT_GT(frame.frame_id(), previous);
+      previous = frame.frame_id();
+      std::this_thread::sleep_for(100ms);  // a client ten times slower than the source
+    }
+  });
+  telear::v1::StereoFrame frame;
+  std::uint64_t first_id = 0, last_id = 0;
+  while (fast_count < 90 && fast.reader->Read(&frame)) {
+    if (first_id == 0) first_id = frame.frame_id();
+    last_id = frame.frame_id();
+    ++fast_count;
+  }
+  done = true;
+  slow.context.TryCancel();
+  slow_thread.join();
+  fast.context.TryCancel();
+  ASSERT_EQ(fast_count, 90u);
+  // The fast client saw nearly every source frame of its run; the slow one a fraction, and it
+  // was told what it missed.
+  const double fast_share =
+      static_cast<double>(fast_count) / static_cast<double>(last_id - first_id + 1);
+  EXPECT_GT(fast_share, 0.8);
+  EXPECT_GT(fast_count, 3 * slow_count);
+  EXPECT_GT(slow_skipped, 0u);
+}
+
+TEST(VisionServer, NewestFrameFirstAfterAStall) {
+  auto server = start_synthetic(640, 480, 60);
+  ASSERT_TRUE(server);
+  RawReader raw(server->address());
+  raw.open();
+  telear::v1::StereoFrame frame;
+  ASSERT_TRUE(raw.reader->Read(&frame));
+  const std::uint64_t before = frame.frame_id();
+  std::this_thread::sleep_for(1s);  // the reader stalls; ~60 source frames go by
+  const std::uint64_t captured_at_resume = server->pipeline().stats().captured;
+  // What the transport already held is at most a frame or two; then the newest comes.
+  std::uint64_t newest_seen = 0;
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(raw.reader->Read(&frame));
+    newest_seen = std::max<std::uint64_t>(newest_seen, frame.frame_id());
+  }
+  raw.context.TryCancel();
+  EXPECT_GE(newest_seen + 10, captured_at_resume);
+  EXPECT_GT(newest_seen, before + 30);
+}
+
+TEST(VisionClient, DecodesFramesWithStageLatencies) {
+  auto server = start_synthetic(320, 240, 60);
+  ASSERT_TRUE(server);
+  VisionClientOptions options;
+  options.address = server->address();
+  options.ping_period_s = 0.05;
+  VisionClient client(options);
+  client.start();
+  std::uint64_t after = 0;
+  std::uint64_t previous_id = 0;
+  for (int i = 0; i < 10; ++i) {
+    auto got = client.wait_frame(after, 10.0);
+    ASSERT_TRUE(got);
+    after = got->second;
+    const DecodedStereoFrame& f = *got->first;
+    EXPECT_GT(f.frame_id, previous_id);
+    previous_id = f.frame_id;
+    EXPECT_EQ(f.left.width, 320);
+    EXPECT_EQ(f.right.height, 240);
+    EXPECT_GT(f.jpeg_bytes, 0u);
+    EXPECT_GT(f.message_bytes, f.jpeg_bytes);
+    const StageLatency& l = f.latency;
+    EXPECT_NEAR(l.total_s,
+                l.capture_to_encode_s + l.encode_s + l.send_queue_s + l.network_s + l.decode_s,
+                1e-6);
+    EXPECT_GT(l.total_s, 0.0);
+    EXPECT_GE(l.encode_s, 0.0);
+    EXPECT_GE(l.decode_s, 0.0);
+  }
+  EXPECT_TRUE(client.connected());
+  EXPECT_GE(client.frames_received(), client.frames_decoded());
+  // Newest first after the reader stalls: the next frame is the newest decoded, not the one
+  // after the last frame read.
+  std::this_thread::sleep_for(500ms);
+  auto latest = client.latest_frame();
+  ASSERT_TRUE(latest);
+  EXPECT_GE((*latest)->frame_id + 10, server->pipeline().stats().captured);
+  EXPECT_GT((*latest)->frame_id, previous_id + 10);
+  client.stop();
+}
+
+TEST(VisionClient, AsksForAScaledStreamAtItsOwnQuality) {
+  auto server = start_synthetic(640, 480, 60);
+  ASSERT_TRUE(server);
+  VisionClientOptions options;
+  options.address = server->address();
+  options.width = 320;
+  options.height = 240;
+  options.jpeg_quality = 40;
+  VisionClient client(options);
+  client.start();
+  auto got = client.wait_frame(0, 10.0);
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->first->left.width, 320);
+  EXPECT_EQ(got->first->right.height, 240);
+}
+
+TEST(VisionServer, RejectsAnInvalidRequestWithTheReason) {
+  auto server = start_synthetic(160, 120, 30);
+  ASSERT_TRUE(server);
+  RawReader raw(server->address());
+  telear::v1::StreamFramesRequest request;
+  request.set_width(320);  // no height
+  raw.open(request);
+  telear::v1::StereoFrame frame;
+  EXPECT_FALSE(raw.reader->Read(&frame));
+  const grpc::Status status = raw.reader->Finish();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("width and height must both be 0"));
+}
+
+TEST(VisionServer, CameraInfoWithoutCalibration) {
+  auto server = start_synthetic(160, 120, 30);
+  ASSERT_TRUE(server);
+  VisionClientOptions options;
+  options.address = server->address();
+  VisionClient client(options);
+  auto info = client.get_camera_info();
+  ASSERT_TRUE(info) << info.error().message;
+  EXPECT_FALSE(info->found);
+  EXPECT_EQ(info->source, "synthetic");
+  EXPECT_EQ(info->source_width, 160);
+  EXPECT_EQ(info->source_height, 120);
+  EXPECT_DOUBLE_EQ(info->source_fps, 30.0);
+}
+
+TEST(VisionServer, CameraInfoReturnsTheLoadedCalibration) {
+  auto rig = sim::load_stereo_rig(test::data_path("rigs/puma560_rig.yaml"));
+  ASSERT_TRUE(rig) << rig.error().message;
+  const std::string path = temp_path("stereo.yaml");
+  ASSERT_TRUE(write_stereo_camera_file(rig->cameras, path));
+  VisionServerOptions server_options;
+  server_options.source = synthetic(160, 120, 30);
+  server_options.calibration_file = path;
+  auto server = start_server(std::move(server_options));
+  ASSERT_TRUE(server);
+
+  RawReader raw(server->address());
+  telear::v1::CameraInfo message;
+  grpc::ClientContext context;
+  ASSERT_TRUE(raw.stub->GetCameraInfo(&context, {}, &message).ok());
+  EXPECT_TRUE(message.found());
+  EXPECT_EQ(message.left().width(), rig->cameras.left.width);
+  ASSERT_EQ(message.left().fc_size(), 2);
+  EXPECT_DOUBLE_EQ(message.left().fc(0), rig->cameras.left.fx);
+  EXPECT_EQ(message.left().kc_size(), 5);
+  ASSERT_EQ(message.translation_right_left_m_size(), 3);
+  // The rig's baseline, along the left camera's x axis.
+  EXPECT_NEAR(message.translation_right_left_m(0), -rig->baseline_m, 1e-9);
+  EXPECT_FALSE(message.calibration_yaml().empty());
+
+  VisionClientOptions options;
+  options.address = server->address();
+  VisionClient client(options);
+  auto info = client.get_camera_info();
+  ASSERT_TRUE(info) << info.error().message;
+  EXPECT_TRUE(info->found);
+  EXPECT_NEAR(info->cameras.right.cx, rig->cameras.right.cx, 1e-9);
+  EXPECT_TRUE(info->cameras.right.T_cam_base.isApprox(rig->cameras.right.T_cam_base, 1e-9));
+  std::filesystem::remove(path);
+}
+
+TEST(VisionServer, MonoCalibrationIsRefused) {
+  auto rig = sim::load_stereo_rig(test::data_path("rigs/puma560_rig.yaml"));
+  ASSERT_TRUE(rig);
+  const std::string path = temp_path("mono.yaml");
+  ASSERT_TRUE(write_camera_file(rig->cameras.left, path));
+  VisionServerOptions options;
+  options.listen_address = "127.0.0.1:0";
+  options.source = synthetic(160, 120, 30);
+  options.calibration_file = path;
+  auto server = VisionServer::start(std::move(options));
+  ASSERT_FALSE(server);
+  EXPECT_THAT(server.error().message, HasSubstr("is a mono camera file"));
+  std::filesystem::remove(path);
+}
+
+TEST(VisionServer, TokenIsRequiredWhenConfigured) {
+  const std::string token_path = temp_path("token");
+  std::ofstream(token_path) << "s3cret-token\n";
+  VisionServerOptions server_options;
+  server_options.source = synthetic(160, 120, 30);
+  server_options.token_file = token_path;
+  auto server = start_server(std::move(server_options));
+  ASSERT_TRUE(server);
+
+  VisionClientOptions options;
+  options.address = server->address();
+  VisionClient anonymous(options);
+  auto refused = anonymous.get_camera_info();
+  ASSERT_FALSE(refused);
+  EXPECT_THAT(refused.error().message, HasSubstr("GetCameraInfo"));
+
+  RawReader raw(server->address(), "wrong");
+  raw.open();
+  telear::v1::StereoFrame frame;
+  EXPECT_FALSE(raw.reader->Read(&frame));
+  EXPECT_EQ(raw.reader->Finish().error_code(), grpc::StatusCode::UNAUTHENTICATED);
+
+  options.token = "s3cret-token";
+  VisionClient authorized(options);
+  EXPECT_TRUE(authorized.get_camera_info());
+  authorized.start();
+  EXPECT_TRUE(authorized.wait_frame(0, 10.0));
+  std::filesystem::remove(token_path);
+}
+
+TEST(VisionServer, CleanShutdownWithClientsStreaming) {
+  auto server = start_synthetic(640, 480, 60);
+  ASSERT_TRUE(server);
+  VisionClientOptions options;
+  options.address = server->address();
+  options.reconnect_max_backoff_s = 0.1;
+  VisionClient client(options);
+  client.start();
+  ASSERT_TRUE(client.wait_frame(0, 10.0));
+  // A second client that has stopped reading: its Write is blocked in the server.
+  RawReader stalled(server->address());
+  stalled.open();
+  telear::v1::StereoFrame frame;
+  ASSERT_TRUE(stalled.reader->Read(&frame));
+  std::this_thread::sleep_for(300ms);
+  EXPECT_EQ(server->active_streams(), 2);
+  server->stop();  // returns: the test would hang otherwise
+  EXPECT_EQ(server->active_streams(), 0);
+  while (stalled.reader->Read(&frame)) {
+  }
+  stalled.reader->Finish();
+  server.reset();
+  client.stop();
+}
+
+TEST(VisionClient, ReconnectsWhenTheServerComesBack) {
+  auto server = start_synthetic(160, 120, 60);
+  ASSERT_TRUE(server);
+  const std::string address = server->address();
+  VisionClientOptions options;
+  options.address = address;
+  options.reconnect_initial_backoff_s = 0.02;
+  options.reconnect_max_backoff_s = 0.1;
+  VisionClient client(options);
+  client.start();
+  auto first = client.wait_frame(0, 10.0);
+  ASSERT_TRUE(first);
+  server->stop();
+  server.reset();
+  VisionServerOptions again;
+  again.listen_address = address;
+  again.source = synthetic(160, 120, 60);
+  auto restarted = VisionServer::start(std::move(again));
+  ASSERT_TRUE(restarted) << restarted.error().message;
+  // The new server's frames count from 1 again; any frame after the restart will do.
+  auto next = client.wait_frame(first->second, 10.0);
+  ASSERT_TRUE(next);
+  EXPECT_GE(client.reconnects(), 1);
+  client.stop();
+}
+
+}  // namespace
+}  // namespace telear::net

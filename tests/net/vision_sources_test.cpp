@@ -1,0 +1,129 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "net/camera_source.hpp"
+#include "net/sim_rig_source.hpp"
+#include "net/synthetic_source.hpp"
+#include "net/video_file_source.hpp"
+#include "test_util/test_util.hpp"
+
+namespace telear::net {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+const char* const kVtest = "/usr/share/doc/opencv-doc/examples/data/vtest.avi";
+
+TEST(SyntheticSource, MakesPairsOfTheAskedSizeNumberedFromOne) {
+  SyntheticSourceOptions options;
+  options.width = 64;
+  options.height = 48;
+  options.fps = 1000;
+  auto source = SyntheticSource::create(options);
+  ASSERT_TRUE(source) << source.error().message;
+  for (std::uint64_t k = 1; k <= 3; ++k) {
+    auto pair = (*source)->capture();
+    ASSERT_TRUE(pair);
+    EXPECT_EQ(pair->frame_number, k);
+    EXPECT_EQ(pair->left.width, 64);
+    EXPECT_EQ(pair->right.height, 48);
+    EXPECT_GT(pair->capture_ns_left, 0);
+    EXPECT_GE(pair->capture_ns_right, pair->capture_ns_left);
+  }
+}
+
+TEST(SyntheticSource, RejectsBadOptions) {
+  SyntheticSourceOptions options;
+  options.width = 8;
+  auto source = SyntheticSource::create(options);
+  ASSERT_FALSE(source);
+  EXPECT_THAT(source.error().message, HasSubstr("outside 16x16 .. 8192x8192"));
+}
+
+TEST(VideoFileSource, DecodesOpenCvsSampleVideo) {
+  if (!std::filesystem::exists(kVtest)) GTEST_SKIP() << kVtest << " missing (apt opencv-doc)";
+  auto source = VideoFileSource::open({kVtest, kVtest, 1000.0, 0, 0});
+  ASSERT_TRUE(source) << source.error().message;
+  EXPECT_EQ((*source)->name(), "files");
+  EXPECT_EQ((*source)->width(), 768);
+  EXPECT_EQ((*source)->height(), 576);
+  auto first = (*source)->capture();
+  auto second = (*source)->capture();
+  ASSERT_TRUE(first && second) << (first ? second.error().message : first.error().message);
+  EXPECT_EQ(first->frame_number, 1u);
+  EXPECT_EQ(second->frame_number, 2u);
+  EXPECT_EQ(first->left.width, 768);
+  EXPECT_EQ(first->left.channels, 3);
+  // The same file for both eyes: the same picture.
+  EXPECT_EQ(first->left.pixels, first->right.pixels);
+  // A real video: frames differ (people walk).
+  EXPECT_NE(first->left.pixels, second->left.pixels);
+}
+
+TEST(VideoFileSource, ScalesToAGivenSize) {
+  if (!std::filesystem::exists(kVtest)) GTEST_SKIP() << kVtest << " missing";
+  auto source = VideoFileSource::open({kVtest, kVtest, 1000.0, 320, 240});
+  ASSERT_TRUE(source);
+  auto pair = (*source)->capture();
+  ASSERT_TRUE(pair);
+  EXPECT_EQ(pair->left.width, 320);
+  EXPECT_EQ(pair->right.height, 240);
+}
+
+TEST(VideoFileSource, MissingFileSaysSo) {
+  auto source = VideoFileSource::open({"/nonexistent/left.avi", kVtest, 0, 0, 0});
+  ASSERT_FALSE(source);
+  EXPECT_EQ(source.error().message, "video file '/nonexistent/left.avi': no such file");
+}
+
+TEST(CameraSource, MissingCameraHasAClearMessage) {
+  CameraSourceOptions options;
+  options.left_index = 63;  // /dev/video63: not a camera on any test machine
+  options.right_index = 62;
+  auto source = CameraSource::open(options);
+  ASSERT_FALSE(source);
+  EXPECT_THAT(source.error().message, StartsWith("no camera at /dev/video63: "));
+}
+
+TEST(SimRigSource, FramesFollowTheProvidedState) {
+  int calls = 0;
+  SimRigSourceOptions options;
+  options.rig = test::data_path("rigs/puma560_rig.yaml");
+  options.fps = 1000;
+  options.supersample = 1;
+  options.noise_sigma = 0;
+  Eigen::VectorXd q_a = Eigen::VectorXd::Zero(6), q_b = Eigen::VectorXd::Zero(6);
+  q_b << 0.6, -0.4, 0.3, 0.2, 0.5, -0.3;
+  options.scene_state = [&]() -> std::optional<SceneState> {
+    ++calls;
+    return SceneState{calls == 1 ? q_a : q_b, 0.5, 1234};
+  };
+  auto source = SimRigSource::create(options);
+  ASSERT_TRUE(source) << source.error().message;
+  EXPECT_EQ((*source)->name(), "sim");
+  EXPECT_EQ((*source)->width(), 640);
+  EXPECT_EQ((*source)->height(), 480);
+  auto prepared = (*source)->prepare();
+  // Like the GL tests: a machine without headless EGL fails here, it does not skip.
+  ASSERT_TRUE(prepared) << prepared.error().message;
+  auto first = (*source)->capture();
+  auto second = (*source)->capture();
+  ASSERT_TRUE(first && second);
+  ASSERT_TRUE(first->scene && second->scene);
+  EXPECT_TRUE(first->scene->q.isApprox(q_a));
+  EXPECT_TRUE(second->scene->q.isApprox(q_b));
+  EXPECT_EQ(second->scene->state_ns, 1234);
+  EXPECT_EQ(first->left.width, 640);
+  EXPECT_EQ(first->left.height, 480);
+  EXPECT_EQ(first->left.channels, 3);
+  // The arm moved: the picture changed (noise is off, so only the arm can change it).
+  EXPECT_NE(first->left.pixels, second->left.pixels);
+  EXPECT_NE(first->left.pixels, first->right.pixels);  // two viewpoints
+  (*source)->release();
+}
+
+}  // namespace
+}  // namespace telear::net
