@@ -3,6 +3,7 @@
 #include "core/arm_body.hpp"
 #include "core/robot_loader.hpp"
 #include "render/egl_context.hpp"
+#include "sim/grasp_model.hpp"
 #include "sim/scene_renderer.hpp"
 #include "sim/stereo_rig.hpp"
 
@@ -18,6 +19,7 @@ struct SimRigSource::Loaded {
 struct SimRigSource::Gl {
   std::unique_ptr<render::GlContext> context;
   sim::SceneRenderer scene;
+  sim::GraspModel grasp;
 };
 
 SimRigSource::~SimRigSource() {
@@ -73,7 +75,7 @@ Status SimRigSource::prepare() {
   auto scene =
       sim::SceneRenderer::create(loaded_->rig, *loaded_->model, loaded_->body, scene_options);
   if (!scene) return Error{"sim rig source: " + scene.error().message};
-  gl_ = std::make_unique<Gl>(Gl{std::move(*context), std::move(*scene)});
+  gl_ = std::make_unique<Gl>(Gl{std::move(*context), std::move(*scene), sim::GraspModel{}});
   return {};
 }
 
@@ -85,10 +87,12 @@ Result<StereoCapture> SimRigSource::capture() {
       if (state->q.size() == loaded_->model->dof() && state->q.allFinite()) last_state_ = *state;
     }
   }
-  const double max_opening =
-      loaded_->body.gripper ? static_cast<double>(loaded_->body.gripper->max_opening) : 0.08;
+  // The box on the table is picked up when the gripper closes on it (sim/grasp_model.hpp).
   gl_->scene.set_configuration(last_state_.q);
-  gl_->scene.set_gripper_opening(static_cast<float>(last_state_.gripper * max_opening));
+  const double opening_m = gl_->scene.gripper_opening_m(last_state_.gripper);
+  gl_->grasp.update(gl_->scene.T_base_grip(), opening_m);
+  gl_->scene.set_gripper_opening(static_cast<float>(gl_->grasp.rendered_opening(opening_m)));
+  gl_->scene.set_object_pose(gl_->grasp.T_base_object());
   StereoCapture out;
   out.frame_number = ++frame_;
   out.left = gl_->scene.render(sim::Eye::kLeft, out.frame_number);

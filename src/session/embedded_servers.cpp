@@ -1,0 +1,88 @@
+#include "session/embedded_servers.hpp"
+
+#include <cstdio>
+#include <random>
+
+#include "core/robot_loader.hpp"
+#include "net/sim_rig_source.hpp"
+
+namespace telear::session {
+
+std::string random_token() {
+  std::random_device device;
+  std::string token;
+  for (int i = 0; i < 4; ++i) {
+    char chunk[9];
+    std::snprintf(chunk, sizeof chunk, "%08x", static_cast<unsigned>(device()));
+    token += chunk;
+  }
+  return token;
+}
+
+EmbeddedServers::~EmbeddedServers() {
+  stop();
+}
+
+void EmbeddedServers::stop() {
+  // Downstream first: the vision server reads the follower, the follower reads the robot.
+  if (vision_) vision_->stop();
+  if (follower_) follower_->stop();
+  if (robot_) robot_->shutdown();
+}
+
+Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::Start(RobotModelPtr model,
+                                                                EmbeddedServersOptions options) {
+  std::unique_ptr<EmbeddedServers> servers(new EmbeddedServers());
+  servers->token_ = options.token.empty() ? random_token() : options.token;
+
+  net::SimRobotDriverOptions driver_options;
+  driver_options.robot.initial_q = options.initial_q;
+  if (driver_options.robot.initial_q.size() == 0) {
+    if (auto qr = model->named_configuration("qr")) driver_options.robot.initial_q = *qr;
+  }
+  auto driver = net::SimRobotDriver::Create(model, driver_options);
+  if (!driver) return Error{"embedded robot server: " + driver.error().message};
+  servers->driver_ = driver->get();
+
+  net::RobotServerOptions robot_options;
+  robot_options.listen_address = "127.0.0.1:0";
+  robot_options.token = servers->token_;
+  auto robot = net::RobotServer::Start(std::move(*driver), robot_options);
+  if (!robot) return Error{"embedded robot server: " + robot.error().message};
+  servers->robot_ = std::move(*robot);
+
+  net::RobotClientOptions follower_options;
+  follower_options.address = servers->robot_->address();
+  follower_options.token = servers->token_;
+  follower_options.client_name = "vision-server-rig";
+  follower_options.state_rate_hz = 100.0;
+  servers->follower_ = std::make_unique<net::RobotClient>(follower_options);
+  servers->follower_->start();
+
+  net::SimRigSourceOptions rig_options;
+  rig_options.rig = options.rig.empty() ? data_directory() + "/rigs/puma560_rig.yaml" : options.rig;
+  rig_options.fps = options.fps;
+  rig_options.supersample = options.supersample;
+  rig_options.noise_sigma = options.noise_sigma;
+  rig_options.seed = options.seed;
+  net::RobotClient* follower = servers->follower_.get();
+  rig_options.scene_state = [follower]() -> std::optional<net::SceneState> {
+    const auto sample = follower->latest_state();
+    if (!sample) return std::nullopt;
+    return net::SceneState{sample->state.q, sample->state.gripper, sample->capture_ns};
+  };
+  auto source = net::SimRigSource::create(rig_options);
+  if (!source) return Error{"embedded vision server: " + source.error().message};
+
+  net::VisionServerOptions vision_options;
+  vision_options.listen_address = "127.0.0.1:0";
+  vision_options.source = std::move(*source);
+  vision_options.calibration_file = options.calibration_file;
+  vision_options.log = options.log;
+  auto vision = net::VisionServer::start(std::move(vision_options));
+  if (!vision) return Error{"embedded vision server: " + vision.error().message};
+  servers->vision_ = std::move(*vision);
+  return servers;
+}
+
+}  // namespace telear::session

@@ -1,0 +1,451 @@
+#include "session/session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "net/clock.hpp"
+
+namespace telear::session {
+
+namespace {
+
+LatencySummary summarize(std::vector<double> values) {
+  LatencySummary summary;
+  summary.samples = static_cast<int>(values.size());
+  if (values.empty()) return summary;
+  std::sort(values.begin(), values.end());
+  auto at = [&](double p) {
+    const auto index = static_cast<std::size_t>(std::lround(p * (values.size() - 1)));
+    return values[index];
+  };
+  summary.p50_s = at(0.50);
+  summary.p99_s = at(0.99);
+  return summary;
+}
+
+cv::Mat as_mat(const render::Image& image) {
+  return cv::Mat(image.height, image.width, image.channels == 4 ? CV_8UC4 : CV_8UC3,
+                 const_cast<std::uint8_t*>(image.pixels.data()));
+}
+
+std::string trajectory_status_word(TrajectoryStatus status) {
+  switch (status) {
+    case TrajectoryStatus::kCompleted:
+      return "completed";
+    case TrajectoryStatus::kCancelled:
+      return "cancelled";
+    case TrajectoryStatus::kAborted:
+      return "aborted";
+    case TrajectoryStatus::kRunning:
+      break;
+  }
+  return "running";
+}
+
+}  // namespace
+
+Session::Session(RobotModelPtr model, SessionOptions options)
+    : model_(std::move(model)),
+      options_(std::move(options)),
+      ghost_(model_),
+      plan_(model_),
+      display_(options_.display),
+      epoch_ns_(net::monotonic_ns()) {}
+
+Session::~Session() {
+  disconnect();
+}
+
+Result<std::unique_ptr<Session>> Session::Create(RobotModelPtr model, SessionOptions options) {
+  if (!model) return Error{"session: no robot model"};
+  if (!(std::isfinite(options.sample_rate_hz) && options.sample_rate_hz > 0.0)) {
+    return Error{"session: sample_rate_hz must be a positive number"};
+  }
+  if (!(std::isfinite(options.injected_video_delay_s) && options.injected_video_delay_s >= 0.0)) {
+    return Error{"session: injected_video_delay_s must be >= 0"};
+  }
+  if (Status s = options.display.validate(); !s.ok()) {
+    return Error{"session: display options: " + s.error().message};
+  }
+  if (!(options.monitor.tolerance > 0.0)) {
+    return Error{"session: the execution monitor's tolerance must be > 0"};
+  }
+  std::unique_ptr<Session> session(new Session(std::move(model), std::move(options)));
+  session->robot_ = std::make_unique<net::RobotClient>(session->options_.robot);
+  session->vision_ = std::make_unique<net::VisionClient>(session->options_.vision);
+  if (session->options_.cameras && session->options_.marker) {
+    session->registration_.emplace(session->model_, *session->options_.cameras,
+                                   *session->options_.marker);
+  }
+  return session;
+}
+
+double Session::now() const {
+  return net::ns_to_s(net::monotonic_ns() - epoch_ns_);
+}
+
+void Session::log(SessionEvent::Kind kind, std::string message) {
+  events_.push_back({now(), kind, std::move(message)});
+  while (events_.size() > options_.max_events) events_.pop_front();
+}
+
+// [SECTION] connection
+
+void Session::connect() {
+  if (connected_) return;
+  robot_->start();
+  vision_->start();
+  connected_ = true;
+  log(SessionEvent::Kind::kInfo, "connecting to the robot server at " + options_.robot.address +
+                                     " and the vision server at " + options_.vision.address);
+}
+
+void Session::disconnect() {
+  if (!connected_) return;
+  if (robot_->lease_held()) (void)robot_->release_lease();
+  robot_->stop();
+  vision_->stop();
+  connected_ = false;
+  log(SessionEvent::Kind::kInfo, "disconnected");
+}
+
+bool Session::robot_connected() const {
+  return robot_ && robot_->connected();
+}
+bool Session::vision_connected() const {
+  return vision_ && vision_->connected();
+}
+bool Session::in_control() const {
+  return robot_ && robot_->lease_held();
+}
+
+Status Session::take_control() {
+  if (!start_tolerance_) {
+    if (auto info = robot_->get_info()) start_tolerance_ = info->start_tolerance;
+  }
+  Status s = robot_->acquire_lease();
+  if (!s.ok()) {
+    log(SessionEvent::Kind::kError, s.error().message);
+    return s;
+  }
+  log(SessionEvent::Kind::kInfo, "lease acquired: this console commands the robot");
+  return s;
+}
+
+Status Session::release_control() {
+  Status s = robot_->release_lease();
+  log(s.ok() ? SessionEvent::Kind::kInfo : SessionEvent::Kind::kError,
+      s.ok() ? "lease released" : s.error().message);
+  return s;
+}
+
+Status Session::estop(const std::string& reason) {
+  Status s = robot_->estop(reason);
+  log(s.ok() ? SessionEvent::Kind::kWarning : SessionEvent::Kind::kError,
+      s.ok() ? "E-STOP: " + reason : "e-stop failed: " + s.error().message);
+  if (s.ok() && executing_) {
+    executing_ = false;
+    last_result_ = "aborted: " + reason;
+  }
+  return s;
+}
+
+Status Session::reset_estop() {
+  Status s = robot_->reset_estop();
+  log(s.ok() ? SessionEvent::Kind::kInfo : SessionEvent::Kind::kError,
+      s.ok() ? "e-stop reset" : s.error().message);
+  return s;
+}
+
+// [SECTION] ghost
+
+MotionOutcome Session::move_ghost(const MotionCommand& command) {
+  MotionOutcome outcome = ghost_.apply(command);
+  if (!outcome.accepted) {
+    log(SessionEvent::Kind::kWarning, "ghost: " + outcome.rejection.message);
+  } else if (outcome.singularity) {
+    log(SessionEvent::Kind::kWarning, "ghost: " + outcome.singularity->message);
+  }
+  return outcome;
+}
+
+std::optional<Eigen::VectorXd> Session::real_q() const {
+  const auto state = robot_->latest_state();
+  if (!state || state->state.q.size() != model_->dof()) return std::nullopt;
+  return state->state.q;
+}
+
+Status Session::ghost_to_real() {
+  const auto state = robot_->latest_state();
+  if (!state) return Error{"ghost = real: no state from the robot server yet"};
+  Status s = ghost_.reset_to(state->state.q, state->state.gripper);
+  if (!s.ok()) log(SessionEvent::Kind::kError, "ghost = real: " + s.error().message);
+  return s;
+}
+
+// [SECTION] real robot
+
+Result<net::JogAck> Session::jog_real(const MotionCommand& command) {
+  auto ack = robot_->jog(command, options_.jog_validity_s);
+  if (!ack) log(SessionEvent::Kind::kWarning, ack.error().message);
+  return ack;
+}
+
+Status Session::set_real_gripper(double opening) {
+  Status s = robot_->set_gripper(opening);
+  if (!s.ok()) log(SessionEvent::Kind::kWarning, s.error().message);
+  return s;
+}
+
+Result<net::TrajectoryAck> Session::initialize_real(const Eigen::VectorXd& q) {
+  const auto current = real_q();
+  if (!current) return Error{"initialize: no state from the robot server yet"};
+  Plan move(model_);
+  if (Status s = move.add(PlanWaypoint(*current, 0.0, std::nullopt, "current")); !s.ok()) return s.error();
+  if (Status s = move.add(PlanWaypoint(q, 0.0, std::nullopt, "target")); !s.ok()) {
+    return Error{"initialize: " + s.error().message};
+  }
+  auto samples = move.timed_waypoints(options_.sample_rate_hz);
+  if (!samples) return Error{"initialize: " + samples.error().message};
+  const std::string id = "init-" + std::to_string(epoch_ns_) + "-" + std::to_string(++executions_);
+  auto ack = robot_->execute(id, *samples);
+  log(ack ? SessionEvent::Kind::kInfo : SessionEvent::Kind::kError,
+      ack ? "initializing the real robot (" + id + ")" : ack.error().message);
+  return ack;
+}
+
+// [SECTION] plan
+
+Status Session::add_ghost_waypoint(double min_duration, std::string label) {
+  Status s = plan_.add_from(ghost_, min_duration, std::move(label));
+  if (!s.ok()) log(SessionEvent::Kind::kWarning, "plan: " + s.error().message);
+  return s;
+}
+
+Status Session::start_preview(PreviewOptions options) {
+  auto trajectory = plan_.trajectory();
+  if (!trajectory) return Error{"preview: " + trajectory.error().message};
+  preview_.emplace(std::move(*trajectory), options);
+  preview_->play();
+  return Status::Ok();
+}
+
+void Session::stop_preview() {
+  preview_.reset();
+}
+
+ValidationReport Session::validate_plan() const {
+  ValidationOptions options;
+  if (start_tolerance_) options.start_tolerance = *start_tolerance_;
+  options.sample_rate_hz = options_.sample_rate_hz;
+  return session::validate_plan(plan_, real_q(), options);
+}
+
+Result<net::TrajectoryAck> Session::execute_plan() {
+  if (executing_) return Error{"execute: a plan is already executing (" + executing_id_ + ")"};
+  if (!in_control()) return Error{"execute: take control (the lease) first"};
+  const ValidationReport report = validate_plan();
+  if (!report.ok()) {
+    log(SessionEvent::Kind::kError, "execute: the plan is not valid: " + report.summary());
+    return Error{"execute: the plan is not valid: " + report.summary()};
+  }
+  auto trajectory = plan_.trajectory();
+  if (!trajectory) return Error{"execute: " + trajectory.error().message};
+  auto samples = trajectory->sampled(options_.sample_rate_hz);
+  if (!samples) return Error{"execute: " + samples.error().message};
+  const std::string id = "plan-" + std::to_string(epoch_ns_) + "-" + std::to_string(++executions_);
+  auto ack = robot_->execute(id, *samples);
+  if (!ack) {
+    log(SessionEvent::Kind::kError, ack.error().message);
+    return ack;
+  }
+  stop_preview();
+  monitor_.emplace(model_, std::move(*trajectory), 0.0, options_.monitor);
+  executing_id_ = id;
+  executing_ = true;
+  last_result_.clear();
+  log(SessionEvent::Kind::kInfo, "executing " + id + " (" + std::to_string(samples->times.size()) +
+                                     " samples, " + std::to_string(ack->duration_s) + " s)");
+  return ack;
+}
+
+Status Session::cancel_execution(const std::string& reason) {
+  Status s = robot_->cancel(reason);
+  if (s.ok() && executing_) {
+    executing_ = false;
+    last_result_ = "cancelled: " + reason;
+  }
+  log(s.ok() ? SessionEvent::Kind::kWarning : SessionEvent::Kind::kError,
+      s.ok() ? "cancelled: " + reason : s.error().message);
+  return s;
+}
+
+// [SECTION] per frame
+
+void Session::update(double dt) {
+  const double t = now();
+  view_.real = robot_->latest_state();
+  if (view_.real) {
+    const auto& real = *view_.real;
+    const double capture_s = net::ns_to_s(real.capture_client_ns() - epoch_ns_);
+    view_.real_state_age_s = std::max(0.0, t - capture_s);
+    if (state_history_.empty() || state_history_.back().first < capture_s) {
+      state_history_.emplace_back(capture_s, real.state.q);
+      while (state_history_.size() > 1 && state_history_.front().first < capture_s - 2.0) {
+        state_history_.pop_front();
+      }
+    }
+    if (!ghost_synced_ && real.state.q.size() == model_->dof()) {
+      ghost_synced_ = ghost_.reset_to(real.state.q, real.state.gripper).ok();
+    }
+  }
+
+  update_monitor();
+  view_.executing = executing_;
+  view_.previewing = preview_.has_value() && !executing_;
+  if (executing_ && monitor_ && view_.real) {
+    // The commanded pose: the plan where the robot is now (its trajectory time plus the age
+    // of the report).
+    const auto& real = view_.real->state;
+    const double plan_time =
+        real.trajectory_id == executing_id_ ? real.trajectory_time + view_.real_state_age_s : 0.0;
+    Eigen::VectorXd q;
+    monitor_->trajectory().sample(plan_time, q);
+    view_.ghost_q = q;
+    view_.ghost_gripper = monitor_->trajectory().gripper_at(plan_time).value_or(real.gripper);
+  } else if (view_.previewing) {
+    const PreviewFrame frame = preview_->advance(dt);
+    view_.ghost_q = frame.q;
+    view_.ghost_gripper = frame.gripper.value_or(ghost_.gripper());
+  } else {
+    view_.ghost_q = ghost_.q();
+    view_.ghost_gripper = ghost_.gripper();
+  }
+
+  update_frame(t);
+  update_registration(t);
+}
+
+void Session::update_frame(double t) {
+  // Newly decoded frames (latest-wins: only the newest one since the last update).
+  if (auto taken = vision_->wait_frame(frame_number_, 0.0)) {
+    frame_number_ = taken->second;
+    delayed_.emplace_back(taken->second, taken->first);
+    recent_frames_.emplace_back(t, taken->first);
+    while (!recent_frames_.empty() && recent_frames_.front().first < t - 2.0) {
+      recent_frames_.pop_front();
+    }
+  }
+  // The newest frame that has been "delivered" (held back by the injected delay, if any).
+  const std::int64_t now_ns = epoch_ns_ + net::s_to_ns(t);
+  const std::int64_t delay_ns = net::s_to_ns(options_.injected_video_delay_s);
+  while (!delayed_.empty() && delayed_.front().second->decoded_ns + delay_ns <= now_ns) {
+    view_.frame = delayed_.front().second;
+    delayed_.pop_front();
+  }
+  while (delayed_.size() > 512) delayed_.pop_front();  // a delay longer than the buffer
+
+  std::optional<double> capture;
+  if (view_.frame) capture = net::ns_to_s(view_.frame->capture_ns_left - epoch_ns_);
+  const DisplayMode before = display_.mode();
+  view_.display = display_.update(t, capture);
+  if (display_.mode() != before) {
+    log(SessionEvent::Kind::kInfo, std::string("display: ") + to_string(before) + " -> " +
+                                       to_string(display_.mode()) + " (" + view_.display.reason +
+                                       ")");
+  }
+}
+
+void Session::update_monitor() {
+  if (!executing_ || !monitor_ || !view_.real) return;
+  const auto& sample = *view_.real;
+  const auto& real = sample.state;
+  if (real.trajectory_id == executing_id_) {
+    const TrackingStatus& status = monitor_->update_at_plan_time(real.trajectory_time, real.q);
+    if (status.cancel) {
+      (void)robot_->cancel(status.cancel_message);
+      executing_ = false;
+      last_result_ = "cancelled: " + status.cancel_message;
+      log(SessionEvent::Kind::kError, "execution monitor: " + status.cancel_message);
+    }
+    return;
+  }
+  if (sample.last_trajectory_id == executing_id_ &&
+      sample.last_trajectory_status != TrajectoryStatus::kRunning) {
+    monitor_->update_at_plan_time(monitor_->trajectory().duration(), real.q);
+    executing_ = false;
+    last_result_ = trajectory_status_word(sample.last_trajectory_status);
+    if (!sample.last_trajectory_message.empty()) {
+      last_result_ += ": " + sample.last_trajectory_message;
+    }
+    log(sample.last_trajectory_status == TrajectoryStatus::kCompleted
+            ? SessionEvent::Kind::kInfo
+            : SessionEvent::Kind::kWarning,
+        executing_id_ + " " + last_result_);
+  }
+}
+
+void Session::update_registration(double t) {
+  if (!registration_ || !view_.frame || t < next_registration_check_) return;
+  next_registration_check_ = t + options_.registration_check_period_s;
+  const net::DecodedStereoFrame& frame = *view_.frame;
+  Eigen::VectorXd q;
+  if (frame.scene_q.size() == model_->dof()) {
+    q = frame.scene_q;
+  } else {
+    const double capture_s = net::ns_to_s(frame.capture_ns_left - epoch_ns_);
+    double best = 1e300;
+    for (const auto& [time, q_at] : state_history_) {
+      if (std::abs(time - capture_s) < best) {
+        best = std::abs(time - capture_s);
+        q = q_at;
+      }
+    }
+    if (q.size() != model_->dof()) return;
+  }
+  if (!q.allFinite()) return;
+  residual_ = registration_->check(as_mat(frame.left), as_mat(frame.right), q);
+  ++residual_checks_;
+}
+
+SessionStats Session::stats() const {
+  SessionStats stats;
+  if (recent_frames_.size() >= 2) {
+    const double span = recent_frames_.back().first - recent_frames_.front().first;
+    if (span > 0) {
+      stats.video_fps = static_cast<double>(recent_frames_.size() - 1) / span;
+      double bytes = 0;
+      for (std::size_t i = 1; i < recent_frames_.size(); ++i) {
+        bytes += static_cast<double>(recent_frames_[i].second->message_bytes);
+      }
+      stats.video_bytes_per_s = bytes / span;
+    }
+  }
+  std::vector<double> c2e, enc, send, network, decode, total;
+  for (const auto& [time, frame] : recent_frames_) {
+    c2e.push_back(frame->latency.capture_to_encode_s);
+    enc.push_back(frame->latency.encode_s);
+    send.push_back(frame->latency.send_queue_s);
+    network.push_back(frame->latency.network_s);
+    decode.push_back(frame->latency.decode_s);
+    total.push_back(frame->latency.total_s);
+  }
+  stats.capture_to_encode = summarize(c2e);
+  stats.encode = summarize(enc);
+  stats.send_queue = summarize(send);
+  stats.network = summarize(network);
+  stats.decode = summarize(decode);
+  stats.total = summarize(total);
+  stats.robot_state_age_s = view_.real_state_age_s;
+  stats.command_bytes_sent = robot_->command_bytes_sent();
+  if (auto offset = robot_->clock_offset())
+    stats.robot_round_trip_s = net::ns_to_s(offset->delay_ns);
+  stats.residual = residual_;
+  stats.residual_checks = residual_checks_;
+  stats.frame_age_s = view_.display.frame_age.value_or(0.0);
+  return stats;
+}
+
+}  // namespace telear::session

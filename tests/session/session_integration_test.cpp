@@ -1,0 +1,166 @@
+// The Session against the embedded simulated servers (real gRPC on loopback): plan, validate,
+// execute, monitor, AR / VR by measured delay (issue 6's tests).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <functional>
+#include <thread>
+
+#include "core/robot_loader.hpp"
+#include "session/embedded_servers.hpp"
+#include "session/session.hpp"
+#include "sim/stereo_rig.hpp"
+
+namespace telear::session {
+namespace {
+
+using namespace std::chrono_literals;
+
+class SessionIntegrationTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto m = load_robot("puma560");
+    ASSERT_TRUE(m) << m.error().message;
+    model = *m;
+    EmbeddedServersOptions options;
+    options.fps = 15.0;
+    auto s = EmbeddedServers::Start(model, options);
+    ASSERT_TRUE(s) << s.error().message;
+    servers = std::move(*s);
+    SessionOptions session_options;
+    session_options.robot.address = servers->robot_address();
+    session_options.robot.token = servers->token();
+    session_options.robot.client_name = "session-test";
+    session_options.vision.address = servers->vision_address();
+    session_options.vision.width = 320;
+    session_options.vision.height = 240;
+    // Generous thresholds: the tests share 2 cores with llvmpipe rendering the simulated
+    // cameras, so a "fresh" frame may be a few hundred ms old under load.
+    session_options.display.late_threshold_s = 1.0;
+    session_options.display.stream_timeout_s = 2.0;
+    auto created = Session::Create(model, session_options);
+    ASSERT_TRUE(created) << created.error().message;
+    session = std::move(*created);
+    session->connect();
+    ASSERT_TRUE(run_until([&] { return session->view().real && session->view().frame; }, 30.0))
+        << "no state or frame from the embedded servers";
+  }
+
+  void TearDown() override {
+    session.reset();
+    servers.reset();
+  }
+
+  // Updates the session at ~50 Hz until `done` or the timeout (s); returns whether done.
+  bool run_until(const std::function<bool()>& done, double timeout_s) {
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+           timeout_s) {
+      session->update(0.02);
+      if (done()) return true;
+      std::this_thread::sleep_for(20ms);
+    }
+    return false;
+  }
+
+  Eigen::VectorXd real_q() const { return session->view().real->state.q; }
+
+  // A 3-waypoint plan from the real robot's pose: joint 1 out and back.
+  void build_plan(double joint1_delta) {
+    ASSERT_TRUE(session->ghost_to_real().ok());
+    ASSERT_TRUE(session->add_ghost_waypoint(0.0, "start").ok());
+    ASSERT_TRUE(session->move_ghost(JointIncrement{0, joint1_delta}).accepted);
+    ASSERT_TRUE(session->move_ghost(JointIncrement{2, -0.2}).accepted);
+    ASSERT_TRUE(session->add_ghost_waypoint(0.0, "out").ok());
+    ASSERT_TRUE(session->move_ghost(JointIncrement{0, -joint1_delta / 2}).accepted);
+    ASSERT_TRUE(session->add_ghost_waypoint(0.0, "back").ok());
+  }
+
+  RobotModelPtr model;
+  std::unique_ptr<EmbeddedServers> servers;
+  std::unique_ptr<Session> session;
+};
+
+TEST_F(SessionIntegrationTest, APlanExecutesOnTheRobotAndTheMonitorTracksIt) {
+  ASSERT_TRUE(session->take_control().ok());
+  build_plan(0.4);
+  const Eigen::VectorXd goal = session->plan().waypoints().back().q;
+  const ValidationReport report = session->validate_plan();
+  ASSERT_TRUE(report.ok()) << report.summary();
+  auto ack = session->execute_plan();
+  ASSERT_TRUE(ack) << ack.error().message;
+  EXPECT_TRUE(session->executing());
+  ASSERT_TRUE(run_until([&] { return !session->executing(); }, ack->duration_s + 15.0));
+  EXPECT_EQ(session->last_execution_result(), "completed");
+  ASSERT_NE(session->monitor(), nullptr);
+  EXPECT_GT(session->monitor()->status().samples, 10);
+  EXPECT_LT(session->monitor()->status().max_error_so_far, session->monitor()->options().tolerance);
+  ASSERT_TRUE(run_until([&] { return (real_q() - goal).cwiseAbs().maxCoeff() < 1e-3; }, 5.0))
+      << "the real robot did not reach the plan's end";
+  // The plan went as one message; the bytes are counted.
+  EXPECT_GT(session->stats().command_bytes_sent, 1000u);
+}
+
+TEST_F(SessionIntegrationTest, ValidationRejectsAPlanThatStartsFarFromTheRealRobot) {
+  ASSERT_TRUE(session->take_control().ok());
+  const Eigen::VectorXd before = real_q();
+  ASSERT_TRUE(session->ghost_to_real().ok());
+  ASSERT_TRUE(session->move_ghost(JointIncrement{1, 0.12}).accepted);
+  ASSERT_TRUE(session->add_ghost_waypoint(0.0, "elsewhere").ok());
+  ASSERT_TRUE(session->move_ghost(JointIncrement{0, 0.2}).accepted);
+  ASSERT_TRUE(session->add_ghost_waypoint(0.0, "further").ok());
+  const ValidationReport report = session->validate_plan();
+  EXPECT_FALSE(report.ok());
+  EXPECT_NE(
+      report.summary().find("the plan starts 0.120 rad (6.9 deg) from the real robot at joint 2"),
+      std::string::npos)
+      << report.summary();
+  auto ack = session->execute_plan();
+  ASSERT_FALSE(ack);
+  EXPECT_NE(ack.error().message.find("the plan is not valid"), std::string::npos);
+  // Nothing moved.
+  std::this_thread::sleep_for(200ms);
+  session->update(0.02);
+  EXPECT_LT((real_q() - before).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST_F(SessionIntegrationTest, TheMonitorCancelsWhenTheRobotDeviatesFromThePlan) {
+  ASSERT_TRUE(session->take_control().ok());
+  build_plan(0.8);
+  auto ack = session->execute_plan();
+  ASSERT_TRUE(ack) << ack.error().message;
+  // Joint 1 sticks: the robot reports it where it was while the plan moves on.
+  ASSERT_TRUE(
+      servers->driver().robot().inject_fault({.joint = 0, .kind = JointFaultKind::kStuck}).ok());
+  ASSERT_TRUE(run_until([&] { return !session->executing(); }, ack->duration_s + 15.0));
+  const std::string& result = session->last_execution_result();
+  EXPECT_EQ(result.rfind("cancelled: ", 0), 0u) << result;
+  EXPECT_NE(result.find("joint 1 (waist)"), std::string::npos) << result;
+  EXPECT_NE(result.find("beyond the tolerance"), std::string::npos) << result;
+  EXPECT_TRUE(session->monitor()->cancelled());
+}
+
+TEST_F(SessionIntegrationTest, InjectedVideoDelaySwitchesArToVrAndBack) {
+  ASSERT_TRUE(run_until([&] { return session->view().display.mode == DisplayMode::kAR; }, 20.0))
+      << session->view().display.reason;
+  const int ar_to_vr = session->display().ar_to_vr_switches();
+  session->set_injected_video_delay(2.5);
+  ASSERT_TRUE(run_until([&] { return session->view().display.mode == DisplayMode::kVR; }, 10.0));
+  EXPECT_EQ(session->display().ar_to_vr_switches(), ar_to_vr + 1);
+  EXPECT_TRUE(session->view().display.frame_stale);
+  session->set_injected_video_delay(0.0);
+  ASSERT_TRUE(run_until([&] { return session->view().display.mode == DisplayMode::kAR; }, 20.0));
+  EXPECT_FALSE(session->view().display.frame_stale);
+}
+
+TEST_F(SessionIntegrationTest, AStoppedVideoStreamIsShownAsStaleInVr) {
+  ASSERT_TRUE(run_until([&] { return session->view().display.mode == DisplayMode::kAR; }, 20.0));
+  servers->vision_server().stop();
+  ASSERT_TRUE(run_until([&] { return session->view().display.stream_stopped; }, 10.0));
+  EXPECT_EQ(session->view().display.mode, DisplayMode::kVR);
+  EXPECT_TRUE(session->view().display.frame_stale);
+  ASSERT_NE(session->view().frame, nullptr) << "the last frame is kept (marked stale)";
+}
+
+}  // namespace
+}  // namespace telear::session
