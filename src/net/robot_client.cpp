@@ -11,7 +11,6 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
-#include <type_traits>
 #include <utility>
 
 #include "net/clock.hpp"
@@ -67,34 +66,6 @@ RobotInfo info_from_proto(const v1::RobotInfo& message) {
   info.start_tolerance = message.start_tolerance();
   info.max_waypoints = message.max_waypoints();
   return info;
-}
-
-void fill_jog(const MotionCommand& command, v1::JogRequest& request) {
-  std::visit(
-      [&request](const auto& c) {
-        using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, JointIncrement>) {
-          request.mutable_joint_increment()->set_joint(c.joint);
-          request.mutable_joint_increment()->set_delta(c.delta);
-        } else if constexpr (std::is_same_v<T, JointTarget>) {
-          request.mutable_joint_target()->mutable_q()->Assign(c.q.data(), c.q.data() + c.q.size());
-        } else if constexpr (std::is_same_v<T, CartesianIncrement>) {
-          auto* inc = request.mutable_cartesian_increment();
-          inc->set_frame(c.frame == MotionFrame::kWrist  ? v1::MOTION_FRAME_WRIST
-                         : c.frame == MotionFrame::kTool ? v1::MOTION_FRAME_TOOL
-                                                         : v1::MOTION_FRAME_BASE);
-          inc->mutable_translation_m()->Assign(c.dX.data(), c.dX.data() + 3);
-          inc->mutable_rotation_rad()->Assign(c.dM.data(), c.dM.data() + 3);
-        } else {
-          const Eigen::Vector3d X = c.T_base_tool.translation();
-          const Eigen::AngleAxisd aa(c.T_base_tool.rotation());
-          const Eigen::Vector3d M = aa.axis() * aa.angle();
-          auto* target = request.mutable_cartesian_target();
-          target->mutable_position_m()->Assign(X.data(), X.data() + 3);
-          target->mutable_rotation_rad()->Assign(M.data(), M.data() + 3);
-        }
-      },
-      command);
 }
 
 }  // namespace
@@ -451,7 +422,7 @@ Result<JogAck> RobotClient::jog(const MotionCommand& command, double valid_for_s
   v1::JogRequest request;
   request.set_lease_id(impl_->current_lease_id());
   request.set_expires_ns(impl_->to_server_ns(monotonic_ns() + s_to_ns(valid_for_s)));
-  fill_jog(command, request);
+  fill_jog_request(command, request);
   v1::JogResponse response;
   const grpc::Status status = impl_->call(&Stub::Jog, request, &response, true);
   if (!status.ok()) return impl_->error("jog", status);
@@ -473,17 +444,7 @@ Result<TrajectoryAck> RobotClient::execute(const std::string& trajectory_id,
                                            const TimedWaypoints& waypoints) {
   v1::ExecuteTrajectoryRequest request;
   request.set_lease_id(impl_->current_lease_id());
-  request.set_trajectory_id(trajectory_id);
-  for (size_t k = 0; k < waypoints.times.size() && k < waypoints.q.size(); ++k) {
-    v1::Waypoint* w = request.add_waypoints();
-    w->set_time_from_start_ns(std::llround(waypoints.times[k] * 1e9));
-    w->mutable_q()->Assign(waypoints.q[k].data(), waypoints.q[k].data() + waypoints.q[k].size());
-  }
-  for (const GripperEvent& event : waypoints.gripper) {
-    v1::GripperCommand* g = request.add_gripper();
-    g->set_time_from_start_ns(std::llround(event.time * 1e9));
-    g->set_opening(event.opening);
-  }
+  fill_trajectory_request(trajectory_id, waypoints, request);
   v1::ExecuteTrajectoryResponse response;
   const grpc::Status status = impl_->call(&Stub::ExecuteTrajectory, request, &response, true);
   if (!status.ok()) return impl_->error("execute", status);

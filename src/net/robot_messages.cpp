@@ -1,5 +1,11 @@
 #include "net/robot_messages.hpp"
 
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <variant>
+
 #include "net/clock.hpp"
 
 namespace telear::net {
@@ -129,6 +135,50 @@ RobotState state_from_proto(const v1::RobotState& message) {
   state.stop_reason = message.stop_reason();
   if (!message.fault().empty()) state.fault = message.fault();
   return state;
+}
+
+void fill_jog_request(const MotionCommand& command, v1::JogRequest& request) {
+  std::visit(
+      [&request](const auto& c) {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, JointIncrement>) {
+          request.mutable_joint_increment()->set_joint(c.joint);
+          request.mutable_joint_increment()->set_delta(c.delta);
+        } else if constexpr (std::is_same_v<T, JointTarget>) {
+          copy(c.q, request.mutable_joint_target()->mutable_q());
+        } else if constexpr (std::is_same_v<T, CartesianIncrement>) {
+          auto* inc = request.mutable_cartesian_increment();
+          inc->set_frame(c.frame == MotionFrame::kWrist  ? v1::MOTION_FRAME_WRIST
+                         : c.frame == MotionFrame::kTool ? v1::MOTION_FRAME_TOOL
+                                                         : v1::MOTION_FRAME_BASE);
+          inc->mutable_translation_m()->Assign(c.dX.data(), c.dX.data() + 3);
+          inc->mutable_rotation_rad()->Assign(c.dM.data(), c.dM.data() + 3);
+        } else {
+          const Eigen::Vector3d X = c.T_base_tool.translation();
+          const Eigen::AngleAxisd aa(c.T_base_tool.rotation());
+          const Eigen::Vector3d M = aa.axis() * aa.angle();
+          auto* target = request.mutable_cartesian_target();
+          target->mutable_position_m()->Assign(X.data(), X.data() + 3);
+          target->mutable_rotation_rad()->Assign(M.data(), M.data() + 3);
+        }
+      },
+      command);
+}
+
+void fill_trajectory_request(const std::string& trajectory_id, const TimedWaypoints& waypoints,
+                             v1::ExecuteTrajectoryRequest& request) {
+  request.set_trajectory_id(trajectory_id);
+  const size_t n = std::min(waypoints.times.size(), waypoints.q.size());
+  for (size_t k = 0; k < n; ++k) {
+    v1::Waypoint* w = request.add_waypoints();
+    w->set_time_from_start_ns(std::llround(waypoints.times[k] * 1e9));
+    copy(waypoints.q[k], w->mutable_q());
+  }
+  for (const GripperEvent& event : waypoints.gripper) {
+    v1::GripperCommand* g = request.add_gripper();
+    g->set_time_from_start_ns(std::llround(event.time * 1e9));
+    g->set_opening(event.opening);
+  }
 }
 
 }  // namespace telear::net

@@ -6,7 +6,9 @@
 
 #include <string>
 
+#include "core/motion_command.hpp"
 #include "core/robot_model.hpp"
+#include "core/trajectory.hpp"
 #include "sim/robot_state.hpp"
 #include "telear/v1/robot.pb.h"
 
@@ -26,5 +28,15 @@ void fill_state(const RobotState& state, v1::RobotState& message);
 
 // The message back into a RobotState; `time` = capture_ns in seconds (server clock).
 RobotState state_from_proto(const v1::RobotState& message);
+
+// The motion of `command` into the request's `command` oneof (lease id and expiry are the
+// caller's: they depend on the lease and the server clock).
+void fill_jog_request(const MotionCommand& command, v1::JogRequest& request);
+
+// `trajectory_id` and the samples and gripper events of `waypoints` (times in ns from the
+// start, rounded) into `request`; the lease id is the caller's. Samples beyond the shorter of
+// times and q are dropped (validation on the server rejects such a trajectory anyway).
+void fill_trajectory_request(const std::string& trajectory_id, const TimedWaypoints& waypoints,
+                             v1::ExecuteTrajectoryRequest& request);
 
 }  // namespace telear::net

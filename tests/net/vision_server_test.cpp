@@ -193,7 +193,9 @@ TEST(VisionClient, DecodesFramesWithStageLatencies) {
   std::this_thread::sleep_for(500ms);
   auto latest = client.latest_frame();
   ASSERT_TRUE(latest);
-  EXPECT_GE((*latest)->frame_id + 10, server->pipeline().stats().captured);
+  // Within a few frames of the newest captured (the decoder may still be on the one before
+  // under load; a queue would be ~30 frames behind after the stall).
+  EXPECT_GE((*latest)->frame_id + 20, server->pipeline().stats().captured);
   EXPECT_GT((*latest)->frame_id, previous_id + 10);
   client.stop();
 }
