@@ -72,6 +72,7 @@ Status SimRigSource::prepare() {
   scene_options.supersample = options_.supersample;
   scene_options.noise_sigma = options_.noise_sigma;
   scene_options.seed = options_.seed;
+  scene_options.fast_noise = true;  // video: the table noise (sim/scene_renderer.hpp)
   auto scene =
       sim::SceneRenderer::create(loaded_->rig, *loaded_->model, loaded_->body, scene_options);
   if (!scene) return Error{"sim rig source: " + scene.error().message};

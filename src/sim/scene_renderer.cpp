@@ -263,7 +263,27 @@ render::Image SceneRenderer::render_clean(Eye eye) {
 
 render::Image SceneRenderer::render(Eye eye, std::uint64_t frame) {
   render::Image image = render_clean(eye);
-  add_sensor_noise(image, options_.noise_sigma, noise_seed(options_.seed, frame, eye));
+  const std::uint64_t seed = noise_seed(options_.seed, frame, eye);
+  if (!options_.fast_noise || options_.noise_sigma <= 0.0) {
+    add_sensor_noise(image, options_.noise_sigma, seed);
+    return image;
+  }
+  constexpr std::size_t kTableSize = std::size_t{1} << 20;
+  if (noise_table_.empty()) {
+    // The table is the exact generator's output on a mid-grey image, minus the grey.
+    render::Image grey(static_cast<int>(kTableSize), 1, 1);
+    std::fill(grey.pixels.begin(), grey.pixels.end(), std::uint8_t{128});
+    add_sensor_noise(grey, options_.noise_sigma, options_.seed);
+    noise_table_.resize(kTableSize);
+    for (std::size_t i = 0; i < kTableSize; ++i) {
+      noise_table_[i] = static_cast<std::int8_t>(static_cast<int>(grey.pixels[i]) - 128);
+    }
+  }
+  const std::size_t offset = static_cast<std::size_t>(seed) & (kTableSize - 1);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const int value = image.pixels[i] + noise_table_[(offset + i) & (kTableSize - 1)];
+    image.pixels[i] = static_cast<std::uint8_t>(std::clamp(value, 0, 255));
+  }
   return image;
 }
 

@@ -43,6 +43,11 @@ struct SceneOptions {
   int supersample = 4;       // S above, 1..8
   double noise_sigma = 1.0;  // grey levels (0..255 scale), 0 = none
   std::uint64_t seed = 1;
+  // Video: the noise comes from a table of 2^20 N(0, sigma) values (rounded) drawn once,
+  // added from a (seed, frame, eye)-random offset: ~20x cheaper than drawing every pixel's
+  // noise, the same distribution per pixel, but frames share shifted copies of one pattern.
+  // Stills (calibration views, observations) keep the exact per-pixel draw.
+  bool fast_noise = false;
   bool show_robot = true;
   bool show_environment = true;                     // floor, table, the box to pick
   std::optional<MarkerSpec> marker = MarkerSpec{};  // nullopt: no marker on the gripper
@@ -111,6 +116,7 @@ class SceneRenderer {
   bool has_target_ = false;
   render::Overlay overlay_[2];
   render::OffscreenTarget high_res_[2];
+  std::vector<std::int8_t> noise_table_;  // fast_noise: 2^20 values
 };
 
 // The camera with its pixel grid refined `factor` times (see the header comment).

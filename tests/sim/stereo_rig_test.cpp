@@ -245,6 +245,34 @@ TEST_F(StereoRigSceneTest, DeterministicForASeedAndBothEyesSeeTheBoard) {
   }
 }
 
+// Video noise from the table: the same per-pixel spread as the exact draw, deterministic per
+// (seed, frame, eye), different from frame to frame.
+TEST_F(StereoRigSceneTest, FastNoiseHasTheExactSpreadAndChangesPerFrame) {
+  SceneOptions options;
+  options.supersample = 1;
+  options.noise_sigma = 2.0;
+  options.fast_noise = true;
+  SceneRenderer scene = make_scene(options);
+  const render::Image clean = scene.render_clean(Eye::kLeft);
+  const render::Image a = scene.render(Eye::kLeft, 3);
+  const render::Image b = scene.render(Eye::kLeft, 3);
+  const render::Image c = scene.render(Eye::kLeft, 4);
+  EXPECT_EQ(a.pixels, b.pixels);
+  EXPECT_NE(a.pixels, c.pixels);
+  double sum = 0, sum_sq = 0;
+  long n = 0;
+  for (std::size_t i = 0; i < clean.pixels.size(); ++i) {
+    if (clean.pixels[i] < 10 || clean.pixels[i] > 245) continue;  // away from clipping
+    const double d = static_cast<double>(a.pixels[i]) - clean.pixels[i];
+    sum += d;
+    sum_sq += d * d;
+    ++n;
+  }
+  ASSERT_GT(n, 100000);
+  EXPECT_NEAR(sum / n, 0.0, 0.05);
+  EXPECT_NEAR(std::sqrt(sum_sq / n), 2.0, 0.1);  // rounding adds 1/12 to the variance
+}
+
 // The ArUco marker on the gripper is detected where its corners (flange frame) project.
 TEST_F(StereoRigSceneTest, MarkerCornersProjectWhereTheTextureIs) {
   SceneOptions options;
