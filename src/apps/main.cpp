@@ -3,9 +3,12 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <sstream>
 
 #include "apps/bench_command.hpp"
 #include "apps/calibrate_command.hpp"
+#include "apps/console_command.hpp"
+#include "apps/demo_command.hpp"
 #include "apps/eval_command.hpp"
 #include "apps/kin_command.hpp"
 #include "apps/register_command.hpp"
@@ -15,12 +18,34 @@
 #include "apps/sim_command.hpp"
 #include "apps/sim_frame_command.hpp"
 #include "apps/sim_observations_command.hpp"
+#include "apps/stream_bench_command.hpp"
 #include "apps/vision_server_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"telear: augmented-reality telerobotics (docs/cli.md)", "telear"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "telear 0.1.0");
+
+  // [SECTION] demo (the README's main command; docs/demo.md)
+  telear::cli::DemoOptions demo;
+  CLI::App* demo_app = app.add_subcommand(
+      "demo", "the whole workflow on the simulated robot and rig: rehearse, preview, execute");
+  demo_app->add_option("--out", demo.out, "output folder (video, key frames, report)")
+      ->capture_default_str();
+  demo_app->add_option("--cache", demo.cache, "calibration cache folder (default OUT/cache)");
+  demo_app->add_option("--resolution", demo.resolution, "stereo video size WIDTHxHEIGHT per eye")
+      ->capture_default_str();
+  demo_app
+      ->add_option("--delay-ms", demo.delay_ms,
+                   "video delay injected for 3 s of the execution (AR -> VR -> AR); 0: none")
+      ->capture_default_str();
+  demo_app->add_option("--seed", demo.seed, "calibration views and sensor noise")
+      ->capture_default_str();
+  demo_app->add_option("--fps", demo.fps, "display loop and recorded video rate")
+      ->capture_default_str();
+  demo_app->add_option("--camera-fps", demo.camera_fps, "the simulated cameras' rate")
+      ->capture_default_str();
+  demo_app->add_flag("--no-video", demo.no_video, "skip the MP4 (key frames and report only)");
 
   // [SECTION] kin
   telear::cli::KinOptions kin;
@@ -288,6 +313,24 @@ int main(int argc, char** argv) {
   vision_server_app->add_option("--noise", vision_server.noise, "sim: sensor noise, grey levels")
       ->capture_default_str();
 
+  // [SECTION] console (docs/console.md)
+  telear::console::ConsoleOptions console;
+  std::string console_size;
+  CLI::App* console_app = app.add_subcommand(
+      "console", "the operator console: stereo AR view, ghost, plan, real robot (Dear ImGui)");
+  console_app->add_option("--robot", console.robot, "robot server HOST:PORT (none: embedded sim)");
+  console_app->add_option("--vision", console.vision, "vision server HOST:PORT (none: embedded sim)");
+  console_app->add_option("--token-file", console.token_file, "file whose first line is the token");
+  console_app->add_option("--calibration", console.calibration, "registered stereo camera file");
+  console_app->add_option("--resolution", console.resolution, "video size WxH")->capture_default_str();
+  console_app->add_option("--size", console_size, "window size WxH (default 1600x1000)");
+  console_app->add_flag("--headless", console.headless, "EGL frame buffer, no window, no X");
+  console_app->add_option("--fullscreen-eyes", console.fullscreen_eyes,
+                          "two-windows or sbs: full-screen eye output (HMD, 3-D display)");
+  console_app->add_option("--screenshot", console.screenshot, "write the console's image (PNG)");
+  console_app->add_option("--frames", console.frames, "stop after N frames (screenshot: 60)");
+  console_app->add_option("--script", console.script, "replay UI actions (docs/console.md)");
+
   // [SECTION] bench (one subcommand per benchmark: render, ...)
   CLI::App* bench_app = app.add_subcommand("bench", "measured figures beside the seed's");
   bench_app->require_subcommand(1);
@@ -311,6 +354,25 @@ int main(int argc, char** argv) {
   bench_kin->add_option("--poses", bench_kin_options.poses, "random targets for numeric IK")
       ->capture_default_str();
   bench_kin->add_option("--json", bench_kin_options.json, "also write the table as JSON to FILE");
+  telear::cli::StreamBenchOptions bench_stream_options;
+  CLI::App* bench_stream = bench_app->add_subcommand(
+      "stream", "stereo video and robot commands through the real servers on loopback");
+  bench_stream->add_option("--seconds", bench_stream_options.seconds, "measured s per resolution")
+      ->capture_default_str();
+  bench_stream
+      ->add_option("--resolutions", bench_stream_options.resolutions,
+                   "WxH per eye, comma-separated")
+      ->capture_default_str();
+  bench_stream
+      ->add_option("--source-fps", bench_stream_options.source_fps, "synthetic source's rate")
+      ->capture_default_str();
+  bench_stream->add_option("--quality", bench_stream_options.quality, "JPEG quality 1..100")
+      ->capture_default_str();
+  bench_stream->add_option("--rtt-calls", bench_stream_options.rtt_calls,
+                           "robot round trips per command kind")
+      ->capture_default_str();
+  bench_stream->add_option("--json", bench_stream_options.json,
+                           "also write the results as JSON to FILE");
 
   try {
     app.parse(argc, argv);
@@ -318,6 +380,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
 
+  if (demo_app->parsed()) return telear::cli::run_demo(demo, std::cout, std::cerr);
   if (kin_info->parsed()) return telear::cli::run_kin_info(kin, std::cout, std::cerr);
   if (kin_fk->parsed()) return telear::cli::run_kin_fk(kin, std::cout, std::cerr);
   if (kin_demo->parsed()) return telear::cli::run_kin_demo(kin, std::cout, std::cerr);
@@ -341,8 +404,22 @@ int main(int argc, char** argv) {
   if (vision_server_app->parsed()) {
     return telear::cli::run_vision_server(vision_server, std::cout, std::cerr);
   }
+  if (console_app->parsed()) {
+    if (!console_size.empty()) {
+      char x = 0;
+      std::istringstream in(console_size);
+      if (!(in >> console.width >> x >> console.height) || x != 'x' || !in.eof()) {
+        std::cerr << "telear console: --size '" << console_size << "' must be WIDTHxHEIGHT\n";
+        return 2;
+      }
+    }
+    return telear::cli::run_console(console, std::cout, std::cerr);
+  }
   if (bench_render->parsed()) {
     return telear::cli::run_bench_render(bench_render_options, std::cout, std::cerr);
+  }
+  if (bench_stream->parsed()) {
+    return telear::cli::run_bench_stream(bench_stream_options, std::cout, std::cerr);
   }
   if (bench_kin->parsed()) {
 #ifdef TELEAR_HAVE_KIN_BENCH

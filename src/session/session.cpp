@@ -125,7 +125,7 @@ Status Session::take_control() {
   if (!start_tolerance_) {
     if (auto info = robot_->get_info()) start_tolerance_ = info->start_tolerance;
   }
-  Status s = robot_->acquire_lease();
+  Status s = robot_->acquire_lease(options_.lease_heartbeat_s);
   if (!s.ok()) {
     log(SessionEvent::Kind::kError, s.error().message);
     return s;
@@ -203,7 +203,8 @@ Result<net::TrajectoryAck> Session::initialize_real(const Eigen::VectorXd& q) {
   const auto current = real_q();
   if (!current) return Error{"initialize: no state from the robot server yet"};
   Plan move(model_);
-  if (Status s = move.add(PlanWaypoint(*current, 0.0, std::nullopt, "current")); !s.ok()) return s.error();
+  if (Status s = move.add(PlanWaypoint(*current, 0.0, std::nullopt, "current")); !s.ok())
+    return s.error();
   if (Status s = move.add(PlanWaypoint(q, 0.0, std::nullopt, "target")); !s.ok()) {
     return Error{"initialize: " + s.error().message};
   }

@@ -69,6 +69,11 @@ struct SessionOptions {
   double sample_rate_hz = 100.0;  // the plan's sampling for ExecuteTrajectory
   double injected_video_delay_s = 0.0;
   double jog_validity_s = 0.5;  // a real jog's expiry from now
+  // The lease's heartbeat period asked of the server (0: its default, 250 ms). A machine that
+  // also simulates the robot and renders its cameras may starve the heartbeat thread for
+  // longer than that; the embedded default asks for 1 s (the dead-man then acts within
+  // 1.2 s of a lost operator).
+  double lease_heartbeat_s = 0.0;
   std::size_t max_events = 200;
 };
 

@@ -1,0 +1,15 @@
+#pragma once
+// `telear console`: the operator console (docs/console.md). With no server addresses it starts
+// the embedded simulated robot and vision servers and connects to them; with --robot,
+// --vision and --token-file it connects to real ones. --headless renders into an EGL frame
+// buffer with no window; --screenshot / --frames / --script automate it.
+
+#include <ostream>
+
+#include "console/console_options.hpp"
+
+namespace telear::cli {
+
+int run_console(const console::ConsoleOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace telear::cli

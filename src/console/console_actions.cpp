@@ -1,0 +1,308 @@
+#include "console/console_actions.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/angles.hpp"
+
+namespace telear::console {
+
+namespace {
+
+Status from_outcome(const MotionOutcome& outcome) {
+  if (!outcome.accepted) return Error{outcome.rejection.message};
+  return Status::Ok();
+}
+
+Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
+  switch (a.kind) {
+    case ActionKind::kConnect:
+      ui.reconnect_requested = true;  // the app rebuilds the session with ui's addresses
+      return Status::Ok();
+    case ActionKind::kDisconnect:
+      s.disconnect();
+      return Status::Ok();
+    case ActionKind::kTakeControl:
+      return s.take_control();
+    case ActionKind::kReleaseControl:
+      return s.release_control();
+    case ActionKind::kEStop:
+      return s.estop("e-stop from the console");
+    case ActionKind::kResetEStop:
+      return s.reset_estop();
+    case ActionKind::kGhostJoint:
+      return from_outcome(s.move_ghost(JointIncrement{a.index, a.value}));
+    case ActionKind::kGhostCartesian:
+      return from_outcome(s.move_ghost(CartesianIncrement{a.frame, a.dX, a.dM}));
+    case ActionKind::kGhostGripper:
+      return s.ghost().set_gripper(a.value);
+    case ActionKind::kGhostNamed:
+      return from_outcome(s.ghost().go_to(a.text));
+    case ActionKind::kGhostToReal:
+      return s.ghost_to_real();
+    case ActionKind::kRealJoint: {
+      auto ack = s.jog_real(JointIncrement{a.index, a.value});
+      return ack ? Status::Ok() : Status(ack.error());
+    }
+    case ActionKind::kRealCartesian: {
+      auto ack = s.jog_real(CartesianIncrement{a.frame, a.dX, a.dM});
+      return ack ? Status::Ok() : Status(ack.error());
+    }
+    case ActionKind::kRealGripper:
+      return s.set_real_gripper(a.value);
+    case ActionKind::kRealInitialize: {
+      Eigen::VectorXd q = a.q;
+      if (!a.text.empty()) {
+        auto named = s.model().named_configuration(a.text);
+        if (!named) {
+          return Error{"unknown configuration '" + a.text +
+                       "' (known: " + session::named_configuration_list(s.model()) + ")"};
+        }
+        q = *named;
+      }
+      if (q.size() != s.model().dof()) {
+        return Error{"initialize: " + std::to_string(s.model().dof()) +
+                     " joint values needed, got " + std::to_string(q.size())};
+      }
+      auto ack = s.initialize_real(q);
+      return ack ? Status::Ok() : Status(ack.error());
+    }
+    case ActionKind::kPlanAdd:
+      return s.add_ghost_waypoint(a.value, a.text);
+    case ActionKind::kPlanDelete:
+      return s.plan().remove(static_cast<std::size_t>(a.index));
+    case ActionKind::kPlanMove:
+      return s.plan().move(static_cast<std::size_t>(a.index), static_cast<std::size_t>(a.index2));
+    case ActionKind::kPlanDuration:
+      return s.plan().set_min_duration(static_cast<std::size_t>(a.index), a.value);
+    case ActionKind::kPlanClear:
+      s.stop_preview();
+      s.plan().clear();
+      return Status::Ok();
+    case ActionKind::kPlanSave:
+      return s.plan().save(a.text);
+    case ActionKind::kPlanLoad: {
+      auto plan = session::Plan::load(s.plan().model_ptr(), a.text);
+      if (!plan) return plan.error();
+      s.stop_preview();
+      s.plan() = std::move(*plan);
+      return Status::Ok();
+    }
+    case ActionKind::kPreviewPlay:
+      if (!s.preview()) return s.start_preview();
+      s.preview()->play();
+      return Status::Ok();
+    case ActionKind::kPreviewPause:
+      if (s.preview()) s.preview()->pause();
+      return Status::Ok();
+    case ActionKind::kPreviewStop:
+      s.stop_preview();
+      return Status::Ok();
+    case ActionKind::kPreviewSeek:
+      if (!s.preview()) {
+        if (Status st = s.start_preview(); !st.ok()) return st;
+      }
+      s.preview()->seek(a.value);
+      return Status::Ok();
+    case ActionKind::kPreviewSpeed:
+      if (!s.preview()) return Error{"no preview running"};
+      return s.preview()->set_speed(a.value);
+    case ActionKind::kValidate: {
+      const session::ValidationReport report = s.validate_plan();
+      ui.validation_text = report.summary();
+      if (!report.ok()) return Error{report.summary()};
+      ui.last_message = "validation: " + report.summary();
+      return Status::Ok();
+    }
+    case ActionKind::kExecute: {
+      s.stop_preview();
+      auto ack = s.execute_plan();
+      return ack ? Status::Ok() : Status(ack.error());
+    }
+    case ActionKind::kCancel:
+      return s.cancel_execution();
+    case ActionKind::kViewLayout: {
+      auto layout = parse_layout(a.text);
+      if (!layout) {
+        return Error{"unknown layout '" + a.text +
+                     "' (known: sbs, tb, anaglyph, left, right, separate, page-flip)"};
+      }
+      ui.layout = *layout;
+      return Status::Ok();
+    }
+    case ActionKind::kViewStyle:
+      if (a.text != "solid" && a.text != "wire") {
+        return Error{"style '" + a.text + "': solid or wire"};
+      }
+      ui.wireframe = a.text == "wire";
+      return Status::Ok();
+    case ActionKind::kViewSegments:
+      if (a.index != 0 && (a.index < 3 || a.index > 512)) {
+        return Error{"segments " + std::to_string(a.index) + ": 0 (the body's own) or 3..512"};
+      }
+      if (ui.segments != a.index) ui.body_dirty = true;
+      ui.segments = a.index;
+      return Status::Ok();
+    case ActionKind::kViewOpacity:
+      if (!(a.value > 0.0 && a.value <= 1.0)) return Error{"opacity must be in (0, 1]"};
+      ui.ghost_opacity = static_cast<float>(a.value);
+      return Status::Ok();
+    case ActionKind::kViewVideo:
+      if (a.text != "raw" && a.text != "undistorted") {
+        return Error{"video '" + a.text + "': raw or undistorted"};
+      }
+      ui.undistorted = a.text == "undistorted";
+      return Status::Ok();
+    case ActionKind::kViewMode:
+      if (a.text == "auto") {
+        s.display().set_preference(session::DisplayPreference::kAutomatic);
+      } else if (a.text == "ar") {
+        s.display().set_preference(session::DisplayPreference::kAR);
+      } else if (a.text == "vr") {
+        s.display().set_preference(session::DisplayPreference::kVR);
+      } else {
+        return Error{"mode '" + a.text + "': auto, ar or vr"};
+      }
+      return Status::Ok();
+    case ActionKind::kViewReported:
+      ui.show_reported = a.value != 0.0;
+      return Status::Ok();
+    case ActionKind::kScreenshot:
+      ui.screenshot_request = a.text;
+      return Status::Ok();
+    case ActionKind::kQuit:
+      ui.quit = true;
+      return Status::Ok();
+  }
+  return Error{"unknown action"};
+}
+
+}  // namespace
+
+const char* to_string(ActionKind kind) {
+  switch (kind) {
+    case ActionKind::kConnect:
+      return "connect";
+    case ActionKind::kDisconnect:
+      return "disconnect";
+    case ActionKind::kTakeControl:
+      return "take control";
+    case ActionKind::kReleaseControl:
+      return "release control";
+    case ActionKind::kEStop:
+      return "e-stop";
+    case ActionKind::kResetEStop:
+      return "reset e-stop";
+    case ActionKind::kGhostJoint:
+      return "ghost joint";
+    case ActionKind::kGhostCartesian:
+      return "ghost cartesian";
+    case ActionKind::kGhostGripper:
+      return "ghost gripper";
+    case ActionKind::kGhostNamed:
+      return "ghost named";
+    case ActionKind::kGhostToReal:
+      return "ghost = real";
+    case ActionKind::kRealJoint:
+      return "real jog joint";
+    case ActionKind::kRealCartesian:
+      return "real jog cartesian";
+    case ActionKind::kRealGripper:
+      return "real gripper";
+    case ActionKind::kRealInitialize:
+      return "real initialize";
+    case ActionKind::kPlanAdd:
+      return "plan add";
+    case ActionKind::kPlanDelete:
+      return "plan delete";
+    case ActionKind::kPlanMove:
+      return "plan move";
+    case ActionKind::kPlanDuration:
+      return "plan duration";
+    case ActionKind::kPlanClear:
+      return "plan clear";
+    case ActionKind::kPlanSave:
+      return "plan save";
+    case ActionKind::kPlanLoad:
+      return "plan load";
+    case ActionKind::kPreviewPlay:
+      return "preview play";
+    case ActionKind::kPreviewPause:
+      return "preview pause";
+    case ActionKind::kPreviewStop:
+      return "preview stop";
+    case ActionKind::kPreviewSeek:
+      return "preview seek";
+    case ActionKind::kPreviewSpeed:
+      return "preview speed";
+    case ActionKind::kValidate:
+      return "validate";
+    case ActionKind::kExecute:
+      return "execute";
+    case ActionKind::kCancel:
+      return "cancel";
+    case ActionKind::kViewLayout:
+      return "view layout";
+    case ActionKind::kViewStyle:
+      return "view style";
+    case ActionKind::kViewSegments:
+      return "view segments";
+    case ActionKind::kViewOpacity:
+      return "view opacity";
+    case ActionKind::kViewVideo:
+      return "view video";
+    case ActionKind::kViewMode:
+      return "view mode";
+    case ActionKind::kViewReported:
+      return "view reported";
+    case ActionKind::kScreenshot:
+      return "screenshot";
+    case ActionKind::kQuit:
+      return "quit";
+  }
+  return "?";
+}
+
+Status apply_action(session::Session& session, UiState& ui, const UiAction& action) {
+  ui.last_message.clear();
+  Status status = dispatch(session, ui, action);
+  if (!status.ok()) {
+    ui.last_message = std::string(to_string(action.kind)) + ": " + status.error().message;
+    ui.last_failed = true;
+  } else {
+    if (ui.last_message.empty()) ui.last_message = std::string(to_string(action.kind)) + ": ok";
+    ui.last_failed = false;
+  }
+  return status;
+}
+
+UiAction ghost_joint(int joint, double delta) {
+  UiAction a;
+  a.kind = ActionKind::kGhostJoint;
+  a.index = joint;
+  a.value = delta;
+  return a;
+}
+
+UiAction ghost_cartesian(MotionFrame frame, const Eigen::Vector3d& dX, const Eigen::Vector3d& dM) {
+  UiAction a;
+  a.kind = ActionKind::kGhostCartesian;
+  a.frame = frame;
+  a.dX = dX;
+  a.dM = dM;
+  return a;
+}
+
+UiAction simple(ActionKind kind) {
+  UiAction a;
+  a.kind = kind;
+  return a;
+}
+
+bool robot_idle(const session::Session& session) {
+  const auto& real = session.view().real;
+  return session.robot_connected() && real && !session.executing() &&
+         real->state.mode == RobotMode::kIdle;
+}
+
+}  // namespace telear::console

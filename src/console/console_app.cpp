@@ -1,0 +1,596 @@
+// clang-format off
+#include <epoxy/gl.h>  // before anything that includes GL/gl.h
+// clang-format on
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "console/console_app.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "console/console_actions.hpp"
+#include "console/eye_windows.hpp"
+#include "console/gamepad_input.hpp"
+#include "console/keyboard_input.hpp"
+#include "console/mouse_input.hpp"
+#include "console/panels.hpp"
+#include "core/arm_body.hpp"
+#include "core/robot_loader.hpp"
+#include "render/ar_view.hpp"
+#include "render/egl_context.hpp"
+#include "render/glfw_context.hpp"
+#include "render/image_io.hpp"
+#include "render/offscreen_target.hpp"
+#include "render/scene_objects.hpp"
+#include "render/stereo_composer.hpp"
+#include "sim/calibration_targets.hpp"
+#include "sim/scene_renderer.hpp"
+#include "sim/stereo_rig.hpp"
+#include "vision/camera_file.hpp"
+
+namespace telear::console {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Result<std::pair<int, int>> parse_resolution(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < 64 || h < 48 || w > 1920 || h > 1080) {
+    return Error{"--resolution '" + text + "' must be WIDTHxHEIGHT within 64x48 .. 1920x1080"};
+  }
+  return std::pair{w, h};
+}
+
+Result<std::string> read_token(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return Error{"--token-file '" + path + "': cannot be read"};
+  std::string token;
+  std::getline(in, token);
+  while (!token.empty() && (token.back() == '\r' || token.back() == ' ')) token.pop_back();
+  if (token.empty()) return Error{"--token-file '" + path + "': the first line is empty"};
+  return token;
+}
+
+Result<StereoCameraModel> load_stereo_file(const std::string& path) {
+  auto file = load_camera_file(path);
+  if (!file) return file.error();
+  if (!file->right) return Error{"calibration '" + path + "': not a stereo camera file"};
+  return StereoCameraModel{file->left, *file->right};
+}
+
+render::StereoLayout view_layout(const UiState& ui) {
+  switch (ui.layout) {
+    case ViewLayout::kSideBySide:
+      return render::StereoLayout::kSideBySide;
+    case ViewLayout::kTopBottom:
+      return render::StereoLayout::kTopBottom;
+    case ViewLayout::kAnaglyph:
+      return render::StereoLayout::kAnaglyph;
+    case ViewLayout::kPageFlip:
+      return ui.page_flip_granted ? render::StereoLayout::kSeparate
+                                  : render::StereoLayout::kSideBySide;
+    default:
+      return render::StereoLayout::kSeparate;
+  }
+}
+
+}  // namespace
+
+struct ConsoleApp::Impl {
+  ConsoleOptions options;
+  RobotModelPtr model;
+  session::SessionOptions session_options;
+  StereoCameraModel cameras;  // at the video's resolution
+  BodyDescription body;
+  std::unique_ptr<render::GlContext> context;  // EGL (headless) or GLFW
+  render::GlfwContext* window = nullptr;       // the GLFW context, when windowed
+  render::OffscreenTarget headless_target;     // the "window" when headless
+  std::optional<render::ArView> view;
+  render::StereoLayout built_layout = render::StereoLayout::kSideBySide;
+  int built_segments = -1;
+  bool imgui_glfw = false, imgui_gl = false;
+  KeyboardInput keyboard;
+  MouseInput mouse;
+  std::optional<GamepadInput> gamepad;
+  std::unique_ptr<EyeWindows> eyes;
+  Clock::time_point last_frame = Clock::now();
+  double fps_accumulator = 0.0;
+  int fps_frames = 0;
+  bool auto_take_control = false;
+  std::ostream* log = nullptr;
+
+  ~Impl() {
+    if (context) (void)context->make_current();
+    view.reset();
+    if (imgui_gl) ImGui_ImplOpenGL3_Shutdown();
+    if (imgui_glfw) ImGui_ImplGlfw_Shutdown();
+    if (ImGui::GetCurrentContext()) ImGui::DestroyContext();
+    eyes.reset();
+  }
+
+  Status build_view(const UiState& ui) {
+    ArmBodyOptions body_options;
+    body_options.segments_override = ui.segments;
+    const ArmBody arm_body = build_arm_body(body, body_options);
+    const Eigen::Vector3d box = sim::SceneRenderer::workspace_object().centre_base;
+    render::ArViewOptions view_options;
+    view_options.layout = view_layout(ui);
+    view.reset();
+    auto created = render::ArView::create(
+        *model, arm_body, cameras,
+        {render::make_floor(3.0f, 12), render::make_cube(0.05f, box.cast<float>())}, view_options);
+    if (!created) return created.error();
+    view.emplace(std::move(*created));
+    built_layout = view_options.layout;
+    built_segments = ui.segments;
+    return Status::Ok();
+  }
+};
+
+ConsoleApp::ConsoleApp(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+ConsoleApp::~ConsoleApp() {
+  if (session_) session_->disconnect();
+  session_.reset();
+  servers_.reset();
+}
+
+Result<std::unique_ptr<ConsoleApp>> ConsoleApp::Create(const ConsoleOptions& options,
+                                                       std::ostream& log) {
+  auto impl = std::make_unique<Impl>();
+  impl->options = options;
+  impl->log = &log;
+  if (options.width < 320 || options.height < 240 || options.width > 8192 ||
+      options.height > 8192) {
+    return Error{"the console's size must be within 320x240 .. 8192x8192"};
+  }
+  if (!options.fullscreen_eyes.empty() && options.fullscreen_eyes != "two-windows" &&
+      options.fullscreen_eyes != "sbs") {
+    return Error{"--fullscreen-eyes '" + options.fullscreen_eyes + "': two-windows or sbs"};
+  }
+  if (options.headless && !options.fullscreen_eyes.empty()) {
+    return Error{"--fullscreen-eyes needs a display; it cannot be combined with --headless"};
+  }
+  const bool embedded = options.robot.empty() && options.vision.empty();
+  if (!embedded && (options.robot.empty() || options.vision.empty())) {
+    return Error{"give both --robot and --vision, or neither (the embedded simulated servers)"};
+  }
+  auto resolution = parse_resolution(options.resolution);
+  if (!resolution) return resolution.error();
+  const auto [width, height] = *resolution;
+
+  auto model = load_robot(options.robot_model);
+  if (!model) return model.error();
+  impl->model = *model;
+  auto body = body_description_for(**model);
+  if (!body) return body.error();
+  impl->body = *body;
+
+  // [SECTION] calibration and servers
+  std::unique_ptr<ConsoleApp> app(new ConsoleApp(std::move(impl)));
+  Impl& m = *app->impl_;
+  std::optional<StereoCameraModel> cameras;
+  std::string calibration_file = options.calibration;
+  if (calibration_file.empty() && embedded &&
+      std::filesystem::exists("out/demo/cache/registered.yaml")) {
+    calibration_file = "out/demo/cache/registered.yaml";
+  }
+  if (!calibration_file.empty()) {
+    auto loaded = load_stereo_file(calibration_file);
+    if (!loaded) return loaded.error();
+    cameras = *loaded;
+    app->ui_.calibration_note = "calibration: " + calibration_file;
+  } else if (embedded) {
+    auto rig = sim::load_stereo_rig(data_directory() + "/rigs/puma560_rig.yaml");
+    if (!rig) return rig.error();
+    cameras = rig->cameras;
+    app->ui_.calibration_note =
+        "calibration: the simulator's TRUE cameras (no registered calibration; `telear demo` makes "
+        "one)";
+  }
+  net::RobotClientOptions& robot = m.session_options.robot;
+  net::VisionClientOptions& vision = m.session_options.vision;
+  robot.client_name = "telear-console";
+  vision.client_name = "telear-console";
+  if (embedded) {
+    session::EmbeddedServersOptions server_options;
+    server_options.calibration_file = calibration_file;
+    auto servers = session::EmbeddedServers::Start(m.model, server_options);
+    if (!servers) return servers.error();
+    app->servers_ = std::move(*servers);
+    robot.address = app->servers_->robot_address();
+    vision.address = app->servers_->vision_address();
+    robot.token = app->servers_->token();
+    app->ui_.embedded = true;
+    m.auto_take_control = true;
+    m.session_options.lease_heartbeat_s = 1.0;  // see SessionOptions::lease_heartbeat_s
+    log << "telear console: embedded simulated servers: robot " << robot.address << ", vision "
+        << vision.address << "\n";
+  } else {
+    robot.address = options.robot;
+    vision.address = options.vision;
+    if (!options.token_file.empty()) {
+      auto token = read_token(options.token_file);
+      if (!token) return token.error();
+      robot.token = *token;
+      vision.token = *token;
+    }
+  }
+  vision.token = robot.token;
+  vision.width = width;
+  vision.height = height;
+  if (!cameras) {  // ask the vision server for its calibration
+    net::VisionClient probe(vision);
+    auto info = probe.get_camera_info();
+    if (!info)
+      return Error{"no calibration: " + info.error().message + " (pass --calibration FILE)"};
+    if (!info->found) {
+      return Error{"no calibration: the vision server has none; pass --calibration FILE"};
+    }
+    cameras = info->cameras;
+    app->ui_.calibration_note = "calibration: from the vision server (" + info->source + ")";
+  }
+  m.cameras.left = resized_camera(cameras->left, width, height);
+  m.cameras.right = resized_camera(cameras->right, width, height);
+  m.session_options.cameras = m.cameras;
+  auto marker = sim::make_aruco_marker({});
+  if (marker)
+    m.session_options.marker = session::GripperMarker{marker->spec.id, marker->corners_flange};
+  std::snprintf(app->ui_.robot_address, sizeof app->ui_.robot_address, "%s", robot.address.c_str());
+  std::snprintf(app->ui_.vision_address, sizeof app->ui_.vision_address, "%s",
+                vision.address.c_str());
+  std::snprintf(app->ui_.token, sizeof app->ui_.token, "%s", robot.token.c_str());
+
+  // [SECTION] script (before anything is drawn: a parse error stops here)
+  if (!options.script.empty()) {
+    auto lines = load_ui_script(options.script, m.model->dof());
+    if (!lines) return lines.error();
+    app->script_ = ScriptRunner(std::move(*lines));
+  }
+
+  auto session = session::Session::Create(m.model, m.session_options);
+  if (!session) return session.error();
+  app->session_ = std::move(*session);
+  app->session_->connect();
+
+  // [SECTION] GL and ImGui
+  if (options.headless) {
+    auto context = render::create_headless_context();
+    if (!context) return Error{"no headless OpenGL context: " + context.error().message};
+    m.context = std::move(*context);
+    auto target = render::OffscreenTarget::create(options.width, options.height);
+    if (!target) return target.error();
+    m.headless_target = std::move(*target);
+  } else {
+    render::GlfwOptions window_options;
+    window_options.width = options.width;
+    window_options.height = options.height;
+    window_options.title = "telear console";
+    window_options.request_stereo = true;
+    window_options.vsync = true;
+    auto window = render::GlfwContext::create(window_options);
+    if (!window) {
+      return Error{"no window (" + window.error().message +
+                   "); use --headless, or run under xvfb-run -a -s \"-screen 0 1600x1000x24\""};
+    }
+    m.window = window->get();
+    m.context = std::move(*window);
+    const render::WindowStereo stereo = render::choose_window_stereo(m.window->stereo_granted());
+    app->ui_.page_flip_granted = stereo.page_flipped;
+    app->ui_.page_flip_message = stereo.message;
+    m.gamepad.emplace();
+  }
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // reproducible layout (screenshots, tests)
+  ImGui::StyleColorsDark();
+  ImGui::GetStyle().WindowRounding = 3.0f;
+  if (m.window) {
+    m.imgui_glfw = ImGui_ImplGlfw_InitForOpenGL(m.window->window(), true);
+  } else {
+    io.DisplaySize = ImVec2(static_cast<float>(options.width), static_cast<float>(options.height));
+    // Headless has no platform backend: map ImGui's navigation keys to GLFW's codes so that
+    // tests and the keyboard device use the same key numbers as a window.
+    io.KeyMap[ImGuiKey_Space] = GLFW_KEY_SPACE;
+    io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
+  }
+  m.imgui_gl = ImGui_ImplOpenGL3_Init("#version 330");
+  if (!m.imgui_gl) return Error{"Dear ImGui's OpenGL 3 backend did not start"};
+  if (Status s = m.build_view(app->ui_); !s.ok()) return s.error();
+
+  if (!options.fullscreen_eyes.empty()) {
+    auto eyes = EyeWindows::Create(*m.window, options.fullscreen_eyes == "two-windows");
+    if (!eyes) return eyes.error();
+    m.eyes = std::move(*eyes);
+  }
+  app->ui_.last_message =
+      app->ui_.embedded ? "connected to the embedded simulated servers" : "connecting";
+  return app;
+}
+
+void ConsoleApp::rebuild_session() {
+  Impl& m = *impl_;
+  ui_.reconnect_requested = false;
+  session_->disconnect();
+  session::SessionOptions options = m.session_options;
+  options.robot.address = ui_.robot_address;
+  options.vision.address = ui_.vision_address;
+  options.robot.token = ui_.token;
+  options.vision.token = ui_.token;
+  auto session = session::Session::Create(m.model, options);
+  if (!session) {
+    ui_.last_message = "connect: " + session.error().message;
+    ui_.last_failed = true;
+    session_->connect();
+    return;
+  }
+  session_ = std::move(*session);
+  m.session_options = options;
+  session_->connect();
+  m.auto_take_control = ui_.embedded;
+  ui_.last_message = "connecting to " + options.robot.address + " and " + options.vision.address;
+}
+
+bool ConsoleApp::frame() {
+  Impl& m = *impl_;
+  (void)m.context->make_current();
+  const auto now = Clock::now();
+  double dt = std::chrono::duration<double>(now - m.last_frame).count();
+  m.last_frame = now;
+  if (frames_ == 0 || dt <= 0.0) dt = 1.0 / 60.0;
+  m.fps_accumulator += dt;
+  if (++m.fps_frames >= 10) {
+    ui_.fps = m.fps_frames / m.fps_accumulator;
+    m.fps_accumulator = 0;
+    m.fps_frames = 0;
+  }
+  if (m.window) {
+    glfwPollEvents();
+    if (m.window->should_close()) return false;
+    ImGui_ImplGlfw_NewFrame();
+  } else {
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize =
+        ImVec2(static_cast<float>(m.options.width), static_cast<float>(m.options.height));
+    io.DeltaTime = static_cast<float>(dt);
+  }
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui::NewFrame();
+
+  auto act = [this](const UiAction& a) { (void)apply_action(*session_, ui_, a); };
+
+  // [SECTION] input: the E-STOP shortcut first, then the devices
+  const ImGuiIO& io = ImGui::GetIO();
+  if (ImGui::IsKeyPressed(io.KeyMap[ImGuiKey_Escape], false) ||
+      (!io.WantTextInput && ImGui::IsKeyPressed(io.KeyMap[ImGuiKey_Space], false))) {
+    act(simple(ActionKind::kEStop));
+  }
+  InputSteps steps;
+  steps.joint_rad = ui_.joint_step_deg * M_PI / 180.0;
+  steps.cartesian_m = ui_.cartesian_step_mm / 1000.0;
+  steps.rotation_rad = ui_.rotation_step_deg * M_PI / 180.0;
+  steps.frame = ui_.frame;
+  steps.dof = m.model->dof();
+  std::vector<InputDevice*> devices{&m.keyboard, &m.mouse};
+  if (m.gamepad) devices.push_back(&*m.gamepad);
+  const bool real = ui_.input_target == InputTarget::kReal;
+  for (InputDevice* device : devices) {
+    if (!device->available()) continue;
+    for (const InputIncrement& inc : device->poll(dt, steps)) {
+      UiAction a;
+      switch (inc.kind) {
+        case InputIncrement::Kind::kJoint:
+          a = {.kind = real ? ActionKind::kRealJoint : ActionKind::kGhostJoint,
+               .index = inc.joint,
+               .value = inc.delta};
+          break;
+        case InputIncrement::Kind::kCartesian:
+          a = ghost_cartesian(inc.frame, inc.dX, inc.dM);
+          if (real) a.kind = ActionKind::kRealCartesian;
+          break;
+        case InputIncrement::Kind::kGripper:
+          a = {.kind = real ? ActionKind::kRealGripper : ActionKind::kGhostGripper,
+               .value = inc.delta};
+          break;
+      }
+      act(a);
+    }
+  }
+
+  // [SECTION] script, session
+  if (!script_.finished()) {
+    script_.step(*session_, ui_, session_->now(), [this](const std::string& message) {
+      *impl_->log << "script: " << message << "\n";
+    });
+  }
+  if (ui_.reconnect_requested) rebuild_session();
+  session_->update(dt);
+  if (m.auto_take_control && session_->view().real && session_->robot_connected()) {
+    m.auto_take_control = false;
+    if (Status s = session_->take_control(); !s.ok()) {
+      ui_.last_message = "take control: " + s.error().message;
+      ui_.last_failed = true;
+    }
+  }
+
+  // [SECTION] the AR view
+  if (ui_.segments != m.built_segments || view_layout(ui_) != m.built_layout || ui_.body_dirty) {
+    ui_.body_dirty = false;
+    if (Status s = m.build_view(ui_); !s.ok()) {
+      ui_.last_message = "view: " + s.error().message;
+      ui_.last_failed = true;
+    }
+  }
+  render::ArViewOptions view_options = m.view->options();
+  view_options.ghost_style =
+      ui_.wireframe ? render::DrawOptions::Style::kWireframe : render::DrawOptions::Style::kSolid;
+  view_options.ghost_alpha = ui_.ghost_opacity;
+  view_options.show_reported_ghost = ui_.show_reported;
+  view_options.overlay_mode =
+      ui_.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
+  m.view->set_options(view_options);
+  const session::SessionView& v = session_->view();
+  render::ArViewInput input;
+  input.mode =
+      v.display.mode == session::DisplayMode::kAR ? render::ViewMode::kAr : render::ViewMode::kVr;
+  input.stale = v.display.frame_stale;
+  if (v.frame) {
+    input.left = &v.frame->left;
+    input.right = &v.frame->right;
+  }
+  input.ghost_q = v.ghost_q.size() ? v.ghost_q : session_->ghost().q();
+  input.ghost_gripper = v.ghost_gripper;
+  if (v.real) {
+    input.reported_q = v.real->state.q;
+    input.reported_gripper = v.real->state.gripper;
+  }
+  m.view->render(input);
+  ViewTextures textures;
+  textures.left = m.view->eye(0).colour_texture().id();
+  textures.right = m.view->eye(1).colour_texture().id();
+  textures.eye_width = m.view->eye(0).width();
+  textures.eye_height = m.view->eye(0).height();
+  textures.composed = m.view->composed().colour_texture().id();
+  textures.composed_width = m.view->composed().width();
+  textures.composed_height = m.view->composed().height();
+
+  // [SECTION] panels
+  PanelContext ctx{*session_, ui_, act};
+  PanelLayout layout{io.DisplaySize.x, io.DisplaySize.y};
+  m.mouse.set_over_view(draw_view_panel(ctx, layout, textures));
+  draw_plan_panel(ctx, layout);
+  draw_status_panel(ctx, layout);
+  draw_connection_panel(ctx, layout);
+  draw_ghost_panel(ctx, layout);
+  draw_real_robot_panel(ctx, layout);
+  draw_estop_panel(ctx, layout);
+  draw_status_bar(ctx, layout);
+  ImGui::Render();
+
+  // [SECTION] draw into the window or the frame buffer
+  int fb_w = m.options.width, fb_h = m.options.height;
+  if (m.window) {
+    m.window->framebuffer_size(fb_w, fb_h);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  } else {
+    m.headless_target.bind();
+  }
+  glViewport(0, 0, fb_w, fb_h);
+  const bool page_flip = m.window && ui_.layout == ViewLayout::kPageFlip && ui_.page_flip_granted;
+  if (page_flip) {
+    // Quad-buffer stereo: the whole UI into both back buffers, the view image being the left
+    // eye's texture in the left buffer and the right eye's in the right buffer.
+    ImDrawData* data = ImGui::GetDrawData();
+    glDrawBuffer(GL_BACK_LEFT);
+    glClearColor(0.08f, 0.08f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(data);
+    const ImTextureID left_id =
+        reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(textures.left));
+    const ImTextureID right_id =
+        reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(textures.right));
+    for (int i = 0; i < data->CmdListsCount; ++i) {
+      for (ImDrawCmd& cmd : data->CmdLists[i]->CmdBuffer) {
+        if (cmd.TextureId == left_id) cmd.TextureId = right_id;
+      }
+    }
+    glDrawBuffer(GL_BACK_RIGHT);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(data);
+    glDrawBuffer(GL_BACK_LEFT);  // read-back (screenshots) shows the left eye
+  } else {
+    if (m.window) glDrawBuffer(GL_BACK);
+    glClearColor(0.08f, 0.08f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  }
+  ++frames_;
+
+  // [SECTION] read-back
+  const bool final_frame =
+      m.options.frames > 0 && frames_ >= m.options.frames && script_.finished();
+  const bool want_screenshot =
+      ui_.screenshot_request || (final_frame && !m.options.screenshot.empty());
+  if (want_screenshot || capture_every_frame_) {
+    render::Image image(fb_w, fb_h, 3);
+    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(fb_w) * fb_h * 4);
+    if (m.window) glReadBuffer(page_flip ? GL_BACK_LEFT : GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, fb_w, fb_h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    for (int y = 0; y < fb_h; ++y) {
+      const std::uint8_t* src = rgba.data() + static_cast<std::size_t>(fb_h - 1 - y) * fb_w * 4;
+      std::uint8_t* dst = image.row(y);
+      for (int x = 0; x < fb_w; ++x) {
+        dst[3 * x] = src[4 * x];
+        dst[3 * x + 1] = src[4 * x + 1];
+        dst[3 * x + 2] = src[4 * x + 2];
+      }
+    }
+    last_image_ = std::move(image);
+  }
+  if (ui_.screenshot_request) {
+    const std::string path = *ui_.screenshot_request;
+    ui_.screenshot_request.reset();
+    if (Status s = render::write_png(path, last_image_); !s.ok()) {
+      ui_.last_message = "screenshot: " + s.error().message;
+      ui_.last_failed = true;
+    } else {
+      *m.log << "telear console: wrote " << path << "\n";
+    }
+  }
+  if (m.window) {
+    m.window->swap_buffers();
+  }
+  if (m.eyes)
+    m.eyes->present(m.view->eye(0).colour_texture().id(), m.view->eye(1).colour_texture().id(),
+                    textures.eye_width, textures.eye_height);
+
+  // [SECTION] pacing (a window's vsync paces itself)
+  if (!m.window && m.options.max_fps > 0) {
+    const double spent = std::chrono::duration<double>(Clock::now() - now).count();
+    const double period = 1.0 / m.options.max_fps;
+    if (spent < period) std::this_thread::sleep_for(std::chrono::duration<double>(period - spent));
+  }
+  if (ui_.quit) return false;
+  if (m.options.frames > 0) return !final_frame;
+  if (m.options.headless) return !script_.finished();
+  return true;
+}
+
+int ConsoleApp::run() {
+  while (frame()) {
+  }
+  int status = script_.failures() > 0 ? 1 : 0;
+  if (!impl_->options.screenshot.empty()) {
+    if (last_image_.empty()) {
+      *impl_->log << "telear console: no image to write to " << impl_->options.screenshot << "\n";
+      return 1;
+    }
+    if (Status s = render::write_png(impl_->options.screenshot, last_image_); !s.ok()) {
+      *impl_->log << "telear console: " << s.error().message << "\n";
+      return 1;
+    }
+    *impl_->log << "telear console: wrote " << impl_->options.screenshot << " ("
+                << last_image_.width << "x" << last_image_.height << ", " << frames_
+                << " frames)\n";
+  }
+  if (script_.failures() > 0) {
+    *impl_->log << "telear console: " << script_.failures() << " script line(s) failed\n";
+  }
+  return status;
+}
+
+}  // namespace telear::console

@@ -1,0 +1,27 @@
+#pragma once
+// What `telear console` is started with (docs/console.md). Plain values; the CLI fills them.
+
+#include <string>
+
+namespace telear::console {
+
+struct ConsoleOptions {
+  // Servers. Empty robot and vision addresses: start the embedded simulated servers.
+  std::string robot;        // HOST:PORT
+  std::string vision;       // HOST:PORT
+  std::string token_file;   // first line: the bearer token
+  std::string calibration;  // registered stereo camera file; empty: see docs/console.md
+  std::string robot_model = "puma560";
+  std::string resolution = "640x480";  // the video size asked of the vision server
+
+  // Output.
+  int width = 1600, height = 1000;  // window (or headless frame buffer) size
+  bool headless = false;            // EGL frame buffer, no window, no X server
+  std::string fullscreen_eyes;      // "", "two-windows" or "sbs" (head-mounted / 3-D display)
+  std::string screenshot;           // write the console's image here after `frames` frames
+  int frames = 0;                   // > 0: stop after this many frames (and the script)
+  std::string script;               // UI actions to replay (ui_script.hpp)
+  double max_fps = 60.0;            // frame pacing when there is no vsync (headless)
+};
+
+}  // namespace telear::console

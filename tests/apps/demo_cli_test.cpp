@@ -1,0 +1,77 @@
+// `telear demo` as the README runs it, at low resolution (issue 6's integration test): the
+// pick-and-place plan executes on the simulated robot, tracking stays within tolerance, the
+// calibration's overlay error is under target, the injected delay switches AR -> VR -> AR,
+// the bytes saved are measured, and the video, key frames and reports are written.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+
+namespace telear {
+namespace {
+
+using test::run_telear;
+namespace fs = std::filesystem;
+
+TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("demo_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string d = dir.string();
+  const auto r = run_telear("demo --out " + d + " --resolution 320x240 --delay-ms 700 --fps 10");
+  ASSERT_EQ(r.exit_code, 0) << r.out << "\n" << r.err;
+  EXPECT_NE(r.out.find("[7/7] writing the report"), std::string::npos) << r.out;
+
+  std::ifstream in(d + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  // Executed and tracked.
+  EXPECT_EQ(report["execution"]["result"], "completed");
+  EXPECT_LT(report["execution"]["max_error_rad"].get<double>(),
+            report["execution"]["tolerance_rad"].get<double>());
+  EXPECT_GT(report["execution"]["samples"].get<int>(), 20);
+  // Calibrated and registered from rendered images: every target of `telear eval` passes.
+  EXPECT_TRUE(report["calibration"]["pass"].get<bool>());
+  for (const char* eye : {"left", "right"}) {
+    EXPECT_LT(report["calibration"][eye]["overlay_rms_px"].get<double>(), 0.5) << eye;
+  }
+  // The injected delay: at least one switch to VR and back.
+  EXPECT_GE(report["display"]["ar_to_vr"].get<int>(), 1);
+  EXPECT_GE(report["display"]["vr_to_ar"].get<int>(), 2);  // the start, and after the delay
+  // One message vs a stream of jogs for the same motion.
+  EXPECT_GT(report["bytes"]["jog_100hz"].get<double>(),
+            report["bytes"]["plan_then_send"].get<double>());
+  EXPECT_GT(report["bytes"]["plan_then_send_measured"].get<double>(), 1000.0);
+  EXPECT_GT(report["video"]["frames_shown"].get<int>(), 20);
+  // The outputs.
+  EXPECT_GT(fs::file_size(d + "/demo_stereo.mp4"), 10000u);
+  EXPECT_GE(report["outputs"]["key_frames"].size(), 5u);
+  for (const auto& frame : report["outputs"]["key_frames"]) {
+    EXPECT_TRUE(fs::exists(frame.get<std::string>())) << frame;
+  }
+  EXPECT_TRUE(fs::exists(d + "/report.md"));
+
+  // A second run reuses the cached calibration.
+  const auto again =
+      run_telear("demo --out " + d + " --resolution 320x240 --delay-ms 0 --no-video");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("cached in"), std::string::npos) << again.out;
+  fs::remove_all(dir);
+}
+
+TEST(DemoCli, BadOptionsAreRefusedWithTheReason) {
+  auto r = run_telear("demo --resolution 20x10 --out " + ::testing::TempDir() + "demo_bad");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--resolution '20x10' must be WIDTHxHEIGHT within 64x48 .. 1920x1080"),
+            std::string::npos)
+      << r.err;
+  r = run_telear("demo --delay-ms -5 --out " + ::testing::TempDir() + "demo_bad");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--delay-ms -5 is outside 0..5000"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace telear

@@ -1,0 +1,157 @@
+// The console headless (EGL frame buffer, no window, no X) against the embedded simulated
+// servers, driven by a UI script exactly as `telear console --headless --script` runs it.
+
+#include "console/console_app.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "console/console_actions.hpp"
+#include "core/robot_loader.hpp"
+
+namespace telear::console {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+constexpr int kWidth = 1280, kHeight = 800;
+
+// Runs frames until `done` or the wall-clock budget; false on timeout or if the app quit.
+template <typename Done>
+bool run_until(ConsoleApp& app, double budget_s, Done done) {
+  const auto start = Clock::now();
+  while (!done()) {
+    if (!app.frame()) return done();
+    if (std::chrono::duration<double>(Clock::now() - start).count() > budget_s) return false;
+  }
+  return true;
+}
+
+struct Stats {
+  double mean = 0, stddev = 0;
+  int cyan = 0;  // pixels with the ghost's tint (blue-green high, red low)
+};
+
+Stats region_stats(const render::Image& image, int x0, int y0, int x1, int y1) {
+  Stats s;
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const int r = image.at(x, y, 0), g = image.at(x, y, 1), b = image.at(x, y, 2);
+      const double l = 0.299 * r + 0.587 * g + 0.114 * b;
+      sum += l;
+      sum2 += l * l;
+      ++n;
+      if (b > 150 && g > 110 && r + 60 < b) ++s.cyan;
+    }
+  }
+  s.mean = sum / n;
+  s.stddev = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean));
+  return s;
+}
+
+TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
+  const fs::path dir = fs::temp_directory_path() / "telear_console_test";
+  fs::create_directories(dir);
+  const std::string shot = (dir / "console.png").string();
+  fs::remove(shot);
+  const std::string script = (dir / "plan.txt").string();
+  std::ofstream(script) << "wait-until connected 30\n"
+                           "wait-until in-control 10\n"
+                           "ghost reset\n"
+                           "plan add 0 start\n"
+                           "ghost joint 2 +12deg\n"
+                           "ghost joint 3 -10deg\n"
+                           "plan add 0.5 middle\n"
+                           "ghost cartesian base z -30mm\n"
+                           "ghost gripper close\n"
+                           "plan add 0.5 end\n"
+                           "preview speed 4   # fails: no preview yet (counted, script goes on)\n"
+                           "preview play\n"
+                           "preview speed 4\n"
+                           "wait-until preview-end 20\n"
+                           "preview stop\n"
+                           "ghost reset\n"
+                           "validate\n"
+                           "execute\n"
+                           "wait-until idle 30\n"
+                           "screenshot " +
+                               shot + "\n";
+  ConsoleOptions options;
+  options.headless = true;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.resolution = "320x240";
+  options.script = script;
+  options.frames = 1000000;  // keep running after the script (connection loss below)
+  std::ostringstream log;
+  auto created = ConsoleApp::Create(options, log);
+  ASSERT_TRUE(created) << created.error().message;
+  ConsoleApp& app = **created;
+  session::Session& session = app.session();
+
+  ASSERT_TRUE(run_until(app, 45, [&] { return app.script().finished(); })) << log.str();
+  EXPECT_EQ(app.script().failures(), 1) << log.str();  // the deliberate `preview speed` line
+  EXPECT_THAT(log.str(), HasSubstr("line 11: preview speed 4"));
+
+  // The real robot reached the plan's end.
+  ASSERT_EQ(session.plan().size(), 3u);
+  EXPECT_EQ(session.last_execution_result(), "completed");
+  ASSERT_TRUE(session.view().real);
+  const Eigen::VectorXd q_end = session.plan().waypoints().back().q;
+  const Eigen::VectorXd q_real = session.view().real->state.q;
+  EXPECT_LT((q_real - q_end).cwiseAbs().maxCoeff(), 0.01) << q_real.transpose() << "\n"
+                                                          << q_end.transpose();
+  EXPECT_NEAR(session.plan().waypoint(1).q[1] - session.plan().waypoint(0).q[1], 12 * M_PI / 180,
+              1e-9);
+
+  // The screenshot: the whole console, with the video and the arm in the view panel.
+  ASSERT_TRUE(fs::exists(shot));
+  const render::Image& image = app.last_image();
+  ASSERT_EQ(image.width, kWidth);
+  ASSERT_EQ(image.height, kHeight);
+  const Stats view = region_stats(image, 10, 80, static_cast<int>(kWidth * 0.69) - 10,
+                                  static_cast<int>(kHeight * 0.58) - 10);
+  EXPECT_GT(view.stddev, 20.0);  // a video, not a flat panel
+  EXPECT_GT(view.cyan, 200);     // the ghost is drawn
+  const Stats panels =
+      region_stats(image, static_cast<int>(kWidth * 0.7), 80, kWidth - 5, kHeight - 40);
+  EXPECT_GT(panels.stddev, 5.0);  // text and widgets
+
+  // Connection loss: stop the servers; the console says so and keeps drawing.
+  const std::string token = app.servers()->token();
+  app.servers()->stop();
+  ASSERT_TRUE(run_until(app, 10, [&] { return !session.robot_connected(); }));
+  for (int i = 0; i < 20; ++i) ASSERT_TRUE(app.frame());
+  EXPECT_TRUE(session.connected());  // still trying: the panel shows "CONNECTION LOST"
+
+  // Reconnection through the connection panel's path: new servers, Connect.
+  auto model = load_robot("puma560");
+  ASSERT_TRUE(model);
+  auto servers = session::EmbeddedServers::Start(*model);
+  ASSERT_TRUE(servers) << servers.error().message;
+  UiState& ui = app.ui();
+  std::snprintf(ui.robot_address, sizeof ui.robot_address, "%s",
+                (*servers)->robot_address().c_str());
+  std::snprintf(ui.vision_address, sizeof ui.vision_address, "%s",
+                (*servers)->vision_address().c_str());
+  std::snprintf(ui.token, sizeof ui.token, "%s", (*servers)->token().c_str());
+  ASSERT_TRUE(apply_action(app.session(), ui, simple(ActionKind::kConnect)).ok());
+  ASSERT_TRUE(run_until(app, 20, [&] {
+    return app.session().robot_connected() && app.session().view().frame != nullptr &&
+           app.session().in_control();
+  }));
+  app.session().disconnect();
+}
+
+}  // namespace
+}  // namespace telear::console

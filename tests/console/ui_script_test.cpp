@@ -1,0 +1,87 @@
+#include "console/ui_script.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace telear::console {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(UiScript, ParsesActionsWithUnits) {
+  auto lines = parse_ui_script(
+      "# a comment\n"
+      "ghost joint 2 +5deg\n"
+      "\n"
+      "ghost cartesian tool z -20mm   # trailing comment\n"
+      "ghost cartesian base rx 0.1rad\n"
+      "ghost gripper close\n"
+      "plan add 1.5 grasp the box\n"
+      "wait 2.5\n"
+      "wait-until idle 12\n"
+      "real initialize qr\n"
+      "real initialize 0,45,-90,0,30,0\n"
+      "screenshot out.png\n",
+      6);
+  ASSERT_TRUE(lines) << lines.error().message;
+  ASSERT_EQ(lines->size(), 10u);
+  const auto& joint = std::get<UiAction>((*lines)[0].step);
+  EXPECT_EQ((*lines)[0].line, 2);
+  EXPECT_EQ(joint.kind, ActionKind::kGhostJoint);
+  EXPECT_EQ(joint.index, 1);
+  EXPECT_NEAR(joint.value, 5 * M_PI / 180, 1e-12);
+  const auto& cart = std::get<UiAction>((*lines)[1].step);
+  EXPECT_EQ(cart.frame, MotionFrame::kTool);
+  EXPECT_NEAR(cart.dX.z(), -0.02, 1e-12);
+  EXPECT_NEAR(std::get<UiAction>((*lines)[2].step).dM.x(), 0.1, 1e-12);
+  EXPECT_EQ(std::get<UiAction>((*lines)[3].step).value, 0.0);
+  const auto& add = std::get<UiAction>((*lines)[4].step);
+  EXPECT_EQ(add.value, 1.5);
+  EXPECT_EQ(add.text, "grasp the box");
+  EXPECT_EQ(std::get<WaitFor>((*lines)[5].step).seconds, 2.5);
+  EXPECT_EQ(std::get<WaitUntil>((*lines)[6].step).timeout_s, 12.0);
+  EXPECT_EQ(std::get<UiAction>((*lines)[7].step).text, "qr");
+  EXPECT_NEAR(std::get<UiAction>((*lines)[8].step).q[2], -M_PI / 2, 1e-12);
+  EXPECT_EQ((*lines)[9].line, 12);
+}
+
+TEST(UiScript, ErrorsNameTheLine) {
+  auto unknown = parse_ui_script("ghost joint 1 5\n\nghots joint 1 5\n", 6, "script 's.txt'");
+  ASSERT_FALSE(unknown);
+  EXPECT_THAT(unknown.error().message,
+              HasSubstr("script 's.txt', line 3: ghots joint 1 5: unknown command 'ghots'"));
+
+  auto joint = parse_ui_script("ghost joint 7 +5deg\n", 6);
+  ASSERT_FALSE(joint);
+  EXPECT_THAT(joint.error().message, HasSubstr("line 1"));
+  EXPECT_THAT(joint.error().message, HasSubstr("joint 7 out of range 1..6"));
+
+  auto number = parse_ui_script("wait\nwait soon\n", 6);
+  ASSERT_FALSE(number);
+  EXPECT_THAT(number.error().message, HasSubstr("line 1: wait: usage: wait SECONDS"));
+
+  auto value = parse_ui_script("plan add 1\nwait x\n", 6);
+  ASSERT_FALSE(value);
+  EXPECT_THAT(value.error().message, HasSubstr("line 2: wait x: wait: 'x' is not a number"));
+
+  auto frame = parse_ui_script("ghost cartesian world z 1\n", 6);
+  ASSERT_FALSE(frame);
+  EXPECT_THAT(frame.error().message, HasSubstr("frame 'world': base, wrist or tool"));
+
+  auto condition = parse_ui_script("wait-until forever\n", 6);
+  ASSERT_FALSE(condition);
+  EXPECT_THAT(condition.error().message, HasSubstr("condition 'forever'"));
+
+  auto q = parse_ui_script("real initialize 1,2,3\n", 6);
+  ASSERT_FALSE(q);
+  EXPECT_THAT(q.error().message, HasSubstr("6 joint values needed, got 3"));
+
+  auto missing = load_ui_script("/nonexistent/script.txt", 6);
+  ASSERT_FALSE(missing);
+  EXPECT_THAT(missing.error().message, HasSubstr("cannot be read"));
+}
+
+}  // namespace
+}  // namespace telear::console
