@@ -1,17 +1,12 @@
 #!/usr/bin/env bash
-# The README's main command: install what is missing, build, and run telear on the embedded
-# default, the PUMA 560: its geometric model (FK and all IK solutions at the named
-# configurations), then the graphical arm drawn through the shipped stereo camera pair.
-# Extra arguments go to `telear kin demo`.
+# The README's main command: install what is missing, build, and run `telear demo` on the
+# embedded default (the simulated PUMA 560 and stereo rig behind real gRPC servers on
+# loopback): calibrate and register (cached after the first run), rehearse a pick-and-place
+# on the ghost over the live stereo video, preview it, execute it on the robot and monitor it.
+# Writes out/demo/: demo_stereo.mp4, key frames (PNG), report.md and report.json.
+# Extra arguments go to `telear demo` (e.g. --resolution 1280x720 --delay-ms 600).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
 build_dir=${TELEAR_BUILD_DIR:-build}
-out_dir=${TELEAR_OUT_DIR:-out}
-mkdir -p "$out_dir"
-"$build_dir/telear" kin demo --robot puma560 "$@"
-"$build_dir/telear" render --robot puma560 --q=-30,-50,-40,0,-90,-30 --deg --gripper 0.05 --camera data/cameras/puma560_stereo.yaml \
-  --stereo sbs --floor --cube -o "$out_dir/puma560_stereo.png"
-"$build_dir/telear" render --robot puma560 --q=-30,-50,-40,0,-90,-30 --deg --gripper 0.05 --camera data/cameras/puma560_stereo.yaml \
-  --stereo sbs --floor --cube --wireframe -o "$out_dir/puma560_stereo_wireframe.png"
-echo "telear: wrote $out_dir/puma560_stereo.png and $out_dir/puma560_stereo_wireframe.png"
+"$build_dir/telear" demo --out "${TELEAR_OUT_DIR:-out}/demo" "$@"
