@@ -27,6 +27,7 @@
 #include "render/image_io.hpp"
 #include "session/embedded_servers.hpp"
 #include "session/session.hpp"
+#include "session/view_input.hpp"
 #include "sim/calibration_targets.hpp"
 #include "sim/scene_renderer.hpp"
 #include "vision/camera_file.hpp"
@@ -285,21 +286,7 @@ class Recorder {
         }
       }
     }
-    render::ArViewInput input;
-    input.mode =
-        v.display.mode == session::DisplayMode::kAR ? render::ViewMode::kAr : render::ViewMode::kVr;
-    input.stale = v.display.frame_stale;
-    if (v.frame) {
-      input.left = &v.frame->left;
-      input.right = &v.frame->right;
-    }
-    input.ghost_q = v.ghost_q;
-    input.ghost_gripper = v.ghost_gripper;
-    if (v.real) {
-      input.reported_q = v.real->state.q;
-      input.reported_gripper = v.real->state.gripper;
-    }
-    view_.render(input);
+    view_.render(session::ar_view_input(v));
     last_image_ = view_.read_composed_rgb();
     if (writer_.isOpened()) {
       cv::Mat rgb(last_image_.height, last_image_.width, CV_8UC3, last_image_.pixels.data());

@@ -32,6 +32,7 @@
 #include "render/offscreen_target.hpp"
 #include "render/scene_objects.hpp"
 #include "render/stereo_composer.hpp"
+#include "session/view_input.hpp"
 #include "sim/calibration_targets.hpp"
 #include "sim/scene_renderer.hpp"
 #include "sim/stereo_rig.hpp"
@@ -443,20 +444,8 @@ bool ConsoleApp::frame() {
       ui_.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
   m.view->set_options(view_options);
   const session::SessionView& v = session_->view();
-  render::ArViewInput input;
-  input.mode =
-      v.display.mode == session::DisplayMode::kAR ? render::ViewMode::kAr : render::ViewMode::kVr;
-  input.stale = v.display.frame_stale;
-  if (v.frame) {
-    input.left = &v.frame->left;
-    input.right = &v.frame->right;
-  }
-  input.ghost_q = v.ghost_q.size() ? v.ghost_q : session_->ghost().q();
-  input.ghost_gripper = v.ghost_gripper;
-  if (v.real) {
-    input.reported_q = v.real->state.q;
-    input.reported_gripper = v.real->state.gripper;
-  }
+  render::ArViewInput input = session::ar_view_input(v);
+  if (input.ghost_q.size() == 0) input.ghost_q = session_->ghost().q();  // before the first update
   m.view->render(input);
   ViewTextures textures;
   textures.left = m.view->eye(0).colour_texture().id();

@@ -13,6 +13,7 @@
 #include <thread>
 #include <utility>
 
+#include "net/client_channel.hpp"
 #include "net/clock.hpp"
 #include "net/latest_slot.hpp"
 #include "net/robot_messages.hpp"
@@ -26,27 +27,6 @@ using Stub = v1::RobotService::Stub;
 
 std::chrono::nanoseconds seconds(double s) {
   return std::chrono::nanoseconds(s_to_ns(s));
-}
-
-// A channel whose own reconnect back-off follows the options, so that a restarted server is
-// found again within reconnect_max_backoff_s (gRPC's default waits up to 120 s).
-std::shared_ptr<grpc::Channel> make_robot_channel(const ClientOptions& options) {
-  grpc::ChannelArguments args;
-  const int initial_ms = std::max(1, static_cast<int>(options.reconnect_initial_backoff_s * 1e3));
-  const int max_ms = std::max(initial_ms, static_cast<int>(options.reconnect_max_backoff_s * 1e3));
-  args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, initial_ms);
-  args.SetInt(GRPC_ARG_MIN_RECONNECT_BACKOFF_MS, initial_ms);
-  args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, max_ms);
-  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
-  if (!options.tls_root_certificate_file.empty()) {
-    std::ifstream in(options.tls_root_certificate_file, std::ios::binary);
-    std::ostringstream pem;
-    pem << in.rdbuf();
-    grpc::SslCredentialsOptions ssl;
-    ssl.pem_root_certs = pem.str();
-    credentials = grpc::SslCredentials(ssl);
-  }
-  return grpc::CreateCustomChannel(options.address, credentials, args);
 }
 
 RobotInfo info_from_proto(const v1::RobotInfo& message) {
@@ -77,7 +57,7 @@ std::int64_t RobotStateSample::capture_client_ns() const {
 struct RobotClient::Impl {
   explicit Impl(RobotClientOptions o)
       : options(std::move(o)),
-        channel(make_robot_channel(options)),
+        channel(make_client_channel(options)),
         stub(v1::RobotService::NewStub(channel)) {}
 
   RobotClientOptions options;

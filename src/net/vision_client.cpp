@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "net/client_channel.hpp"
 #include "net/clock.hpp"
 #include "net/jpeg_codec.hpp"
 #include "net/latest_slot.hpp"
@@ -25,22 +26,6 @@ struct Received {
   std::int64_t receive_ns = 0;
   std::size_t bytes = 0;
 };
-
-std::shared_ptr<grpc::Channel> make_channel(const ClientOptions& options) {
-  grpc::ChannelArguments args;
-  // Stereo 1280x720 JPEG pairs are a few hundred KB; leave room for large frames.
-  args.SetMaxReceiveMessageSize(64 * 1024 * 1024);
-  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
-  if (!options.tls_root_certificate_file.empty()) {
-    std::ifstream in(options.tls_root_certificate_file);
-    std::ostringstream pem;
-    pem << in.rdbuf();
-    grpc::SslCredentialsOptions ssl;
-    ssl.pem_root_certs = pem.str();
-    credentials = grpc::SslCredentials(ssl);
-  }
-  return grpc::CreateCustomChannel(options.address, credentials, args);
-}
 
 CameraModel model_from_intrinsics(const telear::v1::CameraIntrinsics& in) {
   CameraModel camera;
@@ -226,7 +211,8 @@ void VisionClient::Impl::ping_loop() {
 
 VisionClient::VisionClient(VisionClientOptions options) : impl_(std::make_unique<Impl>()) {
   impl_->options = std::move(options);
-  impl_->channel = make_channel(impl_->options);
+  // Stereo 1280x720 JPEG pairs are a few hundred KB; leave room for large frames.
+  impl_->channel = make_client_channel(impl_->options, 64 * 1024 * 1024);
   impl_->stub = telear::v1::VisionService::NewStub(impl_->channel);
 }
 

@@ -1,0 +1,23 @@
+#include "session/view_input.hpp"
+
+namespace telear::session {
+
+render::ArViewInput ar_view_input(const SessionView& view) {
+  render::ArViewInput input;
+  input.mode =
+      view.display.mode == DisplayMode::kAR ? render::ViewMode::kAr : render::ViewMode::kVr;
+  input.stale = view.display.frame_stale;
+  if (view.frame) {
+    input.left = &view.frame->left;
+    input.right = &view.frame->right;
+  }
+  input.ghost_q = view.ghost_q;
+  input.ghost_gripper = view.ghost_gripper;
+  if (view.real) {
+    input.reported_q = view.real->state.q;
+    input.reported_gripper = view.real->state.gripper;
+  }
+  return input;
+}
+
+}  // namespace telear::session
