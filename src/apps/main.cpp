@@ -319,10 +319,12 @@ int main(int argc, char** argv) {
   CLI::App* console_app = app.add_subcommand(
       "console", "the operator console: stereo AR view, ghost, plan, real robot (Dear ImGui)");
   console_app->add_option("--robot", console.robot, "robot server HOST:PORT (none: embedded sim)");
-  console_app->add_option("--vision", console.vision, "vision server HOST:PORT (none: embedded sim)");
+  console_app->add_option("--vision", console.vision,
+                          "vision server HOST:PORT (none: embedded sim)");
   console_app->add_option("--token-file", console.token_file, "file whose first line is the token");
   console_app->add_option("--calibration", console.calibration, "registered stereo camera file");
-  console_app->add_option("--resolution", console.resolution, "video size WxH")->capture_default_str();
+  console_app->add_option("--resolution", console.resolution, "video size WxH")
+      ->capture_default_str();
   console_app->add_option("--size", console_size, "window size WxH (default 1600x1000)");
   console_app->add_flag("--headless", console.headless, "EGL frame buffer, no window, no X");
   console_app->add_option("--fullscreen-eyes", console.fullscreen_eyes,
@@ -368,8 +370,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_stream->add_option("--quality", bench_stream_options.quality, "JPEG quality 1..100")
       ->capture_default_str();
-  bench_stream->add_option("--rtt-calls", bench_stream_options.rtt_calls,
-                           "robot round trips per command kind")
+  bench_stream
+      ->add_option("--rtt-calls", bench_stream_options.rtt_calls,
+                   "robot round trips per command kind")
       ->capture_default_str();
   bench_stream->add_option("--json", bench_stream_options.json,
                            "also write the results as JSON to FILE");
