@@ -9,26 +9,18 @@
 #include <sstream>
 
 #include "core/angles.hpp"
+
 #include "core/pose.hpp"
 #include "core/robot_loader.hpp"
+#include "core/yaml_number.hpp"
 
 namespace telear {
 namespace {
 
-struct ParseError {
-  std::string message;
-};
+using ParseError = YamlParseError;
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  if (!node.IsScalar()) throw ParseError{what + " must be a number"};
-  double value = 0.0;
-  try {
-    value = node.as<double>();
-  } catch (const YAML::Exception&) {
-    throw ParseError{what + " must be a number, got '" + node.Scalar() + "'"};
-  }
-  if (!std::isfinite(value)) throw ParseError{what + " must be finite, got " + node.Scalar()};
-  return value;
+  return yaml_number(node, what, " ");
 }
 
 std::vector<double> numbers(const YAML::Node& node, const std::string& what, size_t count) {

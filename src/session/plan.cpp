@@ -1,5 +1,7 @@
 #include "session/plan.hpp"
 
+#include "core/yaml_number.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <cassert>
@@ -26,20 +28,10 @@ std::string waypoint_name(std::size_t index) {
   return "waypoint[" + std::to_string(index) + "]";
 }
 
-struct ParseError {
-  std::string message;
-};
+using ParseError = YamlParseError;
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  if (!node.IsScalar()) throw ParseError{what + ": must be a number"};
-  double value = 0.0;
-  try {
-    value = node.as<double>();
-  } catch (const YAML::Exception&) {
-    throw ParseError{what + ": must be a number, got '" + node.Scalar() + "'"};
-  }
-  if (!std::isfinite(value)) throw ParseError{what + ": must be finite, got " + node.Scalar()};
-  return value;
+  return yaml_number(node, what);
 }
 
 void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& known,

@@ -1,5 +1,7 @@
 #include "vision/camera_file.hpp"
 
+#include "core/yaml_number.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -12,24 +14,14 @@
 namespace telear {
 namespace {
 
-struct ParseError {
-  std::string message;
-};
+using ParseError = YamlParseError;
 
 std::string join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
 }
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  if (!node.IsScalar()) throw ParseError{what + ": must be a number"};
-  double value = 0.0;
-  try {
-    value = node.as<double>();
-  } catch (const YAML::Exception&) {
-    throw ParseError{what + ": must be a number, got '" + node.Scalar() + "'"};
-  }
-  if (!std::isfinite(value)) throw ParseError{what + ": must be finite, got " + node.Scalar()};
-  return value;
+  return yaml_number(node, what);
 }
 
 int integer(const YAML::Node& node, const std::string& what) {

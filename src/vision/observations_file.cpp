@@ -1,5 +1,7 @@
 #include "vision/observations_file.hpp"
 
+#include "core/yaml_number.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -12,20 +14,10 @@
 namespace telear {
 namespace {
 
-struct ParseError {
-  std::string message;
-};
+using ParseError = YamlParseError;
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  if (!node.IsScalar()) throw ParseError{what + ": must be a number"};
-  double value = 0.0;
-  try {
-    value = node.as<double>();
-  } catch (const YAML::Exception&) {
-    throw ParseError{what + ": must be a number, got '" + node.Scalar() + "'"};
-  }
-  if (!std::isfinite(value)) throw ParseError{what + ": must be finite, got " + node.Scalar()};
-  return value;
+  return yaml_number(node, what);
 }
 
 std::vector<double> numbers(const YAML::Node& node, const std::string& what) {
