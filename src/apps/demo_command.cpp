@@ -22,6 +22,7 @@
 #include "core/robot_loader.hpp"
 #include "net/clock.hpp"
 #include "net/command_bytes.hpp"
+#include "net/latency_summary.hpp"
 #include "render/ar_view.hpp"
 #include "render/egl_context.hpp"
 #include "render/image_io.hpp"
@@ -227,15 +228,11 @@ struct LatencySeries {
   }
 };
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::lround(p * (v.size() - 1)))];
-}
+using net::percentile;
 
 nlohmann::json latency_json(const std::vector<double>& v) {
-  return {{"p50_ms", percentile(v, 0.5) * 1e3},
-          {"p99_ms", percentile(v, 0.99) * 1e3},
+  return {{"p50_ms", percentile(v, 50) * 1e3},
+          {"p99_ms", percentile(v, 99) * 1e3},
           {"samples", v.size()}};
 }
 
@@ -635,8 +632,8 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
         {"decode", &lat.decode},
         {"capture -> decoded", &lat.total}};
     for (const auto& [name, series] : stages) {
-      md << "| " << name << " | " << fixed(percentile(*series, 0.5) * 1e3, 2) << " | "
-         << fixed(percentile(*series, 0.99) * 1e3, 2) << " |\n";
+      md << "| " << name << " | " << fixed(percentile(*series, 50) * 1e3, 2) << " | "
+         << fixed(percentile(*series, 99) * 1e3, 2) << " |\n";
     }
     md << "\n- video: " << options.resolution << " stereo, " << recorder.frames_shown()
        << " frames shown\n"

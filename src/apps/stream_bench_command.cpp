@@ -19,6 +19,7 @@
 #include "net/clock.hpp"
 #include "net/command_bytes.hpp"
 #include "net/jpeg_codec.hpp"
+#include "net/latency_summary.hpp"
 #include "net/robot_client.hpp"
 #include "net/robot_server.hpp"
 #include "net/sim_robot_driver.hpp"
@@ -69,13 +70,7 @@ std::optional<Target> target_for(const Resolution& r) {
   return std::nullopt;
 }
 
-// Nearest-rank percentile (p in [0, 100]) of `values`, in the values' unit; NaN when empty.
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return std::nan("");
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * values.size()));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
+using net::percentile;
 
 struct Quantiles {
   double p50 = 0, p99 = 0;
@@ -84,6 +79,7 @@ struct Quantiles {
 Quantiles quantiles_ms(const std::vector<double>& seconds) {
   std::vector<double> ms(seconds.size());
   std::transform(seconds.begin(), seconds.end(), ms.begin(), [](double s) { return 1e3 * s; });
+  if (ms.empty()) return {std::nan(""), std::nan("")};  // JSON null: nothing was measured
   return {percentile(ms, 50), percentile(ms, 99)};
 }
 

@@ -11,20 +11,6 @@ namespace telear::session {
 
 namespace {
 
-LatencySummary summarize(std::vector<double> values) {
-  LatencySummary summary;
-  summary.samples = static_cast<int>(values.size());
-  if (values.empty()) return summary;
-  std::sort(values.begin(), values.end());
-  auto at = [&](double p) {
-    const auto index = static_cast<std::size_t>(std::lround(p * (values.size() - 1)));
-    return values[index];
-  };
-  summary.p50_s = at(0.50);
-  summary.p99_s = at(0.99);
-  return summary;
-}
-
 cv::Mat as_mat(const render::Image& image) {
   return cv::Mat(image.height, image.width, image.channels == 4 ? CV_8UC4 : CV_8UC3,
                  const_cast<std::uint8_t*>(image.pixels.data()));
@@ -433,12 +419,12 @@ SessionStats Session::stats() const {
     decode.push_back(frame->latency.decode_s);
     total.push_back(frame->latency.total_s);
   }
-  stats.capture_to_encode = summarize(c2e);
-  stats.encode = summarize(enc);
-  stats.send_queue = summarize(send);
-  stats.network = summarize(network);
-  stats.decode = summarize(decode);
-  stats.total = summarize(total);
+  stats.capture_to_encode = net::summarize_latency(c2e);
+  stats.encode = net::summarize_latency(enc);
+  stats.send_queue = net::summarize_latency(send);
+  stats.network = net::summarize_latency(network);
+  stats.decode = net::summarize_latency(decode);
+  stats.total = net::summarize_latency(total);
   stats.robot_state_age_s = view_.real_state_age_s;
   stats.command_bytes_sent = robot_->command_bytes_sent();
   if (auto offset = robot_->clock_offset())

@@ -44,6 +44,7 @@
 #include "core/motion_command.hpp"
 #include "core/result.hpp"
 #include "core/robot_model.hpp"
+#include "net/latency_summary.hpp"
 #include "net/robot_client.hpp"
 #include "net/vision_client.hpp"
 #include "session/display_mode.hpp"
@@ -95,10 +96,7 @@ struct SessionView {
   bool executing = false;
 };
 
-struct LatencySummary {
-  double p50_s = 0.0, p99_s = 0.0;
-  int samples = 0;
-};
+using net::LatencySummary;
 
 struct SessionStats {
   double video_fps = 0.0;  // decoded frames per second over the last ~2 s
