@@ -1,5 +1,7 @@
 #include "core/motion_command.hpp"
 
+#include "core/number_format.hpp"
+
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -13,12 +15,6 @@
 
 namespace telear {
 namespace {
-
-std::string format_number(double value, const char* format = "%g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 MotionOutcome reject(const Eigen::VectorXd& q_current, RejectionKind kind, std::string message,
                      int joint = -1, double value = 0.0, double limit = 0.0) {

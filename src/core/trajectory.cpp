@@ -1,9 +1,10 @@
 #include "core/trajectory.hpp"
 
+#include "core/number_format.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "core/joint_limits.hpp"
@@ -15,12 +16,6 @@ namespace {
 // duration is its min_duration and the arm steps to the next waypoint at its end. Far below
 // any encoder's resolution, it keeps 1 / displacement from overflowing.
 constexpr double kStationaryDisplacement = 1e-12;
-
-std::string format_number(double value, const char* format = "%g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 std::string indexed(const char* what, size_t k) {
   return std::string(what) + "[" + std::to_string(k) + "]";

@@ -16,20 +16,6 @@ cv::Mat as_mat(const render::Image& image) {
                  const_cast<std::uint8_t*>(image.pixels.data()));
 }
 
-std::string trajectory_status_word(TrajectoryStatus status) {
-  switch (status) {
-    case TrajectoryStatus::kCompleted:
-      return "completed";
-    case TrajectoryStatus::kCancelled:
-      return "cancelled";
-    case TrajectoryStatus::kAborted:
-      return "aborted";
-    case TrajectoryStatus::kRunning:
-      break;
-  }
-  return "running";
-}
-
 }  // namespace
 
 Session::Session(RobotModelPtr model, SessionOptions options)
@@ -363,7 +349,7 @@ void Session::update_monitor() {
       sample.last_trajectory_status != TrajectoryStatus::kRunning) {
     monitor_->update_at_plan_time(monitor_->trajectory().duration(), real.q);
     executing_ = false;
-    last_result_ = trajectory_status_word(sample.last_trajectory_status);
+    last_result_ = to_string(sample.last_trajectory_status);
     if (!sample.last_trajectory_message.empty()) {
       last_result_ += ": " + sample.last_trajectory_message;
     }

@@ -1,9 +1,10 @@
 #include "sim/simulated_robot.hpp"
 
+#include "core/number_format.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
 
 #include "core/joint_limits.hpp"
 #include "core/kinematics.hpp"
@@ -15,12 +16,6 @@ namespace {
 // Slack when comparing the clock with the servo grid t0 + k dt (s): a ManualClock advanced in
 // steps of dt accumulates rounding, and the period it lands on must still count as due.
 constexpr double kTimeEpsilon = 1e-9;
-
-std::string format_number(double value, const char* format = "%g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 bool is_printable_ascii(const std::string& text) {
   return std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });

@@ -1,0 +1,13 @@
+#include "core/number_format.hpp"
+
+#include <cstdio>
+
+namespace telear {
+
+std::string format_number(double value, const char* format) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+}  // namespace telear
