@@ -5,19 +5,19 @@
 
 namespace telear::bench {
 
-Result<KDL::Chain> kdl_chain_from_dh(const RobotModel& model) {
+Result<KDL::Chain> kdl_chain_from_dh(const core::RobotModel& model) {
   if (!model.dh()) {
     return Error{"robot '" + model.name() +
                  "' has no DH table; the KDL baseline is built from one (e.g. puma560)"};
   }
-  const std::vector<DhRow>& rows = *model.dh();
+  const std::vector<core::DhRow>& rows = *model.dh();
   KDL::Chain chain;
   for (int i = 0; i < model.dof(); ++i) {
-    if (model.joint(i).type != JointType::kRevolute) {
+    if (model.joint(i).type != core::JointType::kRevolute) {
       return Error{"robot '" + model.name() + "': joint " + std::to_string(i + 1) +
                    " is prismatic; the KDL baseline supports revolute DH joints only"};
     }
-    const DhRow& row = rows[static_cast<size_t>(i)];
+    const core::DhRow& row = rows[static_cast<size_t>(i)];
     KDL::Frame tip = KDL::Frame::DH(row.a, row.alpha, row.d, 0.0);
     if (i + 1 == model.dof()) tip = tip * to_kdl(model.T_flange_tool());
     chain.addSegment(

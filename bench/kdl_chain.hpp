@@ -16,13 +16,13 @@
 #include <kdl/frames.hpp>
 #include <kdl/jntarray.hpp>
 
-#include "core/result.hpp"
-#include "core/robot_model.hpp"
+#include "telear/core/result.hpp"
+#include "telear/core/robot_model.hpp"
 
 namespace telear::bench {
 
 // Fails (with a message) when the model has no DH table or a prismatic joint.
-Result<KDL::Chain> kdl_chain_from_dh(const RobotModel& model);
+Result<KDL::Chain> kdl_chain_from_dh(const core::RobotModel& model);
 
 KDL::JntArray to_kdl(const Eigen::VectorXd& q);
 Eigen::VectorXd from_kdl(const KDL::JntArray& q);

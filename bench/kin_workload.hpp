@@ -7,12 +7,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/robot_model.hpp"
+#include "telear/core/robot_model.hpp"
 
 namespace telear::bench {
 
 // Uniform random joint vectors within the model's limits (infinite limits: [-pi, pi]).
-std::vector<Eigen::VectorXd> random_configurations(const RobotModel& model, int count,
+std::vector<Eigen::VectorXd> random_configurations(const core::RobotModel& model, int count,
                                                    std::uint64_t seed);
 
 struct IkCase {
@@ -22,7 +22,7 @@ struct IkCase {
 };
 
 // `count` reachable targets; q_near differs from q_true by up to `seed_noise_rad` per joint.
-std::vector<IkCase> make_ik_cases(const RobotModel& model, int count, std::uint64_t seed,
+std::vector<IkCase> make_ik_cases(const core::RobotModel& model, int count, std::uint64_t seed,
                                   double seed_noise_rad = 0.1);
 
 }  // namespace telear::bench

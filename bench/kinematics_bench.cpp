@@ -17,10 +17,10 @@
 
 #include "bench/kdl_chain.hpp"
 #include "bench/kin_workload.hpp"
-#include "core/ik_analytic.hpp"
-#include "core/ik_numeric.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/core/ik_analytic.hpp"
+#include "telear/core/ik_numeric.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
 
 namespace telear::bench {
 namespace {
@@ -29,8 +29,8 @@ constexpr int kInputs = 1024;  // power of two: the index wraps with a mask
 constexpr int kIkCases = 1000;
 
 struct Fixture {
-  RobotModelPtr model;
-  PumaGeometry geometry;
+  core::RobotModelPtr model;
+  core::PumaGeometry geometry;
   KDL::Chain chain;
   std::vector<Eigen::VectorXd> q;
   std::vector<KDL::JntArray> q_kdl;
@@ -45,13 +45,13 @@ struct Fixture {
  private:
   static Fixture make() {
     Fixture f;
-    auto model = load_robot("puma560");
+    auto model = core::load_robot("puma560");
     if (!model) {
       std::fprintf(stderr, "kinematics_bench: %s\n", model.error().message.c_str());
       std::exit(2);
     }
     f.model = *model;
-    auto geometry = puma_geometry(*f.model);
+    auto geometry = core::puma_geometry(*f.model);
     if (!geometry) {
       std::fprintf(stderr, "kinematics_bench: %s\n", geometry.error().message.c_str());
       std::exit(2);
@@ -75,10 +75,10 @@ struct Fixture {
 
 void BM_Telear_FK_AllFrames(benchmark::State& state) {
   const Fixture& f = Fixture::get();
-  KinematicsData data(*f.model);
+  core::KinematicsData data(*f.model);
   int k = 0;
   for (auto _ : state) {
-    forward_kinematics(*f.model, data, f.q[static_cast<size_t>(k++ & (kInputs - 1))]);
+    core::forward_kinematics(*f.model, data, f.q[static_cast<size_t>(k++ & (kInputs - 1))]);
     benchmark::DoNotOptimize(data.T_base_tool);
   }
 }
@@ -87,11 +87,11 @@ BENCHMARK(BM_Telear_FK_AllFrames);
 // One wrist joint (joint 5) changes: frames 5, 6 and the tool are recomputed.
 void BM_Telear_FK_IncrementalWrist(benchmark::State& state) {
   const Fixture& f = Fixture::get();
-  KinematicsData data(*f.model);
-  forward_kinematics(*f.model, data, f.q[0]);
+  core::KinematicsData data(*f.model);
+  core::forward_kinematics(*f.model, data, f.q[0]);
   int k = 0;
   for (auto _ : state) {
-    set_joint(*f.model, data, 4, f.q[static_cast<size_t>(k++ & (kInputs - 1))][4]);
+    core::set_joint(*f.model, data, 4, f.q[static_cast<size_t>(k++ & (kInputs - 1))][4]);
     benchmark::DoNotOptimize(data.T_base_tool);
   }
 }
@@ -100,12 +100,12 @@ BENCHMARK(BM_Telear_FK_IncrementalWrist);
 // Full FK followed by the Jacobian: the work KDL's JntToJac does.
 void BM_Telear_Jacobian_WithFK(benchmark::State& state) {
   const Fixture& f = Fixture::get();
-  KinematicsData data(*f.model);
-  Jacobian J(6, f.model->dof());
+  core::KinematicsData data(*f.model);
+  core::Jacobian J(6, f.model->dof());
   int k = 0;
   for (auto _ : state) {
-    forward_kinematics(*f.model, data, f.q[static_cast<size_t>(k++ & (kInputs - 1))]);
-    geometric_jacobian(*f.model, data, JacobianFrame::kBase, J);
+    core::forward_kinematics(*f.model, data, f.q[static_cast<size_t>(k++ & (kInputs - 1))]);
+    core::geometric_jacobian(*f.model, data, core::JacobianFrame::kBase, J);
     benchmark::DoNotOptimize(J.data());
   }
 }
@@ -114,11 +114,11 @@ BENCHMARK(BM_Telear_Jacobian_WithFK);
 // The Jacobian alone, from frames already computed (as inside an IK iteration).
 void BM_Telear_Jacobian_FromFrames(benchmark::State& state) {
   const Fixture& f = Fixture::get();
-  KinematicsData data(*f.model);
-  forward_kinematics(*f.model, data, f.q[0]);
-  Jacobian J(6, f.model->dof());
+  core::KinematicsData data(*f.model);
+  core::forward_kinematics(*f.model, data, f.q[0]);
+  core::Jacobian J(6, f.model->dof());
   for (auto _ : state) {
-    geometric_jacobian(*f.model, data, JacobianFrame::kBase, J);
+    core::geometric_jacobian(*f.model, data, core::JacobianFrame::kBase, J);
     benchmark::DoNotOptimize(J.data());
     benchmark::ClobberMemory();
   }
@@ -128,10 +128,10 @@ BENCHMARK(BM_Telear_Jacobian_FromFrames);
 // All 8 closed-form solutions, allocation-free core.
 void BM_Telear_AnalyticIK_All8(benchmark::State& state) {
   const Fixture& f = Fixture::get();
-  PumaIkSolutions solutions;
+  core::PumaIkSolutions solutions;
   size_t k = 0;
   for (auto _ : state) {
-    solve_puma_ik(f.geometry, f.ik[k++ % f.ik.size()].T_base_tool, solutions);
+    core::solve_puma_ik(f.geometry, f.ik[k++ % f.ik.size()].T_base_tool, solutions);
     benchmark::DoNotOptimize(solutions.q.data());
     benchmark::ClobberMemory();
   }
@@ -143,8 +143,8 @@ void BM_Telear_AnalyticIK_LabelledApi(benchmark::State& state) {
   const Fixture& f = Fixture::get();
   size_t k = 0;
   for (auto _ : state) {
-    AnalyticIkResult r =
-        solve_analytic_ik(*f.model, f.geometry, f.ik[k++ % f.ik.size()].T_base_tool);
+    core::AnalyticIkResult r =
+        core::solve_analytic_ik(*f.model, f.geometry, f.ik[k++ % f.ik.size()].T_base_tool);
     benchmark::DoNotOptimize(r.solutions.data());
   }
 }
@@ -153,14 +153,14 @@ BENCHMARK(BM_Telear_AnalyticIK_LabelledApi);
 // telear's Levenberg-Marquardt; arg 0: cold start from q = 0, 1: seeded near the answer.
 void BM_Telear_NumericIK(benchmark::State& state) {
   const Fixture& f = Fixture::get();
-  NumericIkSolver solver(*f.model);
+  core::NumericIkSolver solver(*f.model);
   const bool seeded = state.range(0) == 1;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.model->dof());
   size_t k = 0;
   double solved = 0;
   for (auto _ : state) {
     const IkCase& c = f.ik[k++ % f.ik.size()];
-    const NumericIkResult r = solver.solve(c.T_base_tool, seeded ? c.q_near : zero);
+    const core::NumericIkResult r = solver.solve(c.T_base_tool, seeded ? c.q_near : zero);
     solved += r.success ? 1 : 0;
     benchmark::DoNotOptimize(r.q.data());
   }

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "apps/render_bench_command.hpp"
-#include "render/egl_context.hpp"
+#include "telear/render/egl_context.hpp"
 
 namespace {
 

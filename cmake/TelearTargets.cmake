@@ -1,11 +1,14 @@
 # Helpers shared by every layer: one place sets warnings and include roots.
 
 # telear_library(NAME SOURCES ... ) creates the static library telear_NAME, alias telear::NAME,
-# whose headers are included as "NAME/file.hpp" from src/.
+# whose public headers are included as "telear/NAME/file.hpp" from include/ (in the build
+# tree and, installed, from the package's include directory).
 function(telear_library name)
   add_library(telear_${name} STATIC ${ARGN})
   add_library(telear::${name} ALIAS telear_${name})
-  target_include_directories(telear_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  set_target_properties(telear_${name} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(telear_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                   $<INSTALL_INTERFACE:include>)
   telear_warnings(telear_${name})
 endfunction()
 

@@ -20,10 +20,10 @@
 
 #include "bench/kdl_chain.hpp"
 #include "bench/kin_workload.hpp"
-#include "core/ik_analytic.hpp"
-#include "core/ik_numeric.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/core/ik_analytic.hpp"
+#include "telear/core/ik_numeric.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
 namespace {
@@ -81,7 +81,7 @@ struct IkStats {
   int unverified = 0;      // reported solved, but FK of the answer misses the target
 };
 
-bool within_limits(const RobotModel& model, const Eigen::VectorXd& q) {
+bool within_limits(const core::RobotModel& model, const Eigen::VectorXd& q) {
   for (int i = 0; i < model.dof(); ++i) {
     bool inside = false;
     for (int turns = -2; turns <= 2 && !inside; ++turns) {
@@ -95,19 +95,19 @@ bool within_limits(const RobotModel& model, const Eigen::VectorXd& q) {
 
 // Times solve(k) -> (success, q) for every case k, one CPU-clock reading per solve.
 template <typename Solve>
-IkStats time_numeric_ik(const RobotModel& model, const std::vector<bench::IkCase>& cases,
+IkStats time_numeric_ik(const core::RobotModel& model, const std::vector<bench::IkCase>& cases,
                         Solve&& solve, double verify_position_m, double verify_rotation_rad) {
   std::vector<double> times_us(cases.size());
   int solved = 0;
   IkStats stats;
-  KinematicsData data(model);
+  core::KinematicsData data(model);
   for (size_t k = 0; k < cases.size(); ++k) {
     const double t0 = cpu_seconds();
     const auto [success, q] = solve(k);
     times_us[k] = (cpu_seconds() - t0) * 1e6;
     if (!success) continue;
-    forward_kinematics(model, data, q);
-    const Vector6d e = pose_error_in_base(data.T_base_tool, cases[k].T_base_tool);
+    core::forward_kinematics(model, data, q);
+    const core::Vector6d e = core::pose_error_in_base(data.T_base_tool, cases[k].T_base_tool);
     if (e.head<3>().norm() > verify_position_m || e.tail<3>().norm() > verify_rotation_rad) {
       ++stats.unverified;
     } else if (!within_limits(model, q)) {
@@ -218,19 +218,19 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
     err << "telear bench kin: --poses must be at least 100, got " << options.poses << "\n";
     return 2;
   }
-  auto loaded = load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot);
   if (!loaded) {
     err << "telear bench kin: " << loaded.error().message << "\n";
     return 2;
   }
-  const RobotModel& model = **loaded;
+  const core::RobotModel& model = **loaded;
   auto built = bench::kdl_chain_from_dh(model);
   if (!built) {
     err << "telear bench kin: " << built.error().message << "\n";
     return 2;
   }
   const KDL::Chain chain = *built;  // KDL's solvers keep a reference: it outlives them
-  auto geometry = puma_geometry(model);
+  auto geometry = core::puma_geometry(model);
   if (!geometry) {
     err << "telear bench kin: " << geometry.error().message << "\n";
     return 2;
@@ -269,12 +269,12 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
   const std::vector<bench::IkCase> cases = bench::make_ik_cases(model, options.poses, 2);
 
   // Sanity check of the baseline: KDL's frames equal telear's on every target's q_true.
-  KinematicsData data(model);
+  core::KinematicsData data(model);
   KDL::ChainFkSolverPos_recursive kdl_fk(chain);
   std::vector<KDL::Frame> kdl_frames(chain.getNrOfSegments());
   double fk_max_diff = 0.0;
   for (const auto& c : cases) {
-    forward_kinematics(model, data, c.q_true);
+    core::forward_kinematics(model, data, c.q_true);
     kdl_fk.JntToCart(bench::to_kdl(c.q_true), kdl_frames);
     for (int i = 0; i < n; ++i) {
       const Eigen::Isometry3d T_kdl = bench::from_kdl(kdl_frames[static_cast<size_t>(i)]);
@@ -288,7 +288,7 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
 
   // Forward kinematics, all frames.
   const double fk_telear = best_ns_per_call([&](long i) {
-    forward_kinematics(model, data, qs[static_cast<size_t>(i & mask)]);
+    core::forward_kinematics(model, data, qs[static_cast<size_t>(i & mask)]);
     keep(data.T_base_tool);
   });
   const double fk_kdl = best_ns_per_call([&](long i) {
@@ -301,19 +301,19 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
   // Incremental FK: the wrist joint (5 of 6) changes; KDL has no incremental form, so its
   // figure is full FK, what a KDL user pays for the same update.
   const int wrist = std::max(0, n - 2);
-  forward_kinematics(model, data, qs[0]);
+  core::forward_kinematics(model, data, qs[0]);
   const double incremental = best_ns_per_call([&](long i) {
-    set_joint(model, data, wrist, qs[static_cast<size_t>(i & mask)][wrist]);
+    core::set_joint(model, data, wrist, qs[static_cast<size_t>(i & mask)][wrist]);
     keep(data.T_base_tool);
   });
   rows.push_back({"FK, joint " + std::to_string(wrist + 1) + " changed (incremental)", "ns",
                   incremental, fk_kdl, "", ""});
 
   // Jacobian at a new configuration: FK + J, the work of KDL's JntToJac.
-  Jacobian J(6, n);
+  core::Jacobian J(6, n);
   const double jac_telear = best_ns_per_call([&](long i) {
-    forward_kinematics(model, data, qs[static_cast<size_t>(i & mask)]);
-    geometric_jacobian(model, data, JacobianFrame::kBase, J);
+    core::forward_kinematics(model, data, qs[static_cast<size_t>(i & mask)]);
+    core::geometric_jacobian(model, data, core::JacobianFrame::kBase, J);
     keep(J(0, 0));
   });
   KDL::ChainJntToJacSolver kdl_jac(chain);
@@ -325,19 +325,19 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
   rows.push_back({"Jacobian (with FK)", "ns", jac_telear, jac_kdl, "", ""});
 
   // Analytic IK, all 8 solutions: the allocation-free core and the labelled API.
-  PumaIkSolutions solutions;
+  core::PumaIkSolutions solutions;
   const int ik_inputs = std::min<int>(kInputs, static_cast<int>(cases.size()));
   auto target = [&](long i) -> const Eigen::Isometry3d& {
     return cases[static_cast<size_t>(i % ik_inputs)].T_base_tool;
   };
   const double analytic = best_ns_per_call([&](long i) {
-    solve_puma_ik(*geometry, target(i), solutions);
+    core::solve_puma_ik(*geometry, target(i), solutions);
     keep(solutions.q[0]);
   });
   rows.push_back({"analytic IK, all 8 (solve_puma_ik)", "ns", analytic, kNone, "<= 1000 ns",
                   met_time(analytic, 1000.0, "ns")});
   const double analytic_api = best_ns_per_call([&](long i) {
-    const AnalyticIkResult r = solve_analytic_ik(model, *geometry, target(i));
+    const core::AnalyticIkResult r = core::solve_analytic_ik(model, *geometry, target(i));
     keep(r.solutions.size());
   });
   rows.push_back({"analytic IK, all 8 (labelled API)", "ns", analytic_api, kNone, "", ""});
@@ -346,14 +346,14 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
   double analytic_round_trip = 0.0;
   int unreachable = 0;
   for (const auto& c : cases) {
-    solve_puma_ik(*geometry, c.T_base_tool, solutions);
+    core::solve_puma_ik(*geometry, c.T_base_tool, solutions);
     if (!solutions.reachable()) {
       ++unreachable;
       continue;
     }
-    for (int s = 0; s < PumaIkSolutions::kCount; ++s) {
+    for (int s = 0; s < core::PumaIkSolutions::kCount; ++s) {
       if (solutions.singularity[static_cast<size_t>(s)] != 0) continue;
-      forward_kinematics(model, data, solutions.q[static_cast<size_t>(s)]);
+      core::forward_kinematics(model, data, solutions.q[static_cast<size_t>(s)]);
       analytic_round_trip =
           std::max(analytic_round_trip,
                    (data.T_base_tool.matrix() - c.T_base_tool.matrix()).cwiseAbs().maxCoeff());
@@ -361,7 +361,7 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
   }
 
   // Numeric IK: telear's Levenberg-Marquardt against KDL's ChainIkSolverPos_LMA (defaults).
-  NumericIkSolver solver(model);
+  core::NumericIkSolver solver(model);
   const double tol_p = solver.options().position_tolerance_m;
   const double tol_r = solver.options().orientation_tolerance_rad;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
@@ -384,7 +384,7 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
     return time_numeric_ik(
         model, cases,
         [&](size_t k) {
-          const NumericIkResult r =
+          const core::NumericIkResult r =
               solver.solve(cases[k].T_base_tool, seeded ? cases[k].q_near : zero);
           return Outcome{r.success, r.q};
         },

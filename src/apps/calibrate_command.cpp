@@ -6,9 +6,9 @@
 #include <utility>
 #include <vector>
 
-#include "vision/calibration_file.hpp"
-#include "vision/calibration_images.hpp"
-#include "vision/calibration_report.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/calibration_images.hpp"
+#include "telear/vision/calibration_report.hpp"
 
 namespace telear::cli {
 namespace {
@@ -20,8 +20,8 @@ int fail(std::ostream& err, const std::string& message, int code = 2) {
   return code;
 }
 
-DetectionCallback progress_printer(std::ostream& out) {
-  return [&out](const DetectionProgress& p) {
+vision::DetectionCallback progress_printer(std::ostream& out) {
+  return [&out](const vision::DetectionProgress& p) {
     const int width = static_cast<int>(std::to_string(p.count).size());
     char counter[32];
     std::snprintf(counter, sizeof counter, "[%*zu/%zu] ", width, p.index, p.count);
@@ -37,12 +37,12 @@ std::string skipped_note(std::size_t skipped, std::size_t given, const char* wha
 }
 
 // ROS camera_info files of the result: (path, text) pairs.
-std::vector<std::pair<std::string, std::string>> camera_info_files(const std::string& prefix,
-                                                                   const CalibrationReport& r) {
+std::vector<std::pair<std::string, std::string>> camera_info_files(
+    const std::string& prefix, const vision::CalibrationReport& r) {
   if (prefix.empty()) return {};
-  if (r.mono) return {{prefix + ".yaml", ros_mono_camera_info_yaml(*r.mono, "camera")}};
-  return {{prefix + "_left.yaml", ros_stereo_camera_info_yaml(*r.stereo, false, "left")},
-          {prefix + "_right.yaml", ros_stereo_camera_info_yaml(*r.stereo, true, "right")}};
+  if (r.mono) return {{prefix + ".yaml", vision::ros_mono_camera_info_yaml(*r.mono, "camera")}};
+  return {{prefix + "_left.yaml", vision::ros_stereo_camera_info_yaml(*r.stereo, false, "left")},
+          {prefix + "_right.yaml", vision::ros_stereo_camera_info_yaml(*r.stereo, true, "right")}};
 }
 
 std::vector<std::string> output_paths(const CalibrateOptions& o) {
@@ -63,9 +63,9 @@ std::vector<std::string> output_paths(const CalibrateOptions& o) {
 
 int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostream& err) {
   // Everything that can be checked cheaply, before detection.
-  auto pattern = parse_calibration_pattern(options.pattern);
+  auto pattern = vision::parse_calibration_pattern(options.pattern);
   if (!pattern) return fail(err, "--pattern: " + pattern.error().message);
-  StereoCalibrationOptions calibration;
+  vision::StereoCalibrationOptions calibration;
   calibration.calibration.outlier_factor = options.outlier_factor;
   calibration.calibration.fix_k3 = !options.estimate_k3;
   calibration.calibration.zero_tangential = options.zero_tangential;
@@ -79,30 +79,31 @@ int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostre
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const char* option =
         i == 0 ? "-o" : (outputs[i] == options.report ? "--report" : "--camera-info");
-    if (Status s = check_output_path(outputs[i], option); !s) return fail(err, s.error().message);
+    if (Status s = vision::check_output_path(outputs[i], option); !s)
+      return fail(err, s.error().message);
     for (std::size_t j = 0; j < i; ++j) {
       if (outputs[i] == outputs[j])
         return fail(err, "'" + outputs[i] + "' is given as two outputs");
     }
   }
-  auto left = expand_image_glob(options.left, "--left");
+  auto left = vision::expand_image_glob(options.left, "--left");
   if (!left) return fail(err, left.error().message);
 
-  CalibrationReport report;
+  vision::CalibrationReport report;
   report.pattern = *pattern;
   const bool stereo = !options.right.empty();
   if (stereo) {
-    auto right = expand_image_glob(options.right, "--right");
+    auto right = vision::expand_image_glob(options.right, "--right");
     if (!right) return fail(err, right.error().message);
     out << "detecting " << pattern->spec() << " in " << left->size() << " image pairs\n";
-    auto views = detect_in_image_pairs(*left, *right, *pattern, progress_printer(out));
+    auto views = vision::detect_in_image_pairs(*left, *right, *pattern, progress_printer(out));
     if (!views) return fail(err, views.error().message);
     report.image_size = views->image_size;
     report.views_given = left->size();
     report.skipped = views->rejected;
     report.reordered_pairs = views->reordered_pairs;
     out << "calibrating the stereo pair from " << views->views.size() << " pairs" << std::endl;
-    auto result = calibrate_stereo(*pattern, views->views, views->image_size, calibration);
+    auto result = vision::calibrate_stereo(*pattern, views->views, views->image_size, calibration);
     if (!result) {
       return fail(err, result.error().message +
                            skipped_note(views->rejected.size(), left->size(), "pairs"));
@@ -110,14 +111,14 @@ int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostre
     report.stereo = std::move(*result);
   } else {
     out << "detecting " << pattern->spec() << " in " << left->size() << " images\n";
-    auto views = detect_in_images(*left, *pattern, progress_printer(out));
+    auto views = vision::detect_in_images(*left, *pattern, progress_printer(out));
     if (!views) return fail(err, views.error().message);
     report.image_size = views->image_size;
     report.views_given = left->size();
     report.skipped = views->rejected;
     out << "calibrating the camera from " << views->views.size() << " images" << std::endl;
     auto result =
-        calibrate_mono(*pattern, views->views, views->image_size, calibration.calibration);
+        vision::calibrate_mono(*pattern, views->views, views->image_size, calibration.calibration);
     if (!result) {
       return fail(err, result.error().message +
                            skipped_note(views->rejected.size(), left->size(), "images"));
@@ -125,16 +126,17 @@ int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostre
     report.mono = std::move(*result);
   }
 
-  out << "\n" << calibration_summary(report);
+  out << "\n" << vision::calibration_summary(report);
 
   std::vector<std::pair<std::string, std::string>> files;
   files.emplace_back(options.output, report.stereo
-                                         ? stereo_calibration_yaml(*report.stereo, *pattern)
+                                         ? vision::stereo_calibration_yaml(*report.stereo, *pattern)
                                          : mono_calibration_yaml(*report.mono, *pattern));
-  if (!options.report.empty()) files.emplace_back(options.report, calibration_report_json(report));
+  if (!options.report.empty())
+    files.emplace_back(options.report, vision::calibration_report_json(report));
   for (auto& file : camera_info_files(options.camera_info, report))
     files.push_back(std::move(file));
-  if (Status s = write_files_atomically(files); !s) return fail(err, s.error().message, 1);
+  if (Status s = vision::write_files_atomically(files); !s) return fail(err, s.error().message, 1);
   out << "\nwrote";
   for (const auto& [path, text] : files) out << " " << path;
   out << "\n";

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/result.hpp"
+#include "telear/core/result.hpp"
 
 namespace telear::cli {
 

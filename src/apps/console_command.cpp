@@ -1,6 +1,6 @@
 #include "apps/console_command.hpp"
 
-#include "console/console_app.hpp"
+#include "telear/console/console_app.hpp"
 
 namespace telear::cli {
 
@@ -16,7 +16,7 @@ int run_console(const console::ConsoleOptions& given, std::ostream& out, std::os
     err << "telear console: --headless needs --frames N or --script FILE (nothing would end it)\n";
     return 2;
   }
-  auto app = console::ConsoleApp::Create(options, out);
+  auto app = console::ConsoleApp::create(options, out);
   if (!app) {
     err << "telear console: " << app.error().message << "\n";
     return 2;

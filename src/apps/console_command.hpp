@@ -6,7 +6,7 @@
 
 #include <ostream>
 
-#include "console/console_options.hpp"
+#include "telear/console/console_options.hpp"
 
 namespace telear::cli {
 

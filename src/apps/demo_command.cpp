@@ -16,22 +16,22 @@
 #include "apps/register_command.hpp"
 #include "apps/sim_command.hpp"
 #include "apps/sim_observations_command.hpp"
-#include "core/arm_body.hpp"
-#include "core/inverse_kinematics.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
-#include "net/clock.hpp"
-#include "net/command_bytes.hpp"
-#include "net/latency_summary.hpp"
-#include "render/ar_view.hpp"
-#include "render/egl_context.hpp"
-#include "render/image_io.hpp"
-#include "session/embedded_servers.hpp"
-#include "session/session.hpp"
-#include "session/view_input.hpp"
-#include "sim/calibration_targets.hpp"
-#include "sim/scene_renderer.hpp"
-#include "vision/camera_file.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/core/inverse_kinematics.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/net/command_bytes.hpp"
+#include "telear/net/latency_summary.hpp"
+#include "telear/render/ar_view.hpp"
+#include "telear/render/egl_context.hpp"
+#include "telear/render/image_io.hpp"
+#include "telear/session/embedded_servers.hpp"
+#include "telear/session/session.hpp"
+#include "telear/session/view_input.hpp"
+#include "telear/sim/calibration_targets.hpp"
+#include "telear/sim/scene_renderer.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::cli {
 
@@ -140,7 +140,7 @@ Calibration calibrate_and_register(const DemoOptions& options, const std::string
 // task position has an IK solution within the limits wins. Returns the rotation of the
 // gripper's link (link 6) in the base frame and a note for the terminal.
 std::pair<Eigen::Matrix3d, std::string> grasp_orientation(
-    const RobotModel& model, const Eigen::Vector3d& grip_link,
+    const core::RobotModel& model, const Eigen::Vector3d& grip_link,
     const std::vector<Eigen::Vector3d>& grip_positions, const Eigen::VectorXd& q_start,
     const Eigen::Vector3d& camera_base) {
   const Eigen::Vector3d to_camera = (camera_base - grip_positions.front()).normalized();
@@ -177,7 +177,7 @@ std::pair<Eigen::Matrix3d, std::string> grasp_orientation(
       Eigen::Isometry3d T_base_link = Eigen::Isometry3d::Identity();
       T_base_link.linear() = c.R;
       T_base_link.translation() = p - c.R * grip_link;
-      auto solution = solve_ik_nearest(model, T_base_link * model.T_flange_tool(), q);
+      auto solution = core::solve_ik_nearest(model, T_base_link * model.T_flange_tool(), q);
       if (!solution) {
         ok = false;
         break;
@@ -331,7 +331,7 @@ class Recorder {
   int residual_misses_[2] = {0, 0};
   std::string residual_message_[2];
   int ticks_ = 0, frames_shown_ = 0, video_frames_ = 0;
-  render::Image last_image_;
+  core::Image last_image_;
   std::vector<std::string> key_frames_;
 };
 
@@ -365,7 +365,7 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
     if (!(options.fps >= 1 && options.fps <= 60)) throw Failure{"--fps must be in 1..60"};
     fs::create_directories(options.out);
     const std::string cache = options.cache.empty() ? options.out + "/cache" : options.cache;
-    const std::string rig = data_directory() + "/rigs/puma560_rig.yaml";
+    const std::string rig = core::data_directory() + "/rigs/puma560_rig.yaml";
     auto step = [&](int n, const std::string& what) {
       out << "[" << n << "/" << kSteps << "] " << what << " ("
           << fixed(seconds_since(demo_start), 1) << " s)" << std::endl;
@@ -376,14 +376,14 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
     const Calibration calibration = calibrate_and_register(options, cache, rig, tool_log);
     out << "      " << (calibration.cached ? "cached in " : "written to ") << cache << " ("
         << fixed(calibration.seconds, 1) << " s)\n";
-    auto camera_file = load_camera_file(calibration.registered_file);
+    auto camera_file = vision::load_camera_file(calibration.registered_file);
     if (!camera_file || !camera_file->right) {
       throw Failure{"cannot load the registered calibration: " +
                     (camera_file ? std::string("not a stereo file") : camera_file.error().message)};
     }
-    auto model_or = load_robot("puma560");
+    auto model_or = core::load_robot("puma560");
     if (!model_or) throw Failure{model_or.error().message};
-    const RobotModelPtr model = *model_or;
+    const core::RobotModelPtr model = *model_or;
 
     step(2, "starting the simulated robot server and vision server on loopback");
     session::EmbeddedServersOptions server_options;
@@ -393,7 +393,7 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
     // A ready pose away from the wrist singularity of qr (q5 = 0).
     server_options.initial_q =
         (Eigen::VectorXd(6) << 0.0, 30.0, -120.0, 0.0, -45.0, 0.0).finished() * (M_PI / 180.0);
-    auto servers = session::EmbeddedServers::Start(model, server_options);
+    auto servers = session::EmbeddedServers::create(model, server_options);
     if (!servers) throw Failure{servers.error().message};
     out << "      robot server " << (*servers)->robot_address() << ", vision server "
         << (*servers)->vision_address() << "\n";
@@ -407,23 +407,23 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
     session_options.vision.address = (*servers)->vision_address();
     session_options.vision.width = width;
     session_options.vision.height = height;
-    StereoCameraModel cameras;
-    cameras.left = resized_camera(camera_file->left, width, height);
-    cameras.right = resized_camera(*camera_file->right, width, height);
+    vision::StereoCameraModel cameras;
+    cameras.left = vision::resized_camera(camera_file->left, width, height);
+    cameras.right = vision::resized_camera(*camera_file->right, width, height);
     session_options.cameras = cameras;
     auto marker = sim::make_aruco_marker({});
     if (!marker) throw Failure{marker.error().message};
     session_options.marker = session::GripperMarker{marker->spec.id, marker->corners_flange};
-    auto session_or = session::Session::Create(model, session_options);
+    auto session_or = session::Session::create(model, session_options);
     if (!session_or) throw Failure{session_or.error().message};
     session::Session& session = **session_or;
     session.connect();
 
     auto context = render::create_headless_context();
     if (!context) throw Failure{"no OpenGL context: " + context.error().message};
-    auto body = body_description_for(*model);
+    auto body = core::body_description_for(*model);
     if (!body) throw Failure{body.error().message};
-    const ArmBody arm_body = build_arm_body(*body);
+    const core::ArmBody arm_body = core::build_arm_body(*body);
     const Eigen::Vector3d box = sim::SceneRenderer::workspace_object().centre_base;
     auto view = render::ArView::create(
         *model, arm_body, cameras,
@@ -468,8 +468,8 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
       Eigen::Isometry3d T_base_link = Eigen::Isometry3d::Identity();
       T_base_link.linear() = R;
       T_base_link.translation() = task.grip_position - R * grip_link;
-      const MotionOutcome outcome =
-          session.move_ghost(CartesianTarget{T_base_link * model->T_flange_tool()});
+      const core::MotionOutcome outcome =
+          session.move_ghost(core::CartesianTarget{T_base_link * model->T_flange_tool()});
       if (!outcome.accepted) {
         throw Failure{"rehearsal: " + task.label + ": " + outcome.rejection.message};
       }

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "core/arm_body.hpp"
-#include "core/robot_loader.hpp"
-#include "vision/calibration_file.hpp"
-#include "vision/camera_file.hpp"
-#include "vision/overlay_accuracy.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/camera_file.hpp"
+#include "telear/vision/overlay_accuracy.hpp"
 
 namespace telear::cli {
 namespace {
@@ -25,8 +25,9 @@ int fail(std::ostream& err, const std::string& message, int code = 2) {
 }
 
 // A stereo camera file with both poses, or an error naming the option.
-Result<StereoCameraModel> load_registered_pair(const std::string& path, const char* option) {
-  auto file = load_camera_file(path);
+Result<vision::StereoCameraModel> load_registered_pair(const std::string& path,
+                                                       const char* option) {
+  auto file = vision::load_camera_file(path);
   if (!file) return Error{std::string(option) + ": " + file.error().message};
   if (!file->is_stereo()) {
     return Error{std::string(option) + " '" + path + "' is a mono camera file; give a stereo one"};
@@ -35,7 +36,7 @@ Result<StereoCameraModel> load_registered_pair(const std::string& path, const ch
     return Error{std::string(option) + " '" + path +
                  "' has no T_cam_base for both eyes (register it first: telear register)"};
   }
-  return StereoCameraModel{file->left, *file->right};
+  return vision::StereoCameraModel{file->left, *file->right};
 }
 
 struct Check {
@@ -63,24 +64,24 @@ int run_eval(const EvalOptions& options, std::ostream& out, std::ostream& err) {
   if (!(options.spacing_m >= 0.001 && options.spacing_m <= 1.0))
     return fail(err, "--spacing must be within 0.001..1 m");
   if (!options.json.empty()) {
-    if (Status s = check_output_path(options.json, "--json"); !s)
+    if (Status s = vision::check_output_path(options.json, "--json"); !s)
       return fail(err, s.error().message);
   }
   auto truth = load_registered_pair(options.truth, "--truth");
   if (!truth) return fail(err, truth.error().message);
   auto estimate = load_registered_pair(options.estimate, "--estimate");
   if (!estimate) return fail(err, estimate.error().message);
-  auto model = load_robot(options.robot);
+  auto model = core::load_robot(options.robot);
   if (!model) return fail(err, "--robot: " + model.error().message);
-  auto description = body_description_for(**model);
+  auto description = core::body_description_for(**model);
   if (!description) return fail(err, "--robot: " + description.error().message);
-  const ArmBody body = build_arm_body(*description);
+  const core::ArmBody body = core::build_arm_body(*description);
 
-  AccuracyOptions accuracy_options;
+  vision::AccuracyOptions accuracy_options;
   accuracy_options.configurations = options.configurations;
   accuracy_options.spacing_m = options.spacing_m;
-  const AccuracyReport report =
-      evaluate_accuracy(**model, body, *truth, *estimate, accuracy_options);
+  const vision::AccuracyReport report =
+      vision::evaluate_accuracy(**model, body, *truth, *estimate, accuracy_options);
 
   const AccuracyTargets targets;
   std::vector<Check> checks;
@@ -89,8 +90,8 @@ int run_eval(const EvalOptions& options, std::ostream& out, std::ostream& err) {
   for (const auto* eye : {&report.left, &report.right}) {
     const bool left = eye == &report.left;
     const char* name = left ? "left" : "right";
-    const CameraModel& t = eye->truth;
-    const CameraModel& e = eye->estimate;
+    const vision::CameraModel& t = eye->truth;
+    const vision::CameraModel& e = eye->estimate;
     const double fx_pct = 100.0 * (e.fx - t.fx) / t.fx;
     const double fy_pct = 100.0 * (e.fy - t.fy) / t.fy;
     out << "\n" << name << " camera            truth       estimate      error\n";
@@ -163,7 +164,7 @@ int run_eval(const EvalOptions& options, std::ostream& out, std::ostream& err) {
     json["overlay_samples_per_configuration"] = report.samples_per_configuration;
     json["checks"] = json_checks;
     json["pass"] = all;
-    if (Status s = write_files_atomically({{options.json, json.dump(2) + "\n"}}); !s) {
+    if (Status s = vision::write_files_atomically({{options.json, json.dump(2) + "\n"}}); !s) {
       return fail(err, s.error().message, 1);
     }
     out << "wrote " << options.json << "\n";

@@ -8,7 +8,7 @@
 // simulator's truth.yaml; the estimate: `telear register`'s output). Prints the table:
 // per eye fx, fy, cx, cy, k1, k2, k3, p1, p2 truth / estimate / error (% for focal lengths,
 // px for the principal point), the stereo baseline (mm), the registration error per eye
-// (mm, deg), the overlay error RMS / max per eye (px, vision/overlay_accuracy.hpp), and PASS
+// (mm, deg), the overlay error RMS / max per eye (px, telear/vision/overlay_accuracy.hpp), and PASS
 // or FAIL against the targets below. Exit codes: 0 evaluated (whatever the verdict), 2 bad
 // input (one line on `err`), 1 the JSON could not be written.
 

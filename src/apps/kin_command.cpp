@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include "apps/cli_parsing.hpp"
-#include "core/angles.hpp"
-#include "core/ik_analytic.hpp"
-#include "core/inverse_kinematics.hpp"
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/ik_analytic.hpp"
+#include "telear/core/inverse_kinematics.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
 namespace {
@@ -26,34 +26,34 @@ std::string format_row(const Eigen::Isometry3d& T, int row) {
 }
 
 nlohmann::json matrix_json(const Eigen::Isometry3d& T) {
-  return to_row_major(T);
+  return core::to_row_major(T);
 }
 
 // Converts degrees to radians for revolute joints when the user asked for degrees.
-Eigen::VectorXd joints_from_user(const RobotModel& model, Eigen::VectorXd q, bool degrees) {
+Eigen::VectorXd joints_from_user(const core::RobotModel& model, Eigen::VectorXd q, bool degrees) {
   if (!degrees) return q;
   for (int i = 0; i < model.dof(); ++i) {
-    if (model.joint(i).type == JointType::kRevolute) q[i] = radians_from_degrees(q[i]);
+    if (model.joint(i).type == core::JointType::kRevolute) q[i] = core::radians_from_degrees(q[i]);
   }
   return q;
 }
 
 void print_pose(const Eigen::Isometry3d& T, std::ostream& out) {
   const Eigen::Vector3d p = T.translation();
-  const Eigen::Vector3d rpy = rpy_from_rotation(T.linear());
+  const Eigen::Vector3d rpy = core::rpy_from_rotation(T.linear());
   char buffer[160];
   std::snprintf(buffer, sizeof buffer,
                 "  xyz = (%.4f, %.4f, %.4f) m   rpy = (%.3f, %.3f, %.3f) deg\n", p.x(), p.y(),
-                p.z(), degrees_from_radians(rpy.x()), degrees_from_radians(rpy.y()),
-                degrees_from_radians(rpy.z()));
+                p.z(), core::degrees_from_radians(rpy.x()), core::degrees_from_radians(rpy.y()),
+                core::degrees_from_radians(rpy.z()));
   out << buffer;
 }
 
 // Joint vector in the user's units: degrees for revolute joints with --deg.
-Eigen::VectorXd joints_to_user(const RobotModel& model, Eigen::VectorXd q, bool degrees) {
+Eigen::VectorXd joints_to_user(const core::RobotModel& model, Eigen::VectorXd q, bool degrees) {
   if (!degrees) return q;
   for (int i = 0; i < model.dof(); ++i) {
-    if (model.joint(i).type == JointType::kRevolute) q[i] = degrees_from_radians(q[i]);
+    if (model.joint(i).type == core::JointType::kRevolute) q[i] = core::degrees_from_radians(q[i]);
   }
   return q;
 }
@@ -72,11 +72,11 @@ std::string format_joints(const Eigen::VectorXd& q, int width, int precision) {
 }
 
 // 1-based index of the first joint with no 2*pi-equivalent value within its limits, or 0.
-int first_joint_outside_limits(const RobotModel& model, const Eigen::VectorXd& q) {
+int first_joint_outside_limits(const core::RobotModel& model, const Eigen::VectorXd& q) {
   for (int i = 0; i < model.dof(); ++i) {
     const double lower = model.lower_limits()[i], upper = model.upper_limits()[i];
     double v = q[i];
-    if (model.joint(i).type == JointType::kRevolute && std::isfinite(lower)) {
+    if (model.joint(i).type == core::JointType::kRevolute && std::isfinite(lower)) {
       v += 2.0 * M_PI * std::ceil((lower - 1e-9 - v) / (2.0 * M_PI));
     }
     if (v < lower - 1e-9 || v > upper + 1e-9) return i + 1;
@@ -145,28 +145,29 @@ Result<Eigen::Isometry3d> target_from_options(const KinOptions& options) {
     }
     const std::vector<double>& v = *values;
     Eigen::Vector3d rpy(v[3], v[4], v[5]);
-    if (options.degrees) rpy = rpy.unaryExpr([](double a) { return radians_from_degrees(a); });
-    return pose_from_xyz_rpy(Eigen::Vector3d(v[0], v[1], v[2]), rpy);
+    if (options.degrees)
+      rpy = rpy.unaryExpr([](double a) { return core::radians_from_degrees(a); });
+    return core::pose_from_xyz_rpy(Eigen::Vector3d(v[0], v[1], v[2]), rpy);
   }
   return Error{"needs a target: --T \"16 numbers, row-major\" or --pose x,y,z,roll,pitch,yaw"};
 }
 
 // The demo's IK part: the 8 closed-form solutions for the pose of a named configuration,
 // the worst round-trip error |FK(IK(T)) - T| and which solution is the configuration itself.
-void print_ik_round_trip(const RobotModel& model, const PumaGeometry& geometry,
-                         const NamedConfiguration& c, const Eigen::Isometry3d& T,
+void print_ik_round_trip(const core::RobotModel& model, const core::PumaGeometry& geometry,
+                         const core::NamedConfiguration& c, const Eigen::Isometry3d& T,
                          std::ostream& out) {
-  const AnalyticIkResult r = solve_analytic_ik(model, geometry, T);
-  if (r.status == IkStatus::kUnreachable) {
+  const core::AnalyticIkResult r = core::solve_analytic_ik(model, geometry, T);
+  if (r.status == core::IkStatus::kUnreachable) {
     out << "  closed-form IK: " << r.message << "\n";
     return;
   }
   out << "  closed-form IK, " << r.solutions.size() << " solutions (deg):\n";
-  KinematicsData data(model);
+  core::KinematicsData data(model);
   double worst = 0.0;
   std::string itself;
-  for (const IkSolution& s : r.solutions) {
-    forward_kinematics(model, data, s.q);
+  for (const core::IkSolution& s : r.solutions) {
+    core::forward_kinematics(model, data, s.q);
     worst = std::max(worst, (data.T_base_tool.matrix() - T.matrix()).cwiseAbs().maxCoeff());
     // At a wrist singularity only q4 + q6 is determined: compare that sum.
     double distance = 0.0;
@@ -176,7 +177,7 @@ void print_ik_round_trip(const RobotModel& model, const PumaGeometry& geometry,
         a = s.q[3] + s.q[5];
         b = c.q[3] + c.q[5];
       }
-      distance = std::max(distance, std::abs(wrap_to_pi(a - b)));
+      distance = std::max(distance, std::abs(core::wrap_to_pi(a - b)));
     }
     if (itself.empty() && distance < 1e-9) itself = s.config;
     out << "    " << s.config << "  " << format_joints(joints_to_user(model, s.q, true), 8, 2)
@@ -193,27 +194,27 @@ void print_ik_round_trip(const RobotModel& model, const PumaGeometry& geometry,
 }  // namespace
 
 int run_kin_info(const KinOptions& options, std::ostream& out, std::ostream& err) {
-  auto loaded = load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot);
   if (!loaded) {
     err << "telear kin info: " << loaded.error().message << "\n";
     return 2;
   }
-  const RobotModel& model = **loaded;
+  const core::RobotModel& model = **loaded;
   if (options.json) {
     nlohmann::json j;
     j["name"] = model.name();
     j["dof"] = model.dof();
     for (int i = 0; i < model.dof(); ++i) {
-      const JointLimits& l = model.joint(i).limits;
+      const core::JointLimits& l = model.joint(i).limits;
       j["joints"].push_back(
           {{"name", model.joint(i).name},
-           {"type", model.joint(i).type == JointType::kRevolute ? "revolute" : "prismatic"},
+           {"type", model.joint(i).type == core::JointType::kRevolute ? "revolute" : "prismatic"},
            {"lower", l.lower},
            {"upper", l.upper},
            {"max_velocity", l.max_velocity},
            {"max_acceleration", l.max_acceleration}});
     }
-    for (const NamedConfiguration& c : model.named_configurations()) {
+    for (const core::NamedConfiguration& c : model.named_configurations()) {
       j["named_configurations"][c.name] = std::vector<double>(c.q.begin(), c.q.end());
     }
     out << j.dump(2) << "\n";
@@ -225,8 +226,8 @@ int run_kin_info(const KinOptions& options, std::ostream& out, std::ostream& err
                 "limits", "max vel", "max acc");
   out << buffer;
   for (int i = 0; i < model.dof(); ++i) {
-    const Joint& joint = model.joint(i);
-    const bool revolute = joint.type == JointType::kRevolute;
+    const core::Joint& joint = model.joint(i);
+    const bool revolute = joint.type == core::JointType::kRevolute;
     const double scale = revolute ? 180.0 / M_PI : 1000.0;
     const char* unit = revolute ? "deg" : "mm";
     std::snprintf(
@@ -237,14 +238,14 @@ int run_kin_info(const KinOptions& options, std::ostream& out, std::ostream& err
     out << buffer;
   }
   out << "named configurations (deg):\n";
-  for (const NamedConfiguration& c : model.named_configurations()) {
+  for (const core::NamedConfiguration& c : model.named_configurations()) {
     out << "  " << std::left << std::setw(6) << c.name << "[";
     for (int i = 0; i < c.q.size(); ++i) {
       out << (i ? ", " : "") << std::defaultfloat << std::setprecision(6)
-          << degrees_from_radians(c.q[i]);
+          << core::degrees_from_radians(c.q[i]);
     }
     out << "]";
-    if (auto v = first_limit_violation(model, c.q))
+    if (auto v = core::first_limit_violation(model, c.q))
       out << "  (outside limits: joint " << v->joint + 1 << ")";
     out << "\n";
   }
@@ -252,12 +253,12 @@ int run_kin_info(const KinOptions& options, std::ostream& out, std::ostream& err
 }
 
 int run_kin_fk(const KinOptions& options, std::ostream& out, std::ostream& err) {
-  auto loaded = load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot);
   if (!loaded) {
     err << "telear kin fk: " << loaded.error().message << "\n";
     return 2;
   }
-  const RobotModel& model = **loaded;
+  const core::RobotModel& model = **loaded;
   Eigen::VectorXd q;
   if (auto named = model.named_configuration(options.q)) {
     q = *named;
@@ -270,50 +271,50 @@ int run_kin_fk(const KinOptions& options, std::ostream& out, std::ostream& err) 
     }
     q = joints_from_user(model, to_vector(*values), options.degrees);
   }
-  KinematicsData data(model);
-  forward_kinematics(model, data, q);
+  core::KinematicsData data(model);
+  core::forward_kinematics(model, data, q);
   if (options.json) {
     nlohmann::json j;
     j["T_base_tool"] = matrix_json(data.T_base_tool);
     j["frames"] = nlohmann::json::array();
     for (const Eigen::Isometry3d& T : data.T_base_link) j["frames"].push_back(matrix_json(T));
     j["q"] = std::vector<double>(q.begin(), q.end());
-    j["within_limits"] = within_limits(model, q);
+    j["within_limits"] = core::within_limits(model, q);
     out << j.dump(2) << "\n";
     return 0;
   }
   out << "T_base_tool:\n";
   for (int r = 0; r < 4; ++r) out << format_row(data.T_base_tool, r) << "\n";
   print_pose(data.T_base_tool, out);
-  if (auto v = first_limit_violation(model, q)) {
-    out << "warning: " << describe_violation(model, *v) << "\n";
+  if (auto v = core::first_limit_violation(model, q)) {
+    out << "warning: " << core::describe_violation(model, *v) << "\n";
   }
   return 0;
 }
 
 int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) {
   const char* who = "telear kin ik: ";
-  auto loaded = load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot);
   if (!loaded) {
     err << who << loaded.error().message << "\n";
     return 2;
   }
-  const RobotModel& model = **loaded;
+  const core::RobotModel& model = **loaded;
   auto target = target_from_options(options);
   if (!target) {
     err << who << target.error().message << "\n";
     return 2;
   }
-  if (Status s = check_ik_config(options.config); !s) {
+  if (Status s = core::check_ik_config(options.config); !s) {
     err << who << "--config: " << s.error().message << "\n";
     return 2;
   }
   const Eigen::Isometry3d& T = *target;
-  auto geometry = puma_geometry(model);
-  AnalyticIkResult result;
+  auto geometry = core::puma_geometry(model);
+  core::AnalyticIkResult result;
   if (geometry) {
-    result = solve_analytic_ik(model, *geometry, T, options.config);
-    if (result.status == IkStatus::kUnreachable) {
+    result = core::solve_analytic_ik(model, *geometry, T, options.config);
+    if (result.status == core::IkStatus::kUnreachable) {
       err << who << result.message << "\n";
       return 1;
     }
@@ -324,14 +325,14 @@ int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) 
       return 2;
     }
     // Cold start from the zero configuration (clamped into the limits by the solver).
-    auto solution = solve_ik_nearest(model, T, Eigen::VectorXd::Zero(model.dof()));
+    auto solution = core::solve_ik_nearest(model, T, Eigen::VectorXd::Zero(model.dof()));
     if (!solution) {
       err << who << solution.error().message << "\n";
       return 1;
     }
     result.solutions.push_back(std::move(solution).value());
     if (result.solutions.front().singular) {
-      result.status = IkStatus::kSingular;
+      result.status = core::IkStatus::kSingular;
       result.message = "near a singularity (smallest Jacobian singular value below 1e-6)";
     }
   }
@@ -340,11 +341,11 @@ int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) 
     nlohmann::json j;
     j["robot"] = model.name();
     j["method"] = method;
-    j["status"] = result.status == IkStatus::kSingular ? "singular" : "ok";
+    j["status"] = result.status == core::IkStatus::kSingular ? "singular" : "ok";
     if (!result.message.empty()) j["message"] = result.message;
     j["units"] = options.degrees ? "deg" : "rad";
     j["solutions"] = nlohmann::json::array();
-    for (const IkSolution& s : result.solutions) {
+    for (const core::IkSolution& s : result.solutions) {
       const Eigen::VectorXd q = joints_to_user(model, s.q, options.degrees);
       j["solutions"].push_back({{"config", s.config},
                                 {"q", std::vector<double>(q.begin(), q.end())},
@@ -359,7 +360,7 @@ int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) 
       << (geometry ? " (closed form)" : " (numeric)") << " for\n";
   print_pose(T, out);
   out << "joint values in " << (options.degrees ? "deg" : "rad") << ":\n";
-  for (const IkSolution& s : result.solutions) {
+  for (const core::IkSolution& s : result.solutions) {
     const Eigen::VectorXd q = joints_to_user(model, s.q, options.degrees);
     out << "  " << std::left << std::setw(8) << s.config
         << format_joints(q, options.degrees ? 9 : 8, options.degrees ? 4 : 5);
@@ -376,20 +377,20 @@ int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) 
 }
 
 int run_kin_demo(const KinOptions& options, std::ostream& out, std::ostream& err) {
-  auto loaded = load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot);
   if (!loaded) {
     err << "telear kin demo: " << loaded.error().message << "\n";
     return 2;
   }
-  const RobotModel& model = **loaded;
+  const core::RobotModel& model = **loaded;
   out << "telear: the geometric model of " << model.name() << " (" << model.dof()
       << " joints) at its named configurations, and inverse kinematics back\n";
-  KinematicsData data(model);
-  Jacobian J;
-  const auto geometry = puma_geometry(model);
-  for (const NamedConfiguration& c : model.named_configurations()) {
-    forward_kinematics(model, data, c.q);
-    geometric_jacobian(model, data, JacobianFrame::kBase, J);
+  core::KinematicsData data(model);
+  core::Jacobian J;
+  const auto geometry = core::puma_geometry(model);
+  for (const core::NamedConfiguration& c : model.named_configurations()) {
+    core::forward_kinematics(model, data, c.q);
+    core::geometric_jacobian(model, data, core::JacobianFrame::kBase, J);
     const double manipulability = std::sqrt(std::max(0.0, (J * J.transpose()).determinant()));
     out << c.name << ":\n";
     print_pose(data.T_base_tool, out);

@@ -5,11 +5,11 @@
 #include <ostream>
 #include <sstream>
 
-#include "core/robot_loader.hpp"
-#include "vision/calibration_file.hpp"
-#include "vision/camera_file.hpp"
-#include "vision/observations_file.hpp"
-#include "vision/registration.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/camera_file.hpp"
+#include "telear/vision/observations_file.hpp"
+#include "telear/vision/registration.hpp"
 
 namespace telear::cli {
 namespace {
@@ -32,7 +32,7 @@ std::string matrix_entry(const std::string& key, int rows, int cols, const doubl
   return s.str();
 }
 
-std::string residual_line(const char* label, const EyeResiduals& r) {
+std::string residual_line(const char* label, const vision::EyeResiduals& r) {
   char line[160];
   std::snprintf(line, sizeof line, "  %-22s %6d points  RMS %8.4f px  max %8.4f px\n", label,
                 r.observations, r.rms_px, r.max_px);
@@ -50,9 +50,10 @@ int run_register(const RegisterOptions& options, std::ostream& out, std::ostream
   if (options.max_iterations < 1)
     return fail(
         err, "--max-iterations " + std::to_string(options.max_iterations) + " must be at least 1");
-  if (Status s = check_output_path(options.output, "-o"); !s) return fail(err, s.error().message);
+  if (Status s = vision::check_output_path(options.output, "-o"); !s)
+    return fail(err, s.error().message);
 
-  auto cameras = load_camera_file(options.rig);
+  auto cameras = vision::load_camera_file(options.rig);
   if (!cameras) return fail(err, "--rig: " + cameras.error().message);
   if (!cameras->is_stereo()) {
     return fail(err, "--rig '" + options.rig +
@@ -60,42 +61,42 @@ int run_register(const RegisterOptions& options, std::ostream& out, std::ostream
                          "output of `telear calibrate --left ... --right ...`)");
   }
   Eigen::Isometry3d T_right_left = Eigen::Isometry3d::Identity();
-  if (auto geometry = load_stereo_geometry(options.rig)) {
+  if (auto geometry = vision::load_stereo_geometry(options.rig)) {
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) T_right_left.linear()(r, c) = geometry->R(r, c);
       T_right_left.translation()(r) = geometry->T(r);
     }
   } else if (cameras->left_has_pose && cameras->right_has_pose) {
-    T_right_left = right_from_left(cameras->left.T_cam_base, cameras->right->T_cam_base);
+    T_right_left = vision::right_from_left(cameras->left.T_cam_base, cameras->right->T_cam_base);
   } else {
     return fail(err, "--rig: " + geometry.error().message +
                          ", and the file has no T_cam_base for both eyes either");
   }
 
-  auto model = load_robot(options.robot);
+  auto model = core::load_robot(options.robot);
   if (!model) return fail(err, "--robot: " + model.error().message);
-  auto observations = load_observations_file(options.observations);
+  auto observations = vision::load_observations_file(options.observations);
   if (!observations) return fail(err, "--observations: " + observations.error().message);
 
-  RegistrationOptions registration_options;
+  vision::RegistrationOptions registration_options;
   registration_options.max_iterations = options.max_iterations;
-  auto result = register_stereo(**model, cameras->left, *cameras->right, T_right_left,
-                                *observations, registration_options);
+  auto result = vision::register_stereo(**model, cameras->left, *cameras->right, T_right_left,
+                                        *observations, registration_options);
   if (!result) {
     return fail(err, "observations '" + options.observations + "': " + result.error().message);
   }
 
-  StereoCameraModel registered{cameras->left, *cameras->right};
+  vision::StereoCameraModel registered{cameras->left, *cameras->right};
   registered.left.T_cam_base = result->T_left_base;
   registered.right.T_cam_base = result->T_right_base;
   // The pair's geometry as R, T (X_R = R X_L + T), row-major.
   const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = T_right_left.linear();
   const Eigen::Vector3d T = T_right_left.translation();
-  std::string text = opencv_stereo_camera_yaml(registered);
+  std::string text = vision::opencv_stereo_camera_yaml(registered);
   text += "# Stereo geometry the registration held fixed: X_R = R X_L + T (metres).\n";
   text += matrix_entry("R", 3, 3, R.data());
   text += matrix_entry("T", 3, 1, T.data());
-  if (Status s = write_files_atomically({{options.output, text}}); !s) {
+  if (Status s = vision::write_files_atomically({{options.output, text}}); !s) {
     return fail(err, s.error().message, 1);
   }
 

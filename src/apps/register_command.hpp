@@ -7,7 +7,7 @@
 // --rig is a stereo camera file (intrinsics and distortion per eye) with the pair's geometry
 // T_right_left: the R, T keys of a stereo `telear calibrate` (X_R = R X_L + T), or, for a file
 // that already has both T_cam_base (a registered file, a simulator's truth.yaml),
-// T_right_base T_left_base^-1. vision/registration.hpp solves for T_left_base with that
+// T_right_base T_left_base^-1. telear/vision/registration.hpp solves for T_left_base with that
 // geometry held fixed. The output is the camera file with T_cam_base set for both eyes plus
 // R and T (so it can be registered again); the calibration's other stereo keys (E, F, the
 // rectification) are not carried over. It is written atomically: no partial file on failure.
@@ -23,7 +23,7 @@ namespace telear::cli {
 struct RegisterOptions {
   std::string rig;  // stereo camera file (calibration output)
   std::string robot = "puma560";
-  std::string observations;  // observations YAML (vision/observations_file.hpp)
+  std::string observations;  // observations YAML (telear/vision/observations_file.hpp)
   std::string output;        // camera file to write (may equal --rig)
   int max_iterations = 100;  // Levenberg-Marquardt
 };

@@ -11,15 +11,15 @@
 #include <ostream>
 #include <sstream>
 
-#include "core/arm_body.hpp"
-#include "core/arm_body_pose.hpp"
-#include "core/robot_loader.hpp"
-#include "render/arm_renderer.hpp"
-#include "render/egl_context.hpp"
-#include "render/offscreen_target.hpp"
-#include "render/scene_objects.hpp"
-#include "render/video_background.hpp"
-#include "render/view_math.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/arm_body_pose.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/render/arm_renderer.hpp"
+#include "telear/render/egl_context.hpp"
+#include "telear/render/offscreen_target.hpp"
+#include "telear/render/scene_objects.hpp"
+#include "telear/render/video_background.hpp"
+#include "telear/render/view_math.hpp"
 
 namespace telear::cli {
 
@@ -52,9 +52,9 @@ std::vector<RenderBenchCase> render_bench_cases() {
 struct RenderBenchScene::Impl {
   RenderBenchCase c;
   int width = 0, height = 0;
-  RobotModelPtr model;
-  ArmBody body;
-  std::unique_ptr<ArmBodyPose> pose;
+  core::RobotModelPtr model;
+  core::ArmBody body;
+  std::unique_ptr<core::ArmBodyPose> pose;
   ArmRenderer arm;
   MeshSetRenderer scene;
   OffscreenTarget target;
@@ -77,13 +77,13 @@ Result<std::unique_ptr<RenderBenchScene>> RenderBenchScene::create(const RenderB
   m.c = c;
   m.width = width;
   m.height = height;
-  auto model = load_robot("puma560");
+  auto model = core::load_robot("puma560");
   if (!model) return model.error();
   m.model = *model;
-  auto description = body_description_for(*m.model);
+  auto description = core::body_description_for(*m.model);
   if (!description) return description.error();
-  m.body = build_arm_body(*description, {.segments_override = c.segments});
-  m.pose = std::make_unique<ArmBodyPose>(*m.model, m.body);
+  m.body = core::build_arm_body(*description, {.segments_override = c.segments});
+  m.pose = std::make_unique<core::ArmBodyPose>(*m.model, m.body);
   m.q0 = *m.model->named_configuration("qn");
   auto arm = ArmRenderer::create(m.body);
   if (!arm) return arm.error();

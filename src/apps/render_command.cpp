@@ -9,19 +9,19 @@
 #include <vector>
 
 #include "apps/cli_parsing.hpp"
-#include "core/angles.hpp"
-#include "core/arm_body.hpp"
-#include "core/arm_body_pose.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
-#include "render/arm_renderer.hpp"
-#include "render/egl_context.hpp"
-#include "render/image_io.hpp"
-#include "render/offscreen_target.hpp"
-#include "render/overlay.hpp"
-#include "render/scene_objects.hpp"
-#include "render/stereo_composer.hpp"
-#include "vision/camera_file.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/arm_body_pose.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/render/arm_renderer.hpp"
+#include "telear/render/egl_context.hpp"
+#include "telear/render/image_io.hpp"
+#include "telear/render/offscreen_target.hpp"
+#include "telear/render/overlay.hpp"
+#include "telear/render/scene_objects.hpp"
+#include "telear/render/stereo_composer.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::cli {
 namespace {
@@ -32,7 +32,7 @@ constexpr double kStereoBaseline = 0.06;  // m, the seed's two cameras
 
 struct Eye {
   std::string name;  // "left", "right" or "" (mono)
-  CameraModel camera;
+  vision::CameraModel camera;
 };
 
 struct Failure {
@@ -45,7 +45,7 @@ std::vector<std::string> split_pair(const std::string& text) {
   return {text.substr(0, comma), text.substr(comma + 1)};
 }
 
-Eigen::VectorXd joints_from_options(const RobotModel& model, const RenderOptions& options) {
+Eigen::VectorXd joints_from_options(const core::RobotModel& model, const RenderOptions& options) {
   if (options.q.empty()) throw Failure{"--q is required (joint values or a named configuration)"};
   if (auto named = model.named_configuration(options.q)) return *named;
   auto values = parse_number_list(options.q, "--q", model.dof());
@@ -56,7 +56,8 @@ Eigen::VectorXd joints_from_options(const RobotModel& model, const RenderOptions
   Eigen::VectorXd q = to_vector(*values);
   if (options.degrees) {
     for (int i = 0; i < model.dof(); ++i) {
-      if (model.joint(i).type == JointType::kRevolute) q[i] = radians_from_degrees(q[i]);
+      if (model.joint(i).type == core::JointType::kRevolute)
+        q[i] = core::radians_from_degrees(q[i]);
     }
   }
   return q;
@@ -64,25 +65,25 @@ Eigen::VectorXd joints_from_options(const RobotModel& model, const RenderOptions
 
 // A camera that sees the whole arm at q: the bounding sphere of its frames (plus a margin
 // for the body) fills the smaller field of view, seen from the front-right, above.
-std::vector<Eye> default_eyes(const RobotModel& model, const Eigen::VectorXd& q, int width,
+std::vector<Eye> default_eyes(const core::RobotModel& model, const Eigen::VectorXd& q, int width,
                               int height, bool stereo) {
-  KinematicsData data(model);
-  forward_kinematics(model, data, q);
+  core::KinematicsData data(model);
+  core::forward_kinematics(model, data, q);
   Eigen::AlignedBox3d box(Eigen::Vector3d::Zero());
   for (const Eigen::Isometry3d& T : data.T_base_link) box.extend(T.translation());
   box.extend(data.T_base_tool.translation());
   const Eigen::Vector3d centre = box.center();
   const double radius = 0.5 * box.diagonal().norm() + 0.25;
-  const double vertical_fov = radians_from_degrees(45.0);
+  const double vertical_fov = core::radians_from_degrees(45.0);
   const double horizontal_fov = 2.0 * std::atan(std::tan(vertical_fov / 2) * width / height);
   const double distance = radius / std::sin(0.5 * std::min(vertical_fov, horizontal_fov));
   const Eigen::Vector3d direction = Eigen::Vector3d(0.75, -0.6, 0.35).normalized();
-  const CameraModel middle = look_at_camera(
+  const vision::CameraModel middle = vision::look_at_camera(
       width, height, vertical_fov, centre + distance * direction, centre, Eigen::Vector3d::UnitZ());
   if (!stereo) return {{"", middle}};
   std::vector<Eye> eyes;
   for (const auto& [name, side] : {std::pair{"left", -0.5}, std::pair{"right", 0.5}}) {
-    CameraModel c = middle;
+    vision::CameraModel c = middle;
     // Move the optical centre along the camera's x axis: p_cam' = p_cam - (side * b, 0, 0).
     c.T_cam_base.pretranslate(Eigen::Vector3d(-side * kStereoBaseline, 0, 0));
     eyes.push_back({name, c});
@@ -90,7 +91,7 @@ std::vector<Eye> default_eyes(const RobotModel& model, const Eigen::VectorXd& q,
   return eyes;
 }
 
-std::vector<Eye> eyes_from_options(const RenderOptions& options, const RobotModel& model,
+std::vector<Eye> eyes_from_options(const RenderOptions& options, const core::RobotModel& model,
                                    const Eigen::VectorXd& q, int default_width,
                                    int default_height) {
   const std::string& eye = options.eye;
@@ -103,10 +104,11 @@ std::vector<Eye> eyes_from_options(const RenderOptions& options, const RobotMode
     return eyes;
   }
   const std::vector<std::string> paths = split_pair(options.camera);
-  Result<CameraFile> file =
-      paths.size() == 2 ? load_stereo_camera_files(paths[0], paths[1]) : load_camera_file(paths[0]);
+  Result<vision::CameraFile> file = paths.size() == 2
+                                        ? vision::load_stereo_camera_files(paths[0], paths[1])
+                                        : vision::load_camera_file(paths[0]);
   if (!file) throw Failure{file.error().message};
-  auto posed = [&](const CameraModel& c, bool has_pose, const std::string& name) {
+  auto posed = [&](const vision::CameraModel& c, bool has_pose, const std::string& name) {
     if (!has_pose) {
       throw Failure{"camera file '" + options.camera + "': " + (name.empty() ? "the" : name) +
                     " camera has no T_cam_base (register it to the robot first)"};
@@ -126,13 +128,13 @@ std::vector<Eye> eyes_from_options(const RenderOptions& options, const RobotMode
   return eyes;
 }
 
-std::vector<render::Image> backgrounds_from_options(const RenderOptions& options) {
+std::vector<core::Image> backgrounds_from_options(const RenderOptions& options) {
   if (options.background.empty()) return {};
-  std::vector<render::Image> images;
+  std::vector<core::Image> images;
   for (const std::string& path : split_pair(options.background)) {
     if (path.empty())
       throw Failure{"--background: empty file name in '" + options.background + "'"};
-    Result<render::Image> image = render::read_image(path, 3);
+    Result<core::Image> image = render::read_image(path, 3);
     if (!image) throw Failure{image.error().message};
     images.push_back(std::move(image.value()));
   }
@@ -151,7 +153,7 @@ std::string eye_output_path(const std::string& output, const std::string& eye) {
 void check_options(const RenderOptions& options) {
   if (options.output.empty()) throw Failure{"-o is required (the PNG to write)"};
   if (options.segments != 0 &&
-      (options.segments < kMinCylinderSegments || options.segments > 512)) {
+      (options.segments < core::kMinCylinderSegments || options.segments > 512)) {
     throw Failure{"--segments must be in [3, 512], got " + std::to_string(options.segments)};
   }
   if (!(options.alpha > 0.0 && options.alpha <= 1.0)) {
@@ -172,15 +174,15 @@ void check_options(const RenderOptions& options) {
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
   const std::string prefix = "telear render: ";
   // [SECTION] inputs: everything untrusted is checked before any GL work.
-  RobotModelPtr model;
+  core::RobotModelPtr model;
   Eigen::VectorXd q;
   std::vector<Eye> eyes;
-  std::vector<render::Image> backgrounds;
+  std::vector<core::Image> backgrounds;
   render::StereoLayout layout = render::StereoLayout::kSideBySide;
-  BodyDescription description;
+  core::BodyDescription description;
   try {
     check_options(options);
-    auto loaded = load_robot(options.robot);
+    auto loaded = core::load_robot(options.robot);
     if (!loaded) throw Failure{loaded.error().message};
     model = *loaded;
     q = joints_from_options(*model, options);
@@ -192,8 +194,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
       throw Failure{"--background gives two images but only one eye is drawn"};
     }
     for (size_t i = 0; i < eyes.size() && !backgrounds.empty(); ++i) {
-      const render::Image& image = backgrounds[std::min(i, backgrounds.size() - 1)];
-      const CameraModel& c = eyes[i].camera;
+      const core::Image& image = backgrounds[std::min(i, backgrounds.size() - 1)];
+      const vision::CameraModel& c = eyes[i].camera;
       if (image.width != c.width || image.height != c.height) {
         throw Failure{"--background image is " + std::to_string(image.width) + "x" +
                       std::to_string(image.height) + " but the " +
@@ -213,7 +215,7 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
             "separate"};
       }
     }
-    auto body = body_description_for(*model);
+    auto body = core::body_description_for(*model);
     if (!body) throw Failure{body.error().message};
     description = std::move(body.value());
   } catch (const Failure& f) {
@@ -227,8 +229,9 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     err << prefix << "no OpenGL context: " << context.error().message << "\n";
     return kGlFailure;
   }
-  const ArmBody body = build_arm_body(description, {.segments_override = options.segments});
-  ArmBodyPose pose(*model, body);
+  const core::ArmBody body =
+      core::build_arm_body(description, {.segments_override = options.segments});
+  core::ArmBodyPose pose(*model, body);
   pose.set_configuration(q);
   if (options.gripper) pose.set_gripper_opening(static_cast<float>(*options.gripper));
   auto arm = render::ArmRenderer::create(body);
@@ -279,7 +282,7 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   }
 
   // [SECTION] output
-  std::vector<std::pair<std::string, render::Image>> images;
+  std::vector<std::pair<std::string, core::Image>> images;
   if (eyes.size() == 1) {
     images.emplace_back(options.output, targets[0].read_rgb());
   } else if (layout == render::StereoLayout::kSeparate) {

@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "apps/cli_parsing.hpp"
-#include "core/robot_loader.hpp"
-#include "net/robot_server.hpp"
-#include "net/sim_robot_driver.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/net/robot_server.hpp"
+#include "telear/sim/sim_robot_driver.hpp"
 
 namespace telear::cli {
 
@@ -19,7 +19,7 @@ namespace {
 
 // The robot's URDF text for GetInfo: the model file itself when it is a URDF, else a URDF
 // beside it with the same name (data/robots/puma560.yaml -> puma560.urdf); empty when none.
-std::string find_urdf_text(const RobotModel& model) {
+std::string find_urdf_text(const core::RobotModel& model) {
   std::filesystem::path path = model.source();
   if (path.extension() != ".urdf") path.replace_extension(".urdf");
   std::ifstream in(path);
@@ -33,12 +33,12 @@ std::string find_urdf_text(const RobotModel& model) {
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,
                      std::ostream& err) {
-  auto model = load_robot(options.robot);
+  auto model = core::load_robot(options.robot);
   if (!model) {
     err << "telear robot-server: " << model.error().message << "\n";
     return 1;
   }
-  net::SimRobotDriverOptions driver_options;
+  sim::SimRobotDriverOptions driver_options;
   driver_options.urdf = find_urdf_text(**model);
   if (!options.initial_q.empty()) {
     if (auto named = (*model)->named_configuration(options.initial_q)) {
@@ -82,12 +82,12 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
-  auto driver = net::SimRobotDriver::Create(*model, std::move(driver_options));
+  auto driver = sim::SimRobotDriver::create(*model, std::move(driver_options));
   if (!driver) {
     err << "telear robot-server: " << driver.error().message << "\n";
     return 1;
   }
-  auto server = net::RobotServer::Start(std::move(driver).value(), server_options);
+  auto server = net::RobotServer::create(std::move(driver).value(), server_options);
   if (!server) {
     err << "telear robot-server: " << server.error().message << "\n";
     return 1;

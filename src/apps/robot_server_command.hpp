@@ -1,5 +1,5 @@
 #pragma once
-// `telear robot-server`: the robot service (net/robot_server.hpp) with the simulated robot
+// `telear robot-server`: the robot service (telear/net/robot_server.hpp) with the simulated robot
 // as its driver, until SIGINT or SIGTERM. Prints "robot server listening on HOST:PORT" on
 // `out` once it accepts connections (scripts wait for that line; with port 0 it carries the
 // ephemeral port), and shuts down cleanly on the signal: streams are ended, the arm stops.

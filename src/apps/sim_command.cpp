@@ -7,15 +7,15 @@
 #include <sstream>
 #include <system_error>
 
-#include "core/arm_body.hpp"
-#include "core/robot_loader.hpp"
-#include "render/egl_context.hpp"
-#include "render/image_io.hpp"
-#include "sim/calibration_targets.hpp"
-#include "sim/scene_renderer.hpp"
-#include "sim/stereo_rig.hpp"
-#include "vision/calibration_pattern.hpp"
-#include "vision/camera_file.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/render/egl_context.hpp"
+#include "telear/render/image_io.hpp"
+#include "telear/sim/calibration_targets.hpp"
+#include "telear/sim/scene_renderer.hpp"
+#include "telear/sim/stereo_rig.hpp"
+#include "telear/vision/calibration_pattern.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::cli {
 namespace {
@@ -53,7 +53,7 @@ int run_sim_capture(const SimCaptureOptions& options, std::ostream& out, std::os
     err << "error: -o DIR is required (the directory to write the images and truth.yaml to)\n";
     return 2;
   }
-  auto pattern = parse_calibration_pattern(options.pattern);
+  auto pattern = vision::parse_calibration_pattern(options.pattern);
   if (!pattern) {
     err << "error: --pattern: " << pattern.error().message << "\n";
     return 2;
@@ -63,12 +63,12 @@ int run_sim_capture(const SimCaptureOptions& options, std::ostream& out, std::os
     err << "error: " << rig.error().message << "\n";
     return 1;
   }
-  auto model = load_robot(rig->robot);
+  auto model = core::load_robot(rig->robot);
   if (!model) {
     err << "error: rig '" << options.rig << "': robot: " << model.error().message << "\n";
     return 1;
   }
-  auto body = rig->body_file.empty() ? body_description_for(**model)
+  auto body = rig->body_file.empty() ? core::body_description_for(**model)
                                      : load_body_yaml_file(rig->body_file, **model);
   if (!body) {
     err << "error: " << body.error().message << "\n";
@@ -120,7 +120,7 @@ int run_sim_capture(const SimCaptureOptions& options, std::ostream& out, std::os
     const std::string right_name = view_name("right", view);
     for (const auto& [eye, name] :
          {std::pair{sim::Eye::kLeft, left_name}, std::pair{sim::Eye::kRight, right_name}}) {
-      const render::Image image = scene->render(eye, static_cast<std::uint64_t>(view));
+      const core::Image image = scene->render(eye, static_cast<std::uint64_t>(view));
       if (auto written = render::write_png((fs::path(options.output) / name).string(), image);
           !written) {
         err << "error: " << written.error().message << "\n";
@@ -140,10 +140,10 @@ int run_sim_capture(const SimCaptureOptions& options, std::ostream& out, std::os
 
   std::ostringstream truth;
   truth << std::setprecision(17);
-  truth << opencv_stereo_camera_yaml(rig->cameras);
+  truth << vision::opencv_stereo_camera_yaml(rig->cameras);
   truth << "# Ground truth of the simulated capture (docs/simulation.md): the TRUE cameras\n"
         << "# above, the target's pose per view (p_base = T_base_target p_target, target frame\n"
-        << "# of vision/calibration_pattern.hpp), sensor noise in grey levels.\n"
+        << "# of telear/vision/calibration_pattern.hpp), sensor noise in grey levels.\n"
         << "rig: \"" << rig->name << "\"\n"
         << "baseline_m: " << rig->baseline_m << "\n"
         << "T_base_rig: " << matrix_yaml(rig->T_base_rig.matrix(), "   ") << "pattern: \""

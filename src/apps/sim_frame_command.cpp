@@ -1,14 +1,14 @@
 #include "apps/sim_frame_command.hpp"
 
 #include "apps/cli_parsing.hpp"
-#include "core/angles.hpp"
-#include "core/arm_body.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
-#include "render/egl_context.hpp"
-#include "render/image_io.hpp"
-#include "sim/scene_renderer.hpp"
-#include "sim/stereo_rig.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/render/egl_context.hpp"
+#include "telear/render/image_io.hpp"
+#include "telear/sim/scene_renderer.hpp"
+#include "telear/sim/stereo_rig.hpp"
 
 namespace telear::cli {
 
@@ -23,9 +23,9 @@ int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostrea
   }
   auto rig = sim::load_stereo_rig(options.rig);
   if (!rig) return fail(rig.error().message, 2);
-  auto model = load_robot(rig->robot);
+  auto model = core::load_robot(rig->robot);
   if (!model) return fail("rig '" + options.rig + "': robot: " + model.error().message, 2);
-  const RobotModel& robot = **model;
+  const core::RobotModel& robot = **model;
   Eigen::VectorXd q;
   if (auto named = robot.named_configuration(options.q)) {
     q = *named;
@@ -33,9 +33,9 @@ int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostrea
     auto values = parse_number_list(options.q, "--q", robot.dof());
     if (!values) return fail(values.error().message, 2);
     q = to_vector(*values);
-    if (options.degrees) q = q.unaryExpr([](double v) { return radians_from_degrees(v); });
+    if (options.degrees) q = q.unaryExpr([](double v) { return core::radians_from_degrees(v); });
   }
-  auto body = rig->body_file.empty() ? body_description_for(robot)
+  auto body = rig->body_file.empty() ? core::body_description_for(robot)
                                      : load_body_yaml_file(rig->body_file, robot);
   if (!body) return fail(body.error().message, 2);
 

@@ -6,17 +6,17 @@
 #include <ostream>
 #include <random>
 
-#include "core/angles.hpp"
-#include "core/arm_body.hpp"
-#include "core/random_configuration.hpp"
-#include "core/robot_loader.hpp"
-#include "render/egl_context.hpp"
-#include "sim/calibration_targets.hpp"
-#include "sim/scene_renderer.hpp"
-#include "sim/stereo_rig.hpp"
-#include "vision/calibration_file.hpp"
-#include "vision/marker_detection.hpp"
-#include "vision/observations_file.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/random_configuration.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/render/egl_context.hpp"
+#include "telear/sim/calibration_targets.hpp"
+#include "telear/sim/scene_renderer.hpp"
+#include "telear/sim/stereo_rig.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/marker_detection.hpp"
+#include "telear/vision/observations_file.hpp"
 
 namespace telear::cli {
 namespace {
@@ -36,7 +36,8 @@ bool marker_well_seen(const sim::SceneRenderer& scene, double min_cos, double ma
   const Eigen::Vector3d normal = T_base_marker.linear().col(2);
   const Eigen::Vector3d centre = T_base_marker.translation();
   const std::array<Eigen::Vector3d, 4> corners = scene.marker_corners_base();
-  for (const CameraModel* camera : {&scene.rig().cameras.left, &scene.rig().cameras.right}) {
+  for (const vision::CameraModel* camera :
+       {&scene.rig().cameras.left, &scene.rig().cameras.right}) {
     const Eigen::Vector3d optical_centre = camera->T_cam_base.inverse().translation();
     if (normal.dot((optical_centre - centre).normalized()) < min_cos) return false;
     for (const Eigen::Vector3d& corner : corners) {
@@ -50,11 +51,12 @@ bool marker_well_seen(const sim::SceneRenderer& scene, double min_cos, double ma
 }
 
 // The four corners of marker `id` in an RGB(A) image (cv::aruco order), refined on the black
-// border's outer edges (vision/marker_detection.hpp), or empty when it is not found exactly once.
-std::vector<Eigen::Vector2d> detect_marker(const render::Image& image, int id) {
+// border's outer edges (telear/vision/marker_detection.hpp), or empty when it is not found exactly
+// once.
+std::vector<Eigen::Vector2d> detect_marker(const core::Image& image, int id) {
   const cv::Mat rgb(image.height, image.width, image.channels == 4 ? CV_8UC4 : CV_8UC3,
                     const_cast<std::uint8_t*>(image.pixels.data()));
-  return detect_aruco_marker(rgb, id);
+  return vision::detect_aruco_marker(rgb, id);
 }
 
 }  // namespace
@@ -65,7 +67,8 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
     return fail(err, "--configs " + std::to_string(options.configs) + " is outside 1..500");
   if (options.output.empty())
     return fail(err, "-o: give the observations file to write, e.g. -o obs.yaml");
-  if (Status s = check_output_path(options.output, "-o"); !s) return fail(err, s.error().message);
+  if (Status s = vision::check_output_path(options.output, "-o"); !s)
+    return fail(err, s.error().message);
   if (!(options.noise >= 0.0 && options.noise <= 50.0))
     return fail(err, "--noise must be within 0..50 grey levels");
   if (options.supersample < 1 || options.supersample > 8)
@@ -73,9 +76,9 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
 
   auto rig = sim::load_stereo_rig(options.rig);
   if (!rig) return fail(err, "--rig: " + rig.error().message);
-  auto model = load_robot(options.robot);
+  auto model = core::load_robot(options.robot);
   if (!model) return fail(err, "--robot: " + model.error().message);
-  auto body = rig->body_file.empty() ? body_description_for(**model)
+  auto body = rig->body_file.empty() ? core::body_description_for(**model)
                                      : load_body_yaml_file(rig->body_file, **model);
   if (!body) return fail(err, "--rig: " + body.error().message);
 
@@ -90,13 +93,13 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
   if (!scene->marker()) return fail(err, "the scene has no marker on the gripper", 1);
   const sim::ArucoMarker& marker = *scene->marker();
 
-  const RobotModel& robot = **model;
+  const core::RobotModel& robot = **model;
   std::mt19937_64 rng(options.seed);
 
-  RegistrationObservations observations;
+  vision::RegistrationObservations observations;
   observations.robot = options.robot;
   observations.point_in_flange.assign(marker.corners_flange.begin(), marker.corners_flange.end());
-  const double min_cos = std::cos(radians_from_degrees(options.max_view_angle_deg));
+  const double min_cos = std::cos(core::radians_from_degrees(options.max_view_angle_deg));
   const long max_draws = 20000L * options.configs;
   long draws = 0;
   int skipped = 0;
@@ -110,11 +113,11 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
                         "rig's pose",
                     2);
       }
-      q = random_configuration(robot, rng);
+      q = core::random_configuration(robot, rng);
       scene->set_configuration(q);
     } while (!marker_well_seen(*scene, min_cos, options.margin_px));
 
-    ObservedConfiguration observed;
+    vision::ObservedConfiguration observed;
     observed.q = q;
     const auto frame = static_cast<std::uint64_t>(c);
     observed.left_pixels = detect_marker(scene->render(sim::Eye::kLeft, frame), marker.spec.id);
@@ -136,7 +139,7 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
                     " configurations",
                 1);
   }
-  if (Status s = write_observations_file(observations, options.output); !s) {
+  if (Status s = vision::write_observations_file(observations, options.output); !s) {
     return fail(err, s.error().message, 1);
   }
   out << "wrote " << observations.configurations.size() << " configurations to " << options.output;

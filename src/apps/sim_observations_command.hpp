@@ -6,10 +6,10 @@
 //                           -o obs.yaml [--seed S]
 //
 // Draws seeded random in-limit joint configurations and keeps those at which the gripper's
-// ArUco marker (sim/calibration_targets.hpp) faces both cameras -- its face normal within
+// ArUco marker (telear/sim/calibration_targets.hpp) faces both cameras -- its face normal within
 // `max_view_angle_deg` of the direction to each optical centre -- and all four corners
 // project, with the true cameras, at least `margin_px` inside both images. At each kept
-// configuration the "real" images are rendered per eye (sim/scene_renderer.hpp: true
+// configuration the "real" images are rendered per eye (telear/sim/scene_renderer.hpp: true
 // distortion, sensor noise) and the marker's corners are DETECTED with cv::aruco
 // (DICT_4X4_50), as on a real rig, then refined to sub-pixel precision by fitting lines to
 // the black border's outer edges (cv::aruco's own refinement is only whole-pixel accurate on

@@ -14,18 +14,18 @@
 #include <sstream>
 #include <vector>
 
-#include "core/robot_loader.hpp"
-#include "core/trajectory.hpp"
-#include "net/clock.hpp"
-#include "net/command_bytes.hpp"
-#include "net/jpeg_codec.hpp"
-#include "net/latency_summary.hpp"
-#include "net/robot_client.hpp"
-#include "net/robot_server.hpp"
-#include "net/sim_robot_driver.hpp"
-#include "net/synthetic_source.hpp"
-#include "net/vision_client.hpp"
-#include "net/vision_server.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/core/trajectory.hpp"
+#include "telear/net/command_bytes.hpp"
+#include "telear/net/jpeg_codec.hpp"
+#include "telear/net/latency_summary.hpp"
+#include "telear/net/robot_client.hpp"
+#include "telear/net/robot_server.hpp"
+#include "telear/net/vision_client.hpp"
+#include "telear/net/vision_server.hpp"
+#include "telear/sim/sim_robot_driver.hpp"
+#include "telear/vision/synthetic_source.hpp"
 
 namespace telear::cli {
 
@@ -122,12 +122,12 @@ struct VideoResult {
 // The baseline: TurboJPEG encode + decode of both eyes of one synthetic pair on this thread,
 // the median of `runs` (ms).
 Result<double> codec_baseline_ms(const Resolution& size, int quality, int runs) {
-  net::SyntheticSourceOptions options;
+  vision::SyntheticSourceOptions options;
   options.width = size.width;
   options.height = size.height;
   options.fps = 10000;  // the highest rate: no pacing to speak of
   options.distinct_frames = 1;
-  auto source = net::SyntheticSource::create(options);
+  auto source = vision::SyntheticSource::create(options);
   if (!source) return source.error();
   auto pair = (*source)->capture();
   if (!pair) return pair.error();
@@ -135,14 +135,14 @@ Result<double> codec_baseline_ms(const Resolution& size, int quality, int runs) 
   net::JpegDecoder decoder;
   std::vector<double> times;
   for (int i = 0; i < runs; ++i) {
-    const std::int64_t start = net::monotonic_ns();
-    for (const render::Image* eye : {&pair->left, &pair->right}) {
+    const std::int64_t start = core::monotonic_ns();
+    for (const core::Image* eye : {&pair->left, &pair->right}) {
       auto jpeg = encoder.encode(*eye, quality);
       if (!jpeg) return jpeg.error();
       auto image = decoder.decode(*jpeg);
       if (!image) return image.error();
     }
-    times.push_back(net::ns_to_s(net::monotonic_ns() - start));
+    times.push_back(core::ns_to_s(core::monotonic_ns() - start));
   }
   return percentile(times, 50) * 1e3;
 }
@@ -155,11 +155,11 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
   if (!baseline) return baseline.error();
   result.codec_ms = *baseline;
 
-  net::SyntheticSourceOptions source_options;
+  vision::SyntheticSourceOptions source_options;
   source_options.width = size.width;
   source_options.height = size.height;
   source_options.fps = options.source_fps;
-  auto source = net::SyntheticSource::create(source_options);
+  auto source = vision::SyntheticSource::create(source_options);
   if (!source) return source.error();
   net::VisionServerOptions server_options;
   server_options.listen_address = "127.0.0.1:0";
@@ -224,14 +224,14 @@ struct RobotResult {
 Result<RobotResult> measure_robot(const StreamBenchOptions& options) {
   RobotResult result;
   result.calls = options.rtt_calls;
-  auto model = load_robot("puma560");
+  auto model = core::load_robot("puma560");
   if (!model) return model.error();
-  auto driver = net::SimRobotDriver::Create(*model);
+  auto driver = sim::SimRobotDriver::create(*model);
   if (!driver) return driver.error();
   net::RobotServerOptions server_options;
   server_options.listen_address = "127.0.0.1:0";
   server_options.token = "bench-token";
-  auto server = net::RobotServer::Start(std::move(*driver), std::move(server_options));
+  auto server = net::RobotServer::create(std::move(*driver), std::move(server_options));
   if (!server) return server.error();
 
   net::RobotClientOptions client_options;
@@ -247,9 +247,9 @@ Result<RobotResult> measure_robot(const StreamBenchOptions& options) {
     ping.push_back(*rtt);
   }
   for (int i = 0; i < options.rtt_calls; ++i) {
-    const std::int64_t start = net::monotonic_ns();
+    const std::int64_t start = core::monotonic_ns();
     if (Status set = client.set_gripper(i % 2 ? 0.6 : 0.4); !set) return set.error();
-    gripper.push_back(net::ns_to_s(net::monotonic_ns() - start));
+    gripper.push_back(core::ns_to_s(core::monotonic_ns() - start));
   }
   (void)client.release_lease();
   result.ping_ms = quantiles_ms(ping);
@@ -257,14 +257,14 @@ Result<RobotResult> measure_robot(const StreamBenchOptions& options) {
 
   // The same 10 s motion both ways: every joint from the middle of its range by a quarter of
   // the range, one segment stretched to 10 s, timed by core.
-  const RobotModel& robot = **model;
+  const core::RobotModel& robot = **model;
   Eigen::VectorXd q0(robot.dof()), q1(robot.dof());
   for (int i = 0; i < robot.dof(); ++i) {
-    const JointLimits& limits = robot.joints()[i].limits;
+    const core::JointLimits& limits = robot.joints()[i].limits;
     q0[i] = 0.5 * (limits.lower + limits.upper);
     q1[i] = q0[i] + 0.25 * (limits.upper - limits.lower);
   }
-  auto trajectory = Trajectory::Create(robot, {{q0}, JointWaypoint(q1, kMotionS)});
+  auto trajectory = core::Trajectory::create(robot, {{q0}, core::JointWaypoint(q1, kMotionS)});
   if (!trajectory) return trajectory.error();
   result.motion_s = trajectory->duration();
   const std::string lease(32, '0');  // the server's lease ids are 32 characters

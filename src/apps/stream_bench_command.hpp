@@ -3,7 +3,7 @@
 // servers on loopback (docs/benchmarks.md, "Stream"):
 //
 //   video   per stereo resolution: a VisionServer on 127.0.0.1:0 with the synthetic source
-//           (net/synthetic_source.hpp) paced at source_fps, one VisionClient over gRPC;
+//           (telear/vision/synthetic_source.hpp) paced at source_fps, one VisionClient over gRPC;
 //           sustained decoded fps, per-stage latency p50 / p99 (DecodedStereoFrame.latency:
 //           capture -> encode start, encode, send queue, network, decode, total capture ->
 //           decoded) and bytes per frame, against the targets;
@@ -13,7 +13,7 @@
 //           round trip p50 / p99 of Ping and of SetGripper (an authenticated, lease-checked
 //           command);
 //   command plan-then-send vs streaming jog at 100 Hz for the same 10 s motion, in bytes
-//           (net/command_bytes.hpp).
+//           (telear/net/command_bytes.hpp).
 //
 // The source runs faster than the targets (default 120 fps), so the fps column is the
 // pipeline's capacity on this machine and the latencies are measured under that load (a

@@ -6,13 +6,13 @@
 #include <optional>
 
 #include "apps/cli_parsing.hpp"
-#include "net/bearer_auth.hpp"
-#include "net/camera_source.hpp"
-#include "net/robot_client.hpp"
-#include "net/sim_rig_source.hpp"
-#include "net/synthetic_source.hpp"
-#include "net/video_file_source.hpp"
-#include "net/vision_server.hpp"
+#include "telear/net/bearer_auth.hpp"
+#include "telear/net/robot_client.hpp"
+#include "telear/net/vision_server.hpp"
+#include "telear/sim/sim_rig_source.hpp"
+#include "telear/vision/camera_source.hpp"
+#include "telear/vision/synthetic_source.hpp"
+#include "telear/vision/video_file_source.hpp"
 
 namespace telear::cli {
 namespace {
@@ -65,9 +65,9 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
 
   // The robot the simulated rig follows; outlives the server (declared first).
   std::unique_ptr<net::RobotClient> robot;
-  std::unique_ptr<net::StereoSource> source;
+  std::unique_ptr<vision::StereoSource> source;
   if (options.source == "sim") {
-    net::SimRigSourceOptions sim;
+    sim::SimRigSourceOptions sim;
     sim.rig = options.rig;
     if (options.fps > 0) sim.fps = options.fps;
     sim.supersample = options.supersample;
@@ -89,31 +89,32 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
       }
       robot = std::make_unique<net::RobotClient>(robot_options);
       robot->start();
-      sim.scene_state = [client = robot.get()]() -> std::optional<net::SceneState> {
+      sim.scene_state = [client = robot.get()]() -> std::optional<vision::SceneState> {
         auto sample = client->latest_state();
         if (!sample) return std::nullopt;
-        return net::SceneState{sample->state.q, sample->state.gripper, sample->capture_client_ns()};
+        return vision::SceneState{sample->state.q, sample->state.gripper,
+                                  sample->capture_client_ns()};
       };
     }
-    auto created = net::SimRigSource::create(std::move(sim));
+    auto created = sim::SimRigSource::create(std::move(sim));
     if (!created) return fail(created.error().message, 2);
     source = std::move(*created);
   } else if (options.source == "files") {
     if (options.left.empty() || options.right.empty()) {
       return fail("--source files needs --left FILE and --right FILE", 2);
     }
-    net::VideoFileSourceOptions files{options.left, options.right, options.fps, 0, 0};
+    vision::VideoFileSourceOptions files{options.left, options.right, options.fps, 0, 0};
     if (resolution->has_value()) {
       files.width = (*resolution)->width;
       files.height = (*resolution)->height;
     }
-    auto opened = net::VideoFileSource::open(files);
+    auto opened = vision::VideoFileSource::open(files);
     if (!opened) return fail(opened.error().message, 2);
     source = std::move(*opened);
   } else if (options.source == "v4l2") {
     auto indices = parse_number_list(options.cameras, "--cameras", 2);
     if (!indices) return fail(indices.error().message, 2);
-    net::CameraSourceOptions cameras;
+    vision::CameraSourceOptions cameras;
     cameras.left_index = static_cast<int>((*indices)[0]);
     cameras.right_index = static_cast<int>((*indices)[1]);
     if (resolution->has_value()) {
@@ -121,17 +122,17 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
       cameras.height = (*resolution)->height;
     }
     if (options.fps > 0) cameras.fps = options.fps;
-    auto opened = net::CameraSource::open(cameras);
+    auto opened = vision::CameraSource::open(cameras);
     if (!opened) return fail(opened.error().message, 1);
     source = std::move(*opened);
   } else if (options.source == "synthetic") {
-    net::SyntheticSourceOptions synthetic;
+    vision::SyntheticSourceOptions synthetic;
     if (resolution->has_value()) {
       synthetic.width = (*resolution)->width;
       synthetic.height = (*resolution)->height;
     }
     if (options.fps > 0) synthetic.fps = options.fps;
-    auto created = net::SyntheticSource::create(synthetic);
+    auto created = vision::SyntheticSource::create(synthetic);
     if (!created) return fail(created.error().message, 2);
     source = std::move(*created);
   } else {

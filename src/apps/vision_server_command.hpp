@@ -1,6 +1,6 @@
 #pragma once
-// `telear vision-server`: the stereo vision service (net/vision_server.hpp) on a TCP address,
-// from one of four sources, until SIGINT or SIGTERM.
+// `telear vision-server`: the stereo vision service (telear/net/vision_server.hpp) on a TCP
+// address, from one of four sources, until SIGINT or SIGTERM.
 //
 //   telear vision-server --listen 127.0.0.1:50052 --source sim [--robot-server HOST:PORT]
 //   telear vision-server --source files --left L.avi --right R.avi

@@ -1,6 +1,6 @@
 #include <imgui.h>
 
-#include "console/panels.hpp"
+#include "telear/console/panels.hpp"
 
 namespace telear::console {
 

@@ -1,15 +1,15 @@
-#include "console/console_actions.hpp"
+#include "telear/console/console_actions.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "core/angles.hpp"
+#include "telear/core/angles.hpp"
 
 namespace telear::console {
 
 namespace {
 
-Status from_outcome(const MotionOutcome& outcome) {
+Status from_outcome(const core::MotionOutcome& outcome) {
   if (!outcome.accepted) return Error{outcome.rejection.message};
   return Status::Ok();
 }
@@ -31,9 +31,9 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
     case ActionKind::kResetEStop:
       return s.reset_estop();
     case ActionKind::kGhostJoint:
-      return from_outcome(s.move_ghost(JointIncrement{a.index, a.value}));
+      return from_outcome(s.move_ghost(core::JointIncrement{a.index, a.value}));
     case ActionKind::kGhostCartesian:
-      return from_outcome(s.move_ghost(CartesianIncrement{a.frame, a.dX, a.dM}));
+      return from_outcome(s.move_ghost(core::CartesianIncrement{a.frame, a.dX, a.dM}));
     case ActionKind::kGhostGripper:
       return s.ghost().set_gripper(a.value);
     case ActionKind::kGhostNamed:
@@ -41,11 +41,11 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
     case ActionKind::kGhostToReal:
       return s.ghost_to_real();
     case ActionKind::kRealJoint: {
-      auto ack = s.jog_real(JointIncrement{a.index, a.value});
+      auto ack = s.jog_real(core::JointIncrement{a.index, a.value});
       return ack ? Status::Ok() : Status(ack.error());
     }
     case ActionKind::kRealCartesian: {
-      auto ack = s.jog_real(CartesianIncrement{a.frame, a.dX, a.dM});
+      auto ack = s.jog_real(core::CartesianIncrement{a.frame, a.dX, a.dM});
       return ack ? Status::Ok() : Status(ack.error());
     }
     case ActionKind::kRealGripper:
@@ -284,7 +284,8 @@ UiAction ghost_joint(int joint, double delta) {
   return a;
 }
 
-UiAction ghost_cartesian(MotionFrame frame, const Eigen::Vector3d& dX, const Eigen::Vector3d& dM) {
+UiAction ghost_cartesian(core::MotionFrame frame, const Eigen::Vector3d& dX,
+                         const Eigen::Vector3d& dM) {
   UiAction a;
   a.kind = ActionKind::kGhostCartesian;
   a.frame = frame;
@@ -302,7 +303,7 @@ UiAction simple(ActionKind kind) {
 bool robot_idle(const session::Session& session) {
   const auto& real = session.view().real;
   return session.robot_connected() && real && !session.executing() &&
-         real->state.mode == RobotMode::kIdle;
+         real->state.mode == core::RobotMode::kIdle;
 }
 
 }  // namespace telear::console

@@ -7,7 +7,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "console/console_app.hpp"
+#include "telear/console/console_app.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -17,26 +17,26 @@
 #include <sstream>
 #include <thread>
 
-#include "console/console_actions.hpp"
-#include "console/eye_windows.hpp"
-#include "console/gamepad_input.hpp"
-#include "console/keyboard_input.hpp"
-#include "console/mouse_input.hpp"
-#include "console/panels.hpp"
-#include "core/arm_body.hpp"
-#include "core/robot_loader.hpp"
-#include "render/ar_view.hpp"
-#include "render/egl_context.hpp"
-#include "render/glfw_context.hpp"
-#include "render/image_io.hpp"
-#include "render/offscreen_target.hpp"
-#include "render/scene_objects.hpp"
-#include "render/stereo_composer.hpp"
-#include "session/view_input.hpp"
-#include "sim/calibration_targets.hpp"
-#include "sim/scene_renderer.hpp"
-#include "sim/stereo_rig.hpp"
-#include "vision/camera_file.hpp"
+#include "telear/console/console_actions.hpp"
+#include "telear/console/eye_windows.hpp"
+#include "telear/console/gamepad_input.hpp"
+#include "telear/console/keyboard_input.hpp"
+#include "telear/console/mouse_input.hpp"
+#include "telear/console/panels.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/render/ar_view.hpp"
+#include "telear/render/egl_context.hpp"
+#include "telear/render/glfw_context.hpp"
+#include "telear/render/image_io.hpp"
+#include "telear/render/offscreen_target.hpp"
+#include "telear/render/scene_objects.hpp"
+#include "telear/render/stereo_composer.hpp"
+#include "telear/session/view_input.hpp"
+#include "telear/sim/calibration_targets.hpp"
+#include "telear/sim/scene_renderer.hpp"
+#include "telear/sim/stereo_rig.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::console {
 
@@ -64,11 +64,11 @@ Result<std::string> read_token(const std::string& path) {
   return token;
 }
 
-Result<StereoCameraModel> load_stereo_file(const std::string& path) {
-  auto file = load_camera_file(path);
+Result<vision::StereoCameraModel> load_stereo_file(const std::string& path) {
+  auto file = vision::load_camera_file(path);
   if (!file) return file.error();
   if (!file->right) return Error{"calibration '" + path + "': not a stereo camera file"};
-  return StereoCameraModel{file->left, *file->right};
+  return vision::StereoCameraModel{file->left, *file->right};
 }
 
 render::StereoLayout view_layout(const UiState& ui) {
@@ -91,10 +91,10 @@ render::StereoLayout view_layout(const UiState& ui) {
 
 struct ConsoleApp::Impl {
   ConsoleOptions options;
-  RobotModelPtr model;
+  core::RobotModelPtr model;
   session::SessionOptions session_options;
-  StereoCameraModel cameras;  // at the video's resolution
-  BodyDescription body;
+  vision::StereoCameraModel cameras;  // at the video's resolution
+  core::BodyDescription body;
   std::unique_ptr<render::GlContext> context;  // EGL (headless) or GLFW
   render::GlfwContext* window = nullptr;       // the GLFW context, when windowed
   render::OffscreenTarget headless_target;     // the "window" when headless
@@ -122,9 +122,9 @@ struct ConsoleApp::Impl {
   }
 
   Status build_view(const UiState& ui) {
-    ArmBodyOptions body_options;
+    core::ArmBodyOptions body_options;
     body_options.segments_override = ui.segments;
-    const ArmBody arm_body = build_arm_body(body, body_options);
+    const core::ArmBody arm_body = core::build_arm_body(body, body_options);
     const Eigen::Vector3d box = sim::SceneRenderer::workspace_object().centre_base;
     render::ArViewOptions view_options;
     view_options.layout = view_layout(ui);
@@ -148,7 +148,7 @@ ConsoleApp::~ConsoleApp() {
   servers_.reset();
 }
 
-Result<std::unique_ptr<ConsoleApp>> ConsoleApp::Create(const ConsoleOptions& options,
+Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& options,
                                                        std::ostream& log) {
   auto impl = std::make_unique<Impl>();
   impl->options = options;
@@ -172,17 +172,17 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::Create(const ConsoleOptions& opt
   if (!resolution) return resolution.error();
   const auto [width, height] = *resolution;
 
-  auto model = load_robot(options.robot_model);
+  auto model = core::load_robot(options.robot_model);
   if (!model) return model.error();
   impl->model = *model;
-  auto body = body_description_for(**model);
+  auto body = core::body_description_for(**model);
   if (!body) return body.error();
   impl->body = *body;
 
   // [SECTION] calibration and servers
   std::unique_ptr<ConsoleApp> app(new ConsoleApp(std::move(impl)));
   Impl& m = *app->impl_;
-  std::optional<StereoCameraModel> cameras;
+  std::optional<vision::StereoCameraModel> cameras;
   std::string calibration_file = options.calibration;
   if (calibration_file.empty() && embedded &&
       std::filesystem::exists("out/demo/cache/registered.yaml")) {
@@ -194,7 +194,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::Create(const ConsoleOptions& opt
     cameras = *loaded;
     app->ui_.calibration_note = "calibration: " + calibration_file;
   } else if (embedded) {
-    auto rig = sim::load_stereo_rig(data_directory() + "/rigs/puma560_rig.yaml");
+    auto rig = sim::load_stereo_rig(core::data_directory() + "/rigs/puma560_rig.yaml");
     if (!rig) return rig.error();
     cameras = rig->cameras;
     app->ui_.calibration_note =
@@ -208,7 +208,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::Create(const ConsoleOptions& opt
   if (embedded) {
     session::EmbeddedServersOptions server_options;
     server_options.calibration_file = calibration_file;
-    auto servers = session::EmbeddedServers::Start(m.model, server_options);
+    auto servers = session::EmbeddedServers::create(m.model, server_options);
     if (!servers) return servers.error();
     app->servers_ = std::move(*servers);
     robot.address = app->servers_->robot_address();
@@ -243,8 +243,8 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::Create(const ConsoleOptions& opt
     cameras = info->cameras;
     app->ui_.calibration_note = "calibration: from the vision server (" + info->source + ")";
   }
-  m.cameras.left = resized_camera(cameras->left, width, height);
-  m.cameras.right = resized_camera(cameras->right, width, height);
+  m.cameras.left = vision::resized_camera(cameras->left, width, height);
+  m.cameras.right = vision::resized_camera(cameras->right, width, height);
   m.session_options.cameras = m.cameras;
   auto marker = sim::make_aruco_marker({});
   if (marker)
@@ -261,7 +261,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::Create(const ConsoleOptions& opt
     app->script_ = ScriptRunner(std::move(*lines));
   }
 
-  auto session = session::Session::Create(m.model, m.session_options);
+  auto session = session::Session::create(m.model, m.session_options);
   if (!session) return session.error();
   app->session_ = std::move(*session);
   app->session_->connect();
@@ -313,7 +313,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::Create(const ConsoleOptions& opt
   if (Status s = m.build_view(app->ui_); !s.ok()) return s.error();
 
   if (!options.fullscreen_eyes.empty()) {
-    auto eyes = EyeWindows::Create(*m.window, options.fullscreen_eyes == "two-windows");
+    auto eyes = EyeWindows::create(*m.window, options.fullscreen_eyes == "two-windows");
     if (!eyes) return eyes.error();
     m.eyes = std::move(*eyes);
   }
@@ -331,7 +331,7 @@ void ConsoleApp::rebuild_session() {
   options.vision.address = ui_.vision_address;
   options.robot.token = ui_.token;
   options.vision.token = ui_.token;
-  auto session = session::Session::Create(m.model, options);
+  auto session = session::Session::create(m.model, options);
   if (!session) {
     ui_.last_message = "connect: " + session.error().message;
     ui_.last_failed = true;
@@ -514,7 +514,7 @@ bool ConsoleApp::frame() {
   const bool want_screenshot =
       ui_.screenshot_request || (final_frame && !m.options.screenshot.empty());
   if (want_screenshot || capture_every_frame_) {
-    render::Image image(fb_w, fb_h, 3);
+    core::Image image(fb_w, fb_h, 3);
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(fb_w) * fb_h * 4);
     if (m.window) glReadBuffer(page_flip ? GL_BACK_LEFT : GL_BACK);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);

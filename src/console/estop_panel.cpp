@@ -1,7 +1,7 @@
 #include <imgui.h>
 
-#include "console/console_actions.hpp"
-#include "console/panels.hpp"
+#include "telear/console/console_actions.hpp"
+#include "telear/console/panels.hpp"
 
 namespace telear::console {
 

@@ -1,4 +1,4 @@
-#include "console/eye_windows.hpp"
+#include "telear/console/eye_windows.hpp"
 
 #include <epoxy/gl.h>
 // epoxy first: GLFW must not include the system GL header.
@@ -27,7 +27,7 @@ GLFWwindow* open_window(GLFWmonitor* monitor, int width, int height, const char*
 
 }  // namespace
 
-Result<std::unique_ptr<EyeWindows>> EyeWindows::Create(render::GlfwContext& main,
+Result<std::unique_ptr<EyeWindows>> EyeWindows::create(render::GlfwContext& main,
                                                        bool two_windows) {
   std::unique_ptr<EyeWindows> eyes(new EyeWindows());
   eyes->main_ = &main;

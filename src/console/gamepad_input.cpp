@@ -1,4 +1,4 @@
-#include "console/gamepad_input.hpp"
+#include "telear/console/gamepad_input.hpp"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "console/console_actions.hpp"
-#include "console/panels.hpp"
+#include "telear/console/console_actions.hpp"
+#include "telear/console/panels.hpp"
 
 namespace telear::console {
 
@@ -47,7 +47,7 @@ void draw_cartesian_jog(PanelContext& ctx, ActionKind kind) {
   ImGui::RadioButton("WRIST", &frame, 1);
   ImGui::SameLine();
   ImGui::RadioButton("TOOL", &frame, 2);
-  ui.frame = static_cast<MotionFrame>(frame);
+  ui.frame = static_cast<core::MotionFrame>(frame);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::InputFloat("mm", &ui.cartesian_step_mm, 0, 0, "%.1f");
@@ -62,7 +62,7 @@ void draw_cartesian_jog(PanelContext& ctx, ActionKind kind) {
 void draw_ghost_panel(PanelContext& ctx, const PanelLayout& layout) {
   session::Session& s = ctx.session;
   UiState& ui = ctx.ui;
-  const RobotModel& model = s.model();
+  const core::RobotModel& model = s.model();
   ImGui::SetNextWindowPos(ImVec2(layout.view_w(), 270), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(layout.width - layout.view_w(), 370), ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Ghost")) {
@@ -81,7 +81,7 @@ void draw_ghost_panel(PanelContext& ctx, const PanelLayout& layout) {
     const double step = ui.joint_step_deg * unit;
     if (ImGui::Button("-")) ctx.act(ghost_joint(j, -step));
     ImGui::SameLine();
-    const JointLimits& l = model.joint(j).limits;
+    const core::JointLimits& l = model.joint(j).limits;
     float value = static_cast<float>(display_value(model, j, q[j]));
     ImGui::PushStyleColor(ImGuiCol_SliderGrab, margin_colour(model, j, q[j]));
     ImGui::SetNextItemWidth(200);

@@ -1,4 +1,4 @@
-#include "console/mouse_input.hpp"
+#include "telear/console/mouse_input.hpp"
 
 #include <imgui.h>
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "console/panels.hpp"
+#include "telear/console/panels.hpp"
 
 namespace telear::console {
 
@@ -13,21 +13,21 @@ void section(const char* title) {
   ImGui::TextDisabled("%s", title);
 }
 
-bool is_prismatic(const RobotModel& model, int joint) {
-  return model.joint(joint).type == JointType::kPrismatic;
+bool is_prismatic(const core::RobotModel& model, int joint) {
+  return model.joint(joint).type == core::JointType::kPrismatic;
 }
 
-double display_value(const RobotModel& model, int joint, double q) {
+double display_value(const core::RobotModel& model, int joint, double q) {
   return is_prismatic(model, joint) ? q * 1000.0 : q * 180.0 / M_PI;
 }
 
-double limit_margin(const RobotModel& model, int joint, double q) {
-  const JointLimits& l = model.joint(joint).limits;
+double limit_margin(const core::RobotModel& model, int joint, double q) {
+  const core::JointLimits& l = model.joint(joint).limits;
   return std::min(q - l.lower, l.upper - q);
 }
 
-unsigned margin_colour(const RobotModel& model, int joint, double q) {
-  const JointLimits& l = model.joint(joint).limits;
+unsigned margin_colour(const core::RobotModel& model, int joint, double q) {
+  const core::JointLimits& l = model.joint(joint).limits;
   const double fraction = limit_margin(model, joint, q) / std::max(1e-9, l.upper - l.lower);
   // Red within 2 % of the range from a limit, amber within 10 %, green otherwise.
   if (fraction < 0.02) return IM_COL32(235, 70, 60, 255);

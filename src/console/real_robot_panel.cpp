@@ -3,15 +3,15 @@
 #include <cmath>
 #include <sstream>
 
-#include "console/console_actions.hpp"
-#include "console/panels.hpp"
+#include "telear/console/console_actions.hpp"
+#include "telear/console/panels.hpp"
 
 namespace telear::console {
 
 void draw_real_robot_panel(PanelContext& ctx, const PanelLayout& layout) {
   session::Session& s = ctx.session;
   UiState& ui = ctx.ui;
-  const RobotModel& model = s.model();
+  const core::RobotModel& model = s.model();
   const float y = 640;
   ImGui::SetNextWindowPos(ImVec2(layout.view_w(), y), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(
@@ -25,7 +25,7 @@ void draw_real_robot_panel(PanelContext& ctx, const PanelLayout& layout) {
   if (!real) {
     ImGui::TextDisabled("no state from the robot server yet");
   } else {
-    const RobotState& st = real->state;
+    const core::RobotState& st = real->state;
     ImGui::Text("%s, state age %.0f ms, gripper %.2f", to_string(st.mode),
                 s.view().real_state_age_s * 1e3, st.gripper);
     if (ImGui::BeginTable("joints", 4, ImGuiTableFlags_SizingFixedFit)) {

@@ -1,6 +1,6 @@
-#include "console/script_runner.hpp"
+#include "telear/console/script_runner.hpp"
 
-#include "console/console_actions.hpp"
+#include "telear/console/console_actions.hpp"
 
 namespace telear::console {
 

@@ -1,4 +1,4 @@
-#include "console/ui_script.hpp"
+#include "telear/console/ui_script.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -73,10 +73,10 @@ int parse_joint(const std::string& text, int dof) {
   return j - 1;
 }
 
-MotionFrame parse_frame(const std::string& text) {
-  if (text == "base") return MotionFrame::kBase;
-  if (text == "wrist") return MotionFrame::kWrist;
-  if (text == "tool") return MotionFrame::kTool;
+core::MotionFrame parse_frame(const std::string& text) {
+  if (text == "base") return core::MotionFrame::kBase;
+  if (text == "wrist") return core::MotionFrame::kWrist;
+  if (text == "tool") return core::MotionFrame::kTool;
   throw ParseError{"frame '" + text + "': base, wrist or tool"};
 }
 

@@ -1,4 +1,4 @@
-#include "console/ui_state.hpp"
+#include "telear/console/ui_state.hpp"
 
 namespace telear::console {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "console/console_actions.hpp"
-#include "console/panels.hpp"
+#include "telear/console/console_actions.hpp"
+#include "telear/console/panels.hpp"
 
 namespace telear::console {
 

@@ -1,12 +1,12 @@
-#include "core/arm_body.hpp"
+#include "telear/core/arm_body.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <filesystem>
 
-#include "core/robot_loader.hpp"
+#include "telear/core/robot_loader.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 constexpr float kMinLength = 1e-6f;
@@ -174,4 +174,4 @@ std::string find_body_file(const RobotModel& model) {
   return {};
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -9,9 +9,9 @@
 #include <set>
 #include <sstream>
 
-#include "core/arm_body.hpp"
+#include "telear/core/arm_body.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 struct ParseError {
@@ -242,4 +242,4 @@ Result<BodyDescription> body_description_for(const RobotModel& model) {
   return load_body_yaml_file(path, model);
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,9 +1,9 @@
-#include "core/arm_body_pose.hpp"
+#include "telear/core/arm_body_pose.hpp"
 
 #include <algorithm>
 #include <cassert>
 
-namespace telear {
+namespace telear::core {
 
 ArmBodyPose::ArmBodyPose(const RobotModel& model, const ArmBody& body)
     : model_(&model), data_(model), gripper_(body.gripper) {
@@ -29,7 +29,7 @@ void ArmBodyPose::set_configuration(const Eigen::VectorXd& q) {
 void ArmBodyPose::set_joint(int joint, double value) {
   assert(joint >= 0 && joint < model_->dof() && "ArmBodyPose::set_joint(): index out of range");
   if (data_.q[joint] == value) return;
-  telear::set_joint(*model_, data_, joint, value);
+  core::set_joint(*model_, data_, joint, value);
   // Joint j (0-based) moves frames j+1..n, i.e. the parts attached to links j+1..n.
   refresh_parts_from_link(joint + 1);
 }
@@ -92,4 +92,4 @@ void ArmBodyPose::mark(int first, int end) {
   }
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -8,13 +8,13 @@
 #include <optional>
 #include <sstream>
 
-#include "core/angles.hpp"
+#include "telear/core/angles.hpp"
 
-#include "core/pose.hpp"
-#include "core/robot_loader.hpp"
-#include "core/yaml_number.hpp"
+#include "telear/core/pose.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/core/yaml_number.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using ParseError = YamlParseError;
@@ -156,7 +156,7 @@ RobotModel::Description parse(const YAML::Node& root, const std::string& source)
 
 Result<RobotModel> parse_dh_yaml(const std::string& text, const std::string& source) {
   try {
-    return RobotModel::Create(parse(YAML::Load(text), source));
+    return RobotModel::create(parse(YAML::Load(text), source));
   } catch (const ParseError& e) {
     return Error{"robot file '" + source + "': " + e.message};
   } catch (const YAML::Exception& e) {
@@ -172,4 +172,4 @@ Result<RobotModel> load_dh_yaml_file(const std::string& path) {
   return parse_dh_yaml(buffer.str(), path);
 }
 
-}  // namespace telear
+}  // namespace telear::core

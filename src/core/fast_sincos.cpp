@@ -1,6 +1,6 @@
-#include "core/fast_sincos.hpp"
+#include "telear/core/fast_sincos.hpp"
 
-namespace telear {
+namespace telear::core {
 
 void sincos_n(const double* x, double* s, double* c, std::size_t n) {
   std::size_t i = 0;
@@ -21,4 +21,4 @@ void sincos_n(const double* x, double* s, double* c, std::size_t n) {
   }
 }
 
-}  // namespace telear
+}  // namespace telear::core

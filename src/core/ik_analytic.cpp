@@ -1,4 +1,4 @@
-#include "core/ik_analytic.hpp"
+#include "telear/core/ik_analytic.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -7,9 +7,9 @@
 #include <limits>
 #include <numbers>
 
-#include "core/angles.hpp"
+#include "telear/core/angles.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -405,4 +405,4 @@ AnalyticIkResult solve_analytic_ik(const RobotModel& model, const PumaGeometry& 
   return result;
 }
 
-}  // namespace telear
+}  // namespace telear::core

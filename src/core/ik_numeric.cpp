@@ -1,4 +1,4 @@
-#include "core/ik_numeric.hpp"
+#include "telear/core/ik_numeric.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -8,7 +8,7 @@
 #include <numbers>
 #include <vector>
 
-namespace telear {
+namespace telear::core {
 
 // The solver's state behind a small interface, so that 6-joint arms get fixed-size Eigen types
 // (unrolled 6 x 6 products and factorizations) and other arms dynamic ones.
@@ -404,4 +404,4 @@ NumericIkResult NumericIkSolver::solve(const Eigen::Isometry3d& T_base_tool,
   return workspace_->solve(T_base_tool, q_seed);
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,4 +1,4 @@
-#include "core/inverse_kinematics.hpp"
+#include "telear/core/inverse_kinematics.hpp"
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -7,11 +7,11 @@
 #include <limits>
 #include <numbers>
 
-#include "core/ik_numeric.hpp"
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
+#include "telear/core/ik_numeric.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
@@ -142,4 +142,4 @@ Result<IkSolution> solve_ik_nearest(const RobotModel& model, const Eigen::Isomet
   return nearest_numeric(model, T_base_tool, q_current);
 }
 
-}  // namespace telear
+}  // namespace telear::core

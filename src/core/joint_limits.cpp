@@ -1,10 +1,10 @@
-#include "core/joint_limits.hpp"
+#include "telear/core/joint_limits.hpp"
 
 #include <cstdio>
 
-#include "core/angles.hpp"
+#include "telear/core/angles.hpp"
 
-namespace telear {
+namespace telear::core {
 
 std::optional<LimitViolation> first_limit_violation(const RobotModel& model,
                                                     const Eigen::VectorXd& q, double tolerance) {
@@ -50,4 +50,4 @@ std::string describe_violation(const RobotModel& model, const LimitViolation& v)
          (v.upper ? "upper" : "lower") + " limit of " + format_joint_value(model, v.joint, v.limit);
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,4 +1,4 @@
-#include "core/kinematics.hpp"
+#include "telear/core/kinematics.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -7,9 +7,9 @@
 #include <cstring>
 #include <sstream>
 
-#include "core/fast_sincos.hpp"
+#include "telear/core/fast_sincos.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 // ---- rigid transforms in SIMD lane pairs ----------------------------------------------------
@@ -200,7 +200,7 @@ inline Frame dh_first(JointForm form, double c, double s, const DhParameters& dh
 
 // Re-computes link frames first_joint+1..n and the tool from frame first_joint.
 //
-// Joints of a DH form (JointForm, classified by RobotModel::Create) take dh_step. Any other
+// Joints of a DH form (JointForm, classified by RobotModel::create) take dh_step. Any other
 // joint multiplies by before * Z(q + offset) * after. The sines and cosines of a block of joints
 // are evaluated first, two at a time, so that the chain of frame products then runs without waiting
 // on them.
@@ -334,4 +334,4 @@ Status check_joint_vector(const RobotModel& model, const Eigen::VectorXd& q) {
   return Status::Ok();
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,10 +1,10 @@
-#include "core/mesh.hpp"
+#include "telear/core/mesh.hpp"
 
 #include <Eigen/Geometry>
 #include <cassert>
 #include <cmath>
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 constexpr float kTwoPi = 6.28318530717958647692f;
@@ -209,4 +209,4 @@ void append_checker_floor(Mesh& mesh, float size, int tiles, const Eigen::Vector
   }
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,6 +1,6 @@
-#include "core/motion_command.hpp"
+#include "telear/core/motion_command.hpp"
 
-#include "core/number_format.hpp"
+#include "telear/core/number_format.hpp"
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -9,11 +9,11 @@
 #include <limits>
 #include <vector>
 
-#include "core/inverse_kinematics.hpp"
-#include "core/joint_limits.hpp"
-#include "core/pose.hpp"
+#include "telear/core/inverse_kinematics.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/pose.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 MotionOutcome reject(const Eigen::VectorXd& q_current, RejectionKind kind, std::string message,
@@ -321,4 +321,4 @@ const char* to_string(RejectionKind kind) {
   return "?";
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,8 +1,8 @@
-#include "core/number_format.hpp"
+#include "telear/core/number_format.hpp"
 
 #include <cstdio>
 
-namespace telear {
+namespace telear::core {
 
 std::string format_number(double value, const char* format) {
   char buffer[64];
@@ -10,4 +10,4 @@ std::string format_number(double value, const char* format) {
   return buffer;
 }
 
-}  // namespace telear
+}  // namespace telear::core

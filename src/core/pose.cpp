@@ -1,8 +1,8 @@
-#include "core/pose.hpp"
+#include "telear/core/pose.hpp"
 
 #include <cmath>
 
-namespace telear {
+namespace telear::core {
 
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) {
   return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
@@ -68,4 +68,4 @@ std::array<std::array<double, 4>, 4> to_row_major(const Eigen::Isometry3d& T) {
   return rows;
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,9 +1,9 @@
-#include "core/random_configuration.hpp"
+#include "telear/core/random_configuration.hpp"
 
 #include <cmath>
 #include <numbers>
 
-namespace telear {
+namespace telear::core {
 
 Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& rng) {
   Eigen::VectorXd q(model.dof());
@@ -19,4 +19,4 @@ Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& r
   return q;
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,9 +1,9 @@
-#include "core/robot_loader.hpp"
+#include "telear/core/robot_loader.hpp"
 
 #include <cstdlib>
 #include <filesystem>
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 bool ends_with(const std::string& s, const std::string& suffix) {
@@ -43,4 +43,4 @@ Result<RobotModelPtr> load_robot(const std::string& name_or_path) {
   return Error{"robot file '" + path + "': unknown format (expected .urdf, .yaml or .yml)"};
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,11 +1,11 @@
-#include "core/robot_model.hpp"
+#include "telear/core/robot_model.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "core/joint_limits.hpp"
+#include "telear/core/joint_limits.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 bool is_identity(const Eigen::Isometry3d& T) {
@@ -35,7 +35,7 @@ std::string joint_label(int i, const Joint& joint) {
 
 }  // namespace
 
-Result<RobotModel> RobotModel::Create(Description d) {
+Result<RobotModel> RobotModel::create(Description d) {
   // Messages name the file when there is one, like the loaders' own messages.
   const std::string where =
       d.source.empty() ? "robot '" + d.name + "'" : "robot file '" + d.source + "'";
@@ -106,7 +106,7 @@ std::optional<Eigen::VectorXd> RobotModel::named_configuration(const std::string
 Result<RobotModel> RobotModel::with_tool(const Eigen::Isometry3d& T_flange_tool) const {
   Description d = d_;
   d.T_flange_tool = T_flange_tool;
-  return Create(std::move(d));
+  return create(std::move(d));
 }
 
 std::vector<Joint> joints_from_dh(const std::vector<DhRow>& rows,
@@ -126,4 +126,4 @@ std::vector<Joint> joints_from_dh(const std::vector<DhRow>& rows,
   return joints;
 }
 
-}  // namespace telear
+}  // namespace telear::core

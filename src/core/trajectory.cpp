@@ -1,15 +1,15 @@
-#include "core/trajectory.hpp"
+#include "telear/core/trajectory.hpp"
 
-#include "core/number_format.hpp"
+#include "telear/core/number_format.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <string>
 
-#include "core/joint_limits.hpp"
+#include "telear/core/joint_limits.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 // A segment whose joints all move less than this (rad or m) is treated as not moving: its
@@ -92,7 +92,7 @@ Status validate_waypoints(const RobotModel& model, const std::vector<JointWaypoi
   return Status::Ok();
 }
 
-Result<Trajectory> Trajectory::Create(const RobotModel& model, std::vector<JointWaypoint> waypoints,
+Result<Trajectory> Trajectory::create(const RobotModel& model, std::vector<JointWaypoint> waypoints,
                                       const TrajectoryOptions& options) {
   if (Status s = validate_waypoints(model, waypoints, options); !s) return s.error();
   Trajectory trajectory;
@@ -197,7 +197,7 @@ Result<TimedWaypoints> Trajectory::sampled(double rate_hz, int max_samples) cons
     const double T = profiles_[k].duration;
     const auto n = static_cast<int>(steps[k]);
     for (int i = 1; i <= n; ++i) {
-      // The last step lands exactly on the waypoint time computed in Create.
+      // The last step lands exactly on the waypoint time computed in create().
       const double t = (i == n) ? times_[k + 1] : times_[k] + T * i / n;
       if (i == n) {
         q = waypoints_[k + 1].q;
@@ -308,4 +308,4 @@ Status validate_timed_waypoints(const RobotModel& model, const TimedWaypoints& w
   return Status::Ok();
 }
 
-}  // namespace telear
+}  // namespace telear::core

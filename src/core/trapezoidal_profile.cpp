@@ -1,10 +1,10 @@
-#include "core/trapezoidal_profile.hpp"
+#include "telear/core/trapezoidal_profile.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 
-namespace telear {
+namespace telear::core {
 
 TrapezoidalProfile TrapezoidalProfile::Fastest(double alpha, double beta, double min_duration) {
   assert(alpha >= 0.0 && beta >= 0.0 && min_duration >= 0.0);
@@ -57,4 +57,4 @@ void TrapezoidalProfile::sample(double t, double& s, double& s_dot, double& s_dd
   s = std::clamp(s, 0.0, 1.0);
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -13,9 +13,9 @@
 #include <limits>
 #include <sstream>
 
-#include "core/robot_loader.hpp"
+#include "telear/core/robot_loader.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
@@ -132,7 +132,7 @@ Result<RobotModel> parse_urdf(const std::string& text, const std::string& source
   }
   d.named_configurations.push_back(
       {"zero", Eigen::VectorXd::Zero(static_cast<Eigen::Index>(d.joints.size()))});
-  return RobotModel::Create(std::move(d));
+  return RobotModel::create(std::move(d));
 }
 
 Result<RobotModel> load_urdf_file(const std::string& path, const std::string& tip_link) {
@@ -143,4 +143,4 @@ Result<RobotModel> load_urdf_file(const std::string& path, const std::string& ti
   return parse_urdf(buffer.str(), path, tip_link);
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,8 +1,8 @@
-#include "core/yaml_number.hpp"
+#include "telear/core/yaml_number.hpp"
 
 #include <cmath>
 
-namespace telear {
+namespace telear::core {
 
 double yaml_number(const YAML::Node& node, const std::string& what, const std::string& separator) {
   const std::string field = what + separator;
@@ -17,4 +17,4 @@ double yaml_number(const YAML::Node& node, const std::string& what, const std::s
   return value;
 }
 
-}  // namespace telear
+}  // namespace telear::core

@@ -1,4 +1,4 @@
-#include "net/bearer_auth.hpp"
+#include "telear/net/bearer_auth.hpp"
 
 #include <algorithm>
 #include <cassert>

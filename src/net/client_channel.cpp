@@ -1,4 +1,4 @@
-#include "net/client_channel.hpp"
+#include "telear/net/client_channel.hpp"
 
 #include <algorithm>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "net/clock_offset.hpp"
+#include "telear/net/clock_offset.hpp"
 
 #include <algorithm>
 

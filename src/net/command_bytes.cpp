@@ -1,4 +1,4 @@
-#include "net/command_bytes.hpp"
+#include "telear/net/command_bytes.hpp"
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstddef>
 
-#include "net/clock.hpp"
-#include "net/robot_messages.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/net/robot_messages.hpp"
 #include "telear/v1/robot.pb.h"
 
 namespace telear::net {
@@ -24,7 +24,7 @@ constexpr double kJogValidForS = 0.5;
 // The plan's joint vector at time t by linear interpolation between its samples (clamped to
 // its span). The jog stream only needs values of the right size and plausibility: a double
 // costs 8 bytes on the wire whatever its value.
-Eigen::VectorXd plan_at(const TimedWaypoints& plan, double t) {
+Eigen::VectorXd plan_at(const core::TimedWaypoints& plan, double t) {
   const auto& times = plan.times;
   if (t <= times.front()) return plan.q.front();
   if (t >= times.back()) return plan.q.back();
@@ -36,7 +36,7 @@ Eigen::VectorXd plan_at(const TimedWaypoints& plan, double t) {
 
 }  // namespace
 
-CommandBytes compare_command_bytes(const TimedWaypoints& plan, double jog_rate_hz,
+CommandBytes compare_command_bytes(const core::TimedWaypoints& plan, double jog_rate_hz,
                                    const std::string& lease_id, const std::string& trajectory_id) {
   assert(jog_rate_hz > 0.0 && std::isfinite(jog_rate_hz));
   CommandBytes bytes;
@@ -57,8 +57,8 @@ CommandBytes compare_command_bytes(const TimedWaypoints& plan, double jog_rate_h
     const double t = start + k / jog_rate_hz;
     jog.Clear();
     jog.set_lease_id(lease_id);
-    jog.set_expires_ns(kServerNowNs + s_to_ns(t - start + kJogValidForS));
-    fill_jog_request(JointTarget{plan_at(plan, t)}, jog);
+    jog.set_expires_ns(kServerNowNs + core::s_to_ns(t - start + kJogValidForS));
+    fill_jog_request(core::JointTarget{plan_at(plan, t)}, jog);
     bytes.jog_stream_bytes += jog.ByteSizeLong();
   }
   bytes.jog_messages = messages;

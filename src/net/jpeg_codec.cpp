@@ -1,4 +1,4 @@
-#include "net/jpeg_codec.hpp"
+#include "telear/net/jpeg_codec.hpp"
 
 #include <turbojpeg.h>
 
@@ -41,7 +41,7 @@ JpegEncoder& JpegEncoder::operator=(JpegEncoder&& other) noexcept {
   return *this;
 }
 
-Result<std::string> JpegEncoder::encode(const render::Image& rgb, int quality) {
+Result<std::string> JpegEncoder::encode(const core::Image& rgb, int quality) {
   if (handle_ == nullptr) return Error{"JPEG encode: no TurboJPEG handle"};
   if (quality < 1 || quality > 100) {
     return Error{"JPEG encode: quality " + std::to_string(quality) + " is outside 1..100"};
@@ -84,7 +84,7 @@ JpegDecoder& JpegDecoder::operator=(JpegDecoder&& other) noexcept {
   return *this;
 }
 
-Result<render::Image> JpegDecoder::decode(std::string_view jpeg, std::size_t max_pixels) {
+Result<core::Image> JpegDecoder::decode(std::string_view jpeg, std::size_t max_pixels) {
   if (handle_ == nullptr) return Error{"JPEG decode: no TurboJPEG handle"};
   if (jpeg.empty()) return Error{"JPEG decode: no data (0 bytes)"};
   auto* data = reinterpret_cast<const unsigned char*>(jpeg.data());
@@ -99,7 +99,7 @@ Result<render::Image> JpegDecoder::decode(std::string_view jpeg, std::size_t max
     return Error{"JPEG decode: image size " + std::to_string(width) + "x" + std::to_string(height) +
                  " is beyond the limit of " + std::to_string(max_pixels) + " pixels"};
   }
-  render::Image image(width, height, 3);
+  core::Image image(width, height, 3);
   if (tjDecompress2(static_cast<tjhandle>(handle_), data, jpeg.size(), image.pixels.data(), width,
                     0, height, TJPF_RGB, TJFLAG_STOPONWARNING | TJFLAG_LIMITSCANS) != 0) {
     return Error{"JPEG decode: corrupt " + std::to_string(width) + "x" + std::to_string(height) +

@@ -1,4 +1,4 @@
-#include "net/latency_summary.hpp"
+#include "telear/net/latency_summary.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "net/lease_manager.hpp"
+#include "telear/net/lease_manager.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -6,7 +6,7 @@
 #include <random>
 #include <utility>
 
-#include "net/clock.hpp"
+#include "telear/core/clock.hpp"
 
 namespace telear::net {
 
@@ -30,7 +30,7 @@ std::string milliseconds(std::int64_t ns) {
 }
 
 std::chrono::steady_clock::time_point steady_time(std::int64_t ns) {
-  // monotonic_ns() is steady_clock's count (net/clock.cpp).
+  // monotonic_ns() is steady_clock's count (core/clock.cpp).
   return std::chrono::steady_clock::time_point(std::chrono::nanoseconds(ns));
 }
 
@@ -62,7 +62,7 @@ std::int64_t LeaseManager::granted_heartbeat_ns(std::int64_t requested_ns) const
 Result<LeaseGrant> LeaseManager::acquire(const std::string& holder,
                                          std::int64_t requested_heartbeat_ns) {
   std::unique_lock lock(mutex_);
-  const std::int64_t now = monotonic_ns();
+  const std::int64_t now = core::monotonic_ns();
   if (lease_ && lease_->expires_ns > now) {
     return Error{"the lease is held by '" + lease_->holder +
                  "'; wait until it is released or lapses (it is renewed every " +
@@ -100,7 +100,7 @@ Result<std::string> LeaseManager::check_locked(const std::string& lease_id,
 
 Result<LeaseGrant> LeaseManager::renew(const std::string& lease_id) {
   std::unique_lock lock(mutex_);
-  const std::int64_t now = monotonic_ns();
+  const std::int64_t now = core::monotonic_ns();
   auto holder = check_locked(lease_id, now);
   if (!holder) return holder.error();
   lease_->expires_ns = now + lease_->heartbeat_ns;
@@ -112,7 +112,7 @@ Result<LeaseGrant> LeaseManager::renew(const std::string& lease_id) {
 
 Result<std::string> LeaseManager::release(const std::string& lease_id) {
   std::unique_lock lock(mutex_);
-  auto holder = check_locked(lease_id, monotonic_ns());
+  auto holder = check_locked(lease_id, core::monotonic_ns());
   if (!holder) return holder.error();
   lease_.reset();
   lock.unlock();
@@ -122,7 +122,7 @@ Result<std::string> LeaseManager::release(const std::string& lease_id) {
 
 Result<std::string> LeaseManager::check(const std::string& lease_id) const {
   std::lock_guard lock(mutex_);
-  return check_locked(lease_id, monotonic_ns());
+  return check_locked(lease_id, core::monotonic_ns());
 }
 
 std::string LeaseManager::holder() const {
@@ -143,7 +143,7 @@ void LeaseManager::watch() {
       continue;
     }
     const std::int64_t expires = lease_->expires_ns;
-    if (monotonic_ns() < expires) {
+    if (core::monotonic_ns() < expires) {
       // Woken early by a renewal or release (notify) or at the expiry.
       changed_.wait_until(lock, steady_time(expires));
       continue;
@@ -151,7 +151,7 @@ void LeaseManager::watch() {
     LeaseLapse lapse{lease_->holder, expires, 0};
     lapsed_id_ = lease_->lease_id;
     lease_.reset();
-    lapse.stop_started_ns = monotonic_ns();
+    lapse.stop_started_ns = core::monotonic_ns();
     last_lapse_ = lapse;
     lock.unlock();
     on_lapse_(lapse);

@@ -1,4 +1,4 @@
-#include "net/robot_client.hpp"
+#include "telear/net/robot_client.hpp"
 
 #include <grpcpp/grpcpp.h>
 
@@ -13,10 +13,10 @@
 #include <thread>
 #include <utility>
 
-#include "net/client_channel.hpp"
-#include "net/clock.hpp"
-#include "net/latest_slot.hpp"
-#include "net/robot_messages.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/net/client_channel.hpp"
+#include "telear/net/latest_slot.hpp"
+#include "telear/net/robot_messages.hpp"
 #include "telear/v1/robot.grpc.pb.h"
 
 namespace telear::net {
@@ -26,7 +26,7 @@ namespace {
 using Stub = v1::RobotService::Stub;
 
 std::chrono::nanoseconds seconds(double s) {
-  return std::chrono::nanoseconds(s_to_ns(s));
+  return std::chrono::nanoseconds(core::s_to_ns(s));
 }
 
 RobotInfo info_from_proto(const v1::RobotInfo& message) {
@@ -42,7 +42,7 @@ RobotInfo info_from_proto(const v1::RobotInfo& message) {
         c.name(), Eigen::Map<const Eigen::VectorXd>(c.q().data(), c.q_size()));
   }
   info.driver = message.driver();
-  info.heartbeat_period_s = ns_to_s(message.heartbeat_period_ns());
+  info.heartbeat_period_s = core::ns_to_s(message.heartbeat_period_ns());
   info.start_tolerance = message.start_tolerance();
   info.max_waypoints = message.max_waypoints();
   return info;
@@ -156,7 +156,7 @@ void RobotClient::Impl::stream_loop() {
     v1::RobotState message;
     bool delivered = false;
     while (reader->Read(&message)) {
-      const std::int64_t received = monotonic_ns();
+      const std::int64_t received = core::monotonic_ns();
       if (!delivered) {
         if (delivered_before) ++reconnects;
         delivered = delivered_before = true;
@@ -192,9 +192,9 @@ void RobotClient::Impl::stream_loop() {
 Result<double> RobotClient::Impl::ping() {
   v1::PingRequest request;
   v1::PingResponse response;
-  request.set_client_send_ns(monotonic_ns());
+  request.set_client_send_ns(core::monotonic_ns());
   const grpc::Status status = call(&Stub::Ping, request, &response, false);
-  const std::int64_t received = monotonic_ns();
+  const std::int64_t received = core::monotonic_ns();
   if (!status.ok()) return error("ping", status);
   PingSample sample{response.client_send_ns(), response.server_receive_ns(),
                     response.server_send_ns(), received};
@@ -202,7 +202,7 @@ Result<double> RobotClient::Impl::ping() {
     std::lock_guard lock(mutex);
     estimator.add(sample);
   }
-  return ns_to_s(received - request.client_send_ns());
+  return core::ns_to_s(received - request.client_send_ns());
 }
 
 void RobotClient::Impl::ping_loop() {
@@ -212,7 +212,7 @@ void RobotClient::Impl::ping_loop() {
 }
 
 void RobotClient::Impl::heartbeat_loop() {
-  std::int64_t last_renewal = monotonic_ns();
+  std::int64_t last_renewal = core::monotonic_ns();
   while (true) {
     std::string id;
     std::int64_t period;
@@ -228,7 +228,7 @@ void RobotClient::Impl::heartbeat_loop() {
     v1::Lease response;
     // Renewals are not counted as command bytes: both ways of moving the arm renew alike.
     const grpc::Status status = call(&Stub::RenewLease, request, &response, false);
-    const std::int64_t now = monotonic_ns();
+    const std::int64_t now = core::monotonic_ns();
     if (status.ok()) {
       last_renewal = now;
       continue;
@@ -290,7 +290,7 @@ void RobotClient::stop() {
 
 bool RobotClient::connected() const {
   const std::int64_t last = impl_->last_message_ns;
-  return last != 0 && monotonic_ns() - last < 1'000'000'000;
+  return last != 0 && core::monotonic_ns() - last < 1'000'000'000;
 }
 
 int RobotClient::reconnects() const {
@@ -330,7 +330,7 @@ Status RobotClient::acquire_lease(double heartbeat_period_s) {
   if (lease_held()) return Status::Ok();
   v1::AcquireLeaseRequest request;
   request.set_client_name(impl_->options.client_name);
-  request.set_heartbeat_period_ns(s_to_ns(heartbeat_period_s));
+  request.set_heartbeat_period_ns(core::s_to_ns(heartbeat_period_s));
   v1::Lease response;
   const grpc::Status status = impl_->call(&Stub::AcquireLease, request, &response, true);
   if (!status.ok()) return impl_->error("acquire lease", status);
@@ -398,10 +398,10 @@ JogAck jog_ack(const v1::JogResponse& response) {
 
 }  // namespace
 
-Result<JogAck> RobotClient::jog(const MotionCommand& command, double valid_for_s) {
+Result<JogAck> RobotClient::jog(const core::MotionCommand& command, double valid_for_s) {
   v1::JogRequest request;
   request.set_lease_id(impl_->current_lease_id());
-  request.set_expires_ns(impl_->to_server_ns(monotonic_ns() + s_to_ns(valid_for_s)));
+  request.set_expires_ns(impl_->to_server_ns(core::monotonic_ns() + core::s_to_ns(valid_for_s)));
   fill_jog_request(command, request);
   v1::JogResponse response;
   const grpc::Status status = impl_->call(&Stub::Jog, request, &response, true);
@@ -412,7 +412,7 @@ Result<JogAck> RobotClient::jog(const MotionCommand& command, double valid_for_s
 Result<JogAck> RobotClient::jog_velocity(const Eigen::VectorXd& qd, double valid_for_s) {
   v1::JogRequest request;
   request.set_lease_id(impl_->current_lease_id());
-  request.set_expires_ns(impl_->to_server_ns(monotonic_ns() + s_to_ns(valid_for_s)));
+  request.set_expires_ns(impl_->to_server_ns(core::monotonic_ns() + core::s_to_ns(valid_for_s)));
   request.mutable_joint_velocity()->mutable_qd()->Assign(qd.data(), qd.data() + qd.size());
   v1::JogResponse response;
   const grpc::Status status = impl_->call(&Stub::Jog, request, &response, true);
@@ -421,7 +421,7 @@ Result<JogAck> RobotClient::jog_velocity(const Eigen::VectorXd& qd, double valid
 }
 
 Result<TrajectoryAck> RobotClient::execute(const std::string& trajectory_id,
-                                           const TimedWaypoints& waypoints) {
+                                           const core::TimedWaypoints& waypoints) {
   v1::ExecuteTrajectoryRequest request;
   request.set_lease_id(impl_->current_lease_id());
   fill_trajectory_request(trajectory_id, waypoints, request);

@@ -1,10 +1,10 @@
-#include "net/robot_command_validation.hpp"
+#include "telear/net/robot_command_validation.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "core/joint_limits.hpp"
-#include "net/clock.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/core/joint_limits.hpp"
 
 namespace telear::net {
 
@@ -21,8 +21,8 @@ std::string milliseconds(std::int64_t ns) {
 }
 
 // "0.120 rad" or "0.0300 m": the value in SI units, as the wire carries it.
-std::string si_value(const RobotModel& model, int joint, double value) {
-  const bool prismatic = model.joint(joint).type == JointType::kPrismatic;
+std::string si_value(const core::RobotModel& model, int joint, double value) {
+  const bool prismatic = model.joint(joint).type == core::JointType::kPrismatic;
   return number(value, prismatic ? "%.4f" : "%.3f") + (prismatic ? " m" : " rad");
 }
 
@@ -50,14 +50,14 @@ Result<Eigen::Vector3d> finite_vector3(const google::protobuf::RepeatedField<dou
   return Eigen::Vector3d(*v);
 }
 
-MotionFrame frame_from_proto(v1::MotionFrame frame) {
+core::MotionFrame frame_from_proto(v1::MotionFrame frame) {
   switch (frame) {
     case v1::MOTION_FRAME_WRIST:
-      return MotionFrame::kWrist;
+      return core::MotionFrame::kWrist;
     case v1::MOTION_FRAME_TOOL:
-      return MotionFrame::kTool;
+      return core::MotionFrame::kTool;
     default:
-      return MotionFrame::kBase;
+      return core::MotionFrame::kBase;
   }
 }
 
@@ -78,9 +78,9 @@ Status check_trajectory_id(const std::string& id, const CommandLimits& limits) {
   return Status::Ok();
 }
 
-Result<TimedWaypoints> timed_waypoints_from_request(const RobotModel& model,
-                                                    const v1::ExecuteTrajectoryRequest& request,
-                                                    const CommandLimits& limits) {
+Result<core::TimedWaypoints> timed_waypoints_from_request(
+    const core::RobotModel& model, const v1::ExecuteTrajectoryRequest& request,
+    const CommandLimits& limits) {
   const std::string label = "trajectory '" + request.trajectory_id() + "' rejected: ";
   const int n = request.waypoints_size();
   if (n == 0) return Error{label + "it has no waypoints"};
@@ -88,11 +88,11 @@ Result<TimedWaypoints> timed_waypoints_from_request(const RobotModel& model,
     return Error{label + "it has " + std::to_string(n) + " waypoints, more than the maximum of " +
                  std::to_string(limits.max_waypoints)};
   }
-  TimedWaypoints w;
+  core::TimedWaypoints w;
   w.times.reserve(static_cast<size_t>(n));
   w.q.reserve(static_cast<size_t>(n));
   for (const v1::Waypoint& waypoint : request.waypoints()) {
-    w.times.push_back(ns_to_s(waypoint.time_from_start_ns()));
+    w.times.push_back(core::ns_to_s(waypoint.time_from_start_ns()));
     // Size and finiteness are checked by validate_timed_waypoints, with the sample's index.
     w.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(waypoint.q().data(), waypoint.q_size()));
   }
@@ -101,17 +101,17 @@ Result<TimedWaypoints> timed_waypoints_from_request(const RobotModel& model,
                  " gripper commands, more than its " + std::to_string(n) + " waypoints"};
   }
   for (const v1::GripperCommand& g : request.gripper()) {
-    w.gripper.push_back(GripperEvent{ns_to_s(g.time_from_start_ns()), g.opening()});
+    w.gripper.push_back(core::GripperEvent{core::ns_to_s(g.time_from_start_ns()), g.opening()});
   }
-  TimedWaypointsLimits core_limits;
+  core::TimedWaypointsLimits core_limits;
   core_limits.max_samples = limits.max_waypoints;
-  if (Status s = validate_timed_waypoints(model, w, core_limits); !s) {
+  if (Status s = core::validate_timed_waypoints(model, w, core_limits); !s) {
     return Error{label + s.error().message};
   }
   return w;
 }
 
-Status check_start_state(const RobotModel& model, const std::string& trajectory_id,
+Status check_start_state(const core::RobotModel& model, const std::string& trajectory_id,
                          const Eigen::VectorXd& start, const Eigen::VectorXd& current_q,
                          double tolerance) {
   Eigen::Index worst = 0;
@@ -119,14 +119,14 @@ Status check_start_state(const RobotModel& model, const std::string& trajectory_
   if (deviation <= tolerance) return Status::Ok();
   const int j = static_cast<int>(worst);
   return Error{"trajectory '" + trajectory_id + "' rejected: it starts " +
-               si_value(model, j, deviation) + " (" + format_joint_value(model, j, deviation) +
-               ") from the current state at " + joint_label(model, j) + " (tolerance " +
-               si_value(model, j, tolerance) + "): the arm is at " +
-               si_value(model, j, current_q[j]) + ", the trajectory starts at " +
-               si_value(model, j, start[j])};
+               si_value(model, j, deviation) + " (" +
+               core::format_joint_value(model, j, deviation) + ") from the current state at " +
+               core::joint_label(model, j) + " (tolerance " + si_value(model, j, tolerance) +
+               "): the arm is at " + si_value(model, j, current_q[j]) +
+               ", the trajectory starts at " + si_value(model, j, start[j])};
 }
 
-Result<JogCommand> jog_command_from_request(const RobotModel& model,
+Result<JogCommand> jog_command_from_request(const core::RobotModel& model,
                                             const v1::JogRequest& request) {
   const int dof = model.dof();
   JogCommand jog;
@@ -141,15 +141,15 @@ Result<JogCommand> jog_command_from_request(const RobotModel& model,
       if (!std::isfinite(inc.delta())) {
         return Error{"jog rejected: the increment is not a finite number: " + number(inc.delta())};
       }
-      jog.motion = JointIncrement{inc.joint(), inc.delta()};
-      jog.description = "joint increment: " + joint_label(model, inc.joint()) + " by " +
+      jog.motion = core::JointIncrement{inc.joint(), inc.delta()};
+      jog.description = "joint increment: " + core::joint_label(model, inc.joint()) + " by " +
                         si_value(model, inc.joint(), inc.delta());
       return jog;
     }
     case v1::JogRequest::kJointTarget: {
       auto q = finite_vector(request.joint_target().q(), dof, "joint target q");
       if (!q) return Error{"jog rejected: " + q.error().message};
-      jog.motion = JointTarget{*q};
+      jog.motion = core::JointTarget{*q};
       jog.description = "joint target";
       return jog;
     }
@@ -159,8 +159,8 @@ Result<JogCommand> jog_command_from_request(const RobotModel& model,
       if (!dX) return Error{"jog rejected: " + dX.error().message};
       auto dM = finite_vector3(inc.rotation_rad(), "rotation_rad");
       if (!dM) return Error{"jog rejected: " + dM.error().message};
-      const MotionFrame frame = frame_from_proto(inc.frame());
-      jog.motion = CartesianIncrement{frame, *dX, *dM};
+      const core::MotionFrame frame = frame_from_proto(inc.frame());
+      jog.motion = core::CartesianIncrement{frame, *dX, *dM};
       jog.description = std::string("Cartesian increment in the ") + to_string(frame) +
                         " frame: " + number(dX->norm()) + " m, " + number(dM->norm()) + " rad";
       return jog;
@@ -171,7 +171,7 @@ Result<JogCommand> jog_command_from_request(const RobotModel& model,
       if (!X) return Error{"jog rejected: " + X.error().message};
       auto M = finite_vector3(target.rotation_rad(), "rotation_rad");
       if (!M) return Error{"jog rejected: " + M.error().message};
-      jog.motion = cartesian_target(*X, *M);
+      jog.motion = core::cartesian_target(*X, *M);
       jog.description = "Cartesian target";
       return jog;
     }

@@ -1,4 +1,4 @@
-#include "net/robot_messages.hpp"
+#include "telear/net/robot_messages.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -6,7 +6,7 @@
 #include <type_traits>
 #include <variant>
 
-#include "net/clock.hpp"
+#include "telear/core/clock.hpp"
 
 namespace telear::net {
 
@@ -22,83 +22,83 @@ Eigen::VectorXd vector(const google::protobuf::RepeatedField<double>& values) {
 
 }  // namespace
 
-v1::RobotMode to_proto(RobotMode mode) {
+v1::RobotMode to_proto(core::RobotMode mode) {
   switch (mode) {
-    case RobotMode::kIdle:
+    case core::RobotMode::kIdle:
       return v1::ROBOT_MODE_IDLE;
-    case RobotMode::kJogging:
+    case core::RobotMode::kJogging:
       return v1::ROBOT_MODE_JOGGING;
-    case RobotMode::kTrajectory:
+    case core::RobotMode::kTrajectory:
       return v1::ROBOT_MODE_TRAJECTORY;
-    case RobotMode::kStopping:
+    case core::RobotMode::kStopping:
       return v1::ROBOT_MODE_STOPPING;
-    case RobotMode::kEStopped:
+    case core::RobotMode::kEStopped:
       return v1::ROBOT_MODE_ESTOPPED;
   }
   return v1::ROBOT_MODE_UNSPECIFIED;
 }
 
-RobotMode from_proto(v1::RobotMode mode) {
+core::RobotMode from_proto(v1::RobotMode mode) {
   switch (mode) {
     case v1::ROBOT_MODE_JOGGING:
-      return RobotMode::kJogging;
+      return core::RobotMode::kJogging;
     case v1::ROBOT_MODE_TRAJECTORY:
-      return RobotMode::kTrajectory;
+      return core::RobotMode::kTrajectory;
     case v1::ROBOT_MODE_STOPPING:
-      return RobotMode::kStopping;
+      return core::RobotMode::kStopping;
     case v1::ROBOT_MODE_ESTOPPED:
-      return RobotMode::kEStopped;
+      return core::RobotMode::kEStopped;
     default:
-      return RobotMode::kIdle;
+      return core::RobotMode::kIdle;
   }
 }
 
-v1::TrajectoryStatus to_proto(TrajectoryStatus status) {
+v1::TrajectoryStatus to_proto(core::TrajectoryStatus status) {
   switch (status) {
-    case TrajectoryStatus::kRunning:
+    case core::TrajectoryStatus::kRunning:
       return v1::TRAJECTORY_STATUS_RUNNING;
-    case TrajectoryStatus::kCompleted:
+    case core::TrajectoryStatus::kCompleted:
       return v1::TRAJECTORY_STATUS_COMPLETED;
-    case TrajectoryStatus::kCancelled:
+    case core::TrajectoryStatus::kCancelled:
       return v1::TRAJECTORY_STATUS_CANCELLED;
-    case TrajectoryStatus::kAborted:
+    case core::TrajectoryStatus::kAborted:
       return v1::TRAJECTORY_STATUS_ABORTED;
   }
   return v1::TRAJECTORY_STATUS_UNSPECIFIED;
 }
 
-TrajectoryStatus from_proto(v1::TrajectoryStatus status) {
+core::TrajectoryStatus from_proto(v1::TrajectoryStatus status) {
   switch (status) {
     case v1::TRAJECTORY_STATUS_COMPLETED:
-      return TrajectoryStatus::kCompleted;
+      return core::TrajectoryStatus::kCompleted;
     case v1::TRAJECTORY_STATUS_CANCELLED:
-      return TrajectoryStatus::kCancelled;
+      return core::TrajectoryStatus::kCancelled;
     case v1::TRAJECTORY_STATUS_ABORTED:
-      return TrajectoryStatus::kAborted;
+      return core::TrajectoryStatus::kAborted;
     default:
-      return TrajectoryStatus::kRunning;
+      return core::TrajectoryStatus::kRunning;
   }
 }
 
-void fill_model_info(const RobotModel& model, v1::RobotInfo& info) {
+void fill_model_info(const core::RobotModel& model, v1::RobotInfo& info) {
   info.set_model_name(model.name());
-  for (const Joint& joint : model.joints()) {
+  for (const core::Joint& joint : model.joints()) {
     v1::JointInfo* j = info.add_joints();
     j->set_name(joint.name);
-    j->set_prismatic(joint.type == JointType::kPrismatic);
+    j->set_prismatic(joint.type == core::JointType::kPrismatic);
     j->set_min_position(joint.limits.lower);
     j->set_max_position(joint.limits.upper);
     j->set_max_velocity(joint.limits.max_velocity);
     j->set_max_acceleration(joint.limits.max_acceleration);
   }
-  for (const NamedConfiguration& named : model.named_configurations()) {
+  for (const core::NamedConfiguration& named : model.named_configurations()) {
     v1::NamedConfiguration* c = info.add_named_configurations();
     c->set_name(named.name);
     copy(named.q, c->mutable_q());
   }
 }
 
-void fill_state(const RobotState& state, v1::RobotState& message) {
+void fill_state(const core::RobotState& state, v1::RobotState& message) {
   message.set_mode(to_proto(state.mode));
   copy(state.q, message.mutable_q());
   copy(state.qd, message.mutable_qd());
@@ -115,9 +115,9 @@ void fill_state(const RobotState& state, v1::RobotState& message) {
   message.set_stop_reason(state.stop_reason);
 }
 
-RobotState state_from_proto(const v1::RobotState& message) {
-  RobotState state;
-  state.time = ns_to_s(message.capture_ns());
+core::RobotState state_from_proto(const v1::RobotState& message) {
+  core::RobotState state;
+  state.time = core::ns_to_s(message.capture_ns());
   state.mode = from_proto(message.mode());
   state.q = vector(message.q());
   state.qd = vector(message.qd());
@@ -137,20 +137,20 @@ RobotState state_from_proto(const v1::RobotState& message) {
   return state;
 }
 
-void fill_jog_request(const MotionCommand& command, v1::JogRequest& request) {
+void fill_jog_request(const core::MotionCommand& command, v1::JogRequest& request) {
   std::visit(
       [&request](const auto& c) {
         using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, JointIncrement>) {
+        if constexpr (std::is_same_v<T, core::JointIncrement>) {
           request.mutable_joint_increment()->set_joint(c.joint);
           request.mutable_joint_increment()->set_delta(c.delta);
-        } else if constexpr (std::is_same_v<T, JointTarget>) {
+        } else if constexpr (std::is_same_v<T, core::JointTarget>) {
           copy(c.q, request.mutable_joint_target()->mutable_q());
-        } else if constexpr (std::is_same_v<T, CartesianIncrement>) {
+        } else if constexpr (std::is_same_v<T, core::CartesianIncrement>) {
           auto* inc = request.mutable_cartesian_increment();
-          inc->set_frame(c.frame == MotionFrame::kWrist  ? v1::MOTION_FRAME_WRIST
-                         : c.frame == MotionFrame::kTool ? v1::MOTION_FRAME_TOOL
-                                                         : v1::MOTION_FRAME_BASE);
+          inc->set_frame(c.frame == core::MotionFrame::kWrist  ? v1::MOTION_FRAME_WRIST
+                         : c.frame == core::MotionFrame::kTool ? v1::MOTION_FRAME_TOOL
+                                                               : v1::MOTION_FRAME_BASE);
           inc->mutable_translation_m()->Assign(c.dX.data(), c.dX.data() + 3);
           inc->mutable_rotation_rad()->Assign(c.dM.data(), c.dM.data() + 3);
         } else {
@@ -165,7 +165,8 @@ void fill_jog_request(const MotionCommand& command, v1::JogRequest& request) {
       command);
 }
 
-void fill_trajectory_request(const std::string& trajectory_id, const TimedWaypoints& waypoints,
+void fill_trajectory_request(const std::string& trajectory_id,
+                             const core::TimedWaypoints& waypoints,
                              v1::ExecuteTrajectoryRequest& request) {
   request.set_trajectory_id(trajectory_id);
   const size_t n = std::min(waypoints.times.size(), waypoints.q.size());
@@ -174,7 +175,7 @@ void fill_trajectory_request(const std::string& trajectory_id, const TimedWaypoi
     w->set_time_from_start_ns(std::llround(waypoints.times[k] * 1e9));
     copy(waypoints.q[k], w->mutable_q());
   }
-  for (const GripperEvent& event : waypoints.gripper) {
+  for (const core::GripperEvent& event : waypoints.gripper) {
     v1::GripperCommand* g = request.add_gripper();
     g->set_time_from_start_ns(std::llround(event.time * 1e9));
     g->set_opening(event.opening);

@@ -1,4 +1,4 @@
-#include "net/robot_server.hpp"
+#include "telear/net/robot_server.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -7,8 +7,8 @@
 #include <sstream>
 #include <utility>
 
-#include "net/bearer_auth.hpp"
-#include "net/robot_service.hpp"
+#include "telear/net/bearer_auth.hpp"
+#include "telear/net/robot_service.hpp"
 
 namespace telear::net {
 
@@ -48,8 +48,8 @@ Status RobotServerOptions::validate() const {
   return Status::Ok();
 }
 
-Result<std::unique_ptr<RobotServer>> RobotServer::Start(std::unique_ptr<RobotDriver> driver,
-                                                        RobotServerOptions options) {
+Result<std::unique_ptr<RobotServer>> RobotServer::create(std::unique_ptr<core::RobotDriver> driver,
+                                                         RobotServerOptions options) {
   if (Status s = options.validate(); !s) return Error{"robot server: " + s.error().message};
   std::string token = options.token;
   if (token.empty()) {

@@ -1,4 +1,4 @@
-#include "net/robot_service.hpp"
+#include "telear/net/robot_service.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <utility>
 
-#include "net/clock.hpp"
-#include "net/robot_messages.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/net/robot_messages.hpp"
 
 namespace telear::net {
 
@@ -74,7 +74,7 @@ std::string describe_caller(const grpc::ServerContext& context) {
   return name + " (" + context.peer() + ")";
 }
 
-RobotService::RobotService(RobotDriver& driver, BearerAuth auth, LeaseOptions lease_options,
+RobotService::RobotService(core::RobotDriver& driver, BearerAuth auth, LeaseOptions lease_options,
                            CommandLimits limits)
     : driver_(driver),
       auth_(std::move(auth)),
@@ -125,7 +125,7 @@ grpc::Status RobotService::admit(grpc::ServerContext* context, const std::string
 }
 
 grpc::StatusCode RobotService::driver_rejection_code() const {
-  const RobotState state = driver_.snapshot().state;
+  const core::RobotState state = driver_.snapshot().state;
   const bool busy = state.estop || !state.trajectory_id.empty();
   return busy ? grpc::StatusCode::FAILED_PRECONDITION : grpc::StatusCode::INVALID_ARGUMENT;
 }
@@ -141,7 +141,7 @@ grpc::Status RobotService::GetInfo(grpc::ServerContext* context, const v1::GetIn
   response->set_heartbeat_period_ns(lease_.options().default_heartbeat_ns);
   response->set_start_tolerance(driver_.start_tolerance());
   response->set_max_waypoints(limits_.max_waypoints);
-  response->set_server_time_ns(monotonic_ns());
+  response->set_server_time_ns(core::monotonic_ns());
   return grpc::Status::OK;
 }
 
@@ -156,7 +156,7 @@ grpc::Status RobotService::StreamState(grpc::ServerContext* context,
             "state rate " + format("%g", rate) + " Hz is outside 1..250 Hz (0: 50 Hz)"};
   }
   const auto period_ns = static_cast<std::int64_t>(1e9 / rate);
-  std::int64_t next_ns = monotonic_ns();
+  std::int64_t next_ns = core::monotonic_ns();
   std::uint64_t sequence = 0;
   v1::RobotState message;
   while (true) {
@@ -168,7 +168,7 @@ grpc::Status RobotService::StreamState(grpc::ServerContext* context,
       }
     }
     if (context->IsCancelled()) return grpc::Status::CANCELLED;
-    const DriverSnapshot snapshot = driver_.snapshot();
+    const core::DriverSnapshot snapshot = driver_.snapshot();
     message.Clear();
     fill_state(snapshot.state, message);
     message.set_sequence(++sequence);
@@ -181,26 +181,26 @@ grpc::Status RobotService::StreamState(grpc::ServerContext* context,
     }
     if (!last_id.empty()) {
       if (auto record = driver_.trajectory_record(last_id);
-          record && record->status != TrajectoryStatus::kRunning) {
+          record && record->status != core::TrajectoryStatus::kRunning) {
         message.set_last_trajectory_id(record->id);
         message.set_last_trajectory_status(to_proto(record->status));
         message.set_last_trajectory_message(record->message);
       }
     }
-    message.set_server_send_ns(monotonic_ns());
+    message.set_server_send_ns(core::monotonic_ns());
     if (!writer->Write(message)) return grpc::Status::OK;  // the client went away
     // Keep the rate; after a stall (a slow client) skip the missed ticks, never burst.
-    next_ns = std::max(next_ns + period_ns, monotonic_ns());
+    next_ns = std::max(next_ns + period_ns, core::monotonic_ns());
   }
 }
 
 grpc::Status RobotService::Ping(grpc::ServerContext* context, const v1::PingRequest* request,
                                 v1::PingResponse* response) {
-  const std::int64_t received_ns = monotonic_ns();
+  const std::int64_t received_ns = core::monotonic_ns();
   if (grpc::Status s = auth_.authorize_read(*context); !s.ok()) return s;
   response->set_client_send_ns(request->client_send_ns());
   response->set_server_receive_ns(received_ns);
-  response->set_server_send_ns(monotonic_ns());
+  response->set_server_send_ns(core::monotonic_ns());
   return grpc::Status::OK;
 }
 
@@ -271,7 +271,7 @@ grpc::Status RobotService::ReleaseLease(grpc::ServerContext* context,
 
 grpc::Status RobotService::Jog(grpc::ServerContext* context, const v1::JogRequest* request,
                                v1::JogResponse* response) {
-  const std::int64_t arrived_ns = monotonic_ns();
+  const std::int64_t arrived_ns = core::monotonic_ns();
   std::string what = "jog";
   if (grpc::Status s = admit(context, what, request->lease_id()); !s.ok()) return s;
   auto jog = jog_command_from_request(*driver_.model(), *request);
@@ -310,7 +310,7 @@ grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
   if (const auto first = accepted_.find(id); first != accepted_.end()) {
     const auto record = driver_.trajectory_record(id);
     response->set_duplicate(true);
-    response->set_status(to_proto(record ? record->status : TrajectoryStatus::kRunning));
+    response->set_status(to_proto(record ? record->status : core::TrajectoryStatus::kRunning));
     response->set_duration_s(first->second.duration_s);
     response->set_accepted_ns(first->second.accepted_ns);
     return finish(context, what + ": a duplicate of the first acceptance, not executed again",
@@ -319,14 +319,14 @@ grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
   auto waypoints = timed_waypoints_from_request(*driver_.model(), *request, limits_);
   if (!waypoints) return finish(context, what, invalid(waypoints.error()));
 
-  const RobotState state = driver_.snapshot().state;
+  const core::RobotState state = driver_.snapshot().state;
   if (state.estop) {
     return finish(context, what,
                   {grpc::StatusCode::FAILED_PRECONDITION,
                    "trajectory " + quoted(id) + " rejected: the e-stop is engaged (" +
                        state.estop_reason + "); reset it first"});
   }
-  if (state.mode != RobotMode::kIdle) {
+  if (state.mode != core::RobotMode::kIdle) {
     const std::string busy = state.trajectory_id.empty()
                                  ? std::string("the arm is ") + to_string(state.mode)
                                  : "trajectory " + quoted(state.trajectory_id) + " is running";

@@ -1,4 +1,4 @@
-#include "net/vision_client.hpp"
+#include "telear/net/vision_client.hpp"
 
 #include <grpcpp/grpcpp.h>
 
@@ -10,12 +10,12 @@
 #include <sstream>
 #include <thread>
 
-#include "net/client_channel.hpp"
-#include "net/clock.hpp"
-#include "net/jpeg_codec.hpp"
-#include "net/latest_slot.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/net/client_channel.hpp"
+#include "telear/net/jpeg_codec.hpp"
+#include "telear/net/latest_slot.hpp"
 #include "telear/v1/vision.grpc.pb.h"
-#include "vision/camera_file.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::net {
 namespace {
@@ -27,8 +27,8 @@ struct Received {
   std::size_t bytes = 0;
 };
 
-CameraModel model_from_intrinsics(const telear::v1::CameraIntrinsics& in) {
-  CameraModel camera;
+vision::CameraModel model_from_intrinsics(const telear::v1::CameraIntrinsics& in) {
+  vision::CameraModel camera;
   camera.width = in.width();
   camera.height = in.height();
   if (in.fc_size() == 2) {
@@ -41,13 +41,13 @@ CameraModel model_from_intrinsics(const telear::v1::CameraIntrinsics& in) {
   }
   camera.alpha_c = in.alpha_c();
   if (in.kc_size() == 5) {
-    camera.kc = Distortion::from_array({in.kc(0), in.kc(1), in.kc(2), in.kc(3), in.kc(4)});
+    camera.kc = vision::Distortion::from_array({in.kc(0), in.kc(1), in.kc(2), in.kc(3), in.kc(4)});
   }
   return camera;
 }
 
 double seconds_between(std::int64_t from_ns, std::int64_t to_ns) {
-  return ns_to_s(to_ns - from_ns);
+  return core::ns_to_s(to_ns - from_ns);
 }
 
 }  // namespace
@@ -83,7 +83,7 @@ struct VisionClient::Impl {
   // Sleeps up to `seconds`, returns at once on stop(); false once stopped.
   bool sleep_unless_stopped(double seconds) {
     std::unique_lock lock(mutex);
-    wake.wait_for(lock, std::chrono::nanoseconds(s_to_ns(seconds)), [&] { return !running; });
+    wake.wait_for(lock, std::chrono::nanoseconds(core::s_to_ns(seconds)), [&] { return !running; });
     return running;
   }
   std::int64_t to_client(std::int64_t server_ns) const {
@@ -119,7 +119,7 @@ void VisionClient::Impl::receive_loop() {
     auto reader = stub->StreamFrames(&context, request);
     Received item;
     while (reader->Read(&item.message)) {
-      item.receive_ns = monotonic_ns();
+      item.receive_ns = core::monotonic_ns();
       item.bytes = item.message.ByteSizeLong();
       last_receive_ns = item.receive_ns;
       ++frames_received;
@@ -153,11 +153,11 @@ void VisionClient::Impl::decode_loop() {
     const Received& in = *taken->item;
     const telear::v1::StereoFrame& m = in.message;
     auto left = decoder.decode(m.left().jpeg());
-    auto right = left ? decoder.decode(m.right().jpeg()) : Result<render::Image>(left.error());
+    auto right = left ? decoder.decode(m.right().jpeg()) : Result<core::Image>(left.error());
     if (!left || !right) continue;  // a corrupt frame is dropped; the next one replaces it
 
     DecodedStereoFrame out;
-    out.decoded_ns = monotonic_ns();
+    out.decoded_ns = core::monotonic_ns();
     out.frame_id = m.frame_id();
     out.left = std::move(*left);
     out.right = std::move(*right);
@@ -194,13 +194,13 @@ void VisionClient::Impl::ping_loop() {
     grpc::ClientContext context;
     add_metadata(context);
     context.set_deadline(std::chrono::system_clock::now() +
-                         std::chrono::nanoseconds(s_to_ns(options.rpc_timeout_s)));
+                         std::chrono::nanoseconds(core::s_to_ns(options.rpc_timeout_s)));
     telear::v1::PingRequest request;
     telear::v1::PingResponse reply;
-    request.set_client_send_ns(monotonic_ns());
+    request.set_client_send_ns(core::monotonic_ns());
     if (stub->Ping(&context, request, &reply).ok()) {
       PingSample sample{request.client_send_ns(), reply.server_receive_ns(), reply.server_send_ns(),
-                        monotonic_ns()};
+                        core::monotonic_ns()};
       std::lock_guard lock(offset_mutex);
       estimator.add(sample);
     }
@@ -249,7 +249,7 @@ void VisionClient::stop() {
 
 bool VisionClient::connected() const {
   const std::int64_t last = impl_->last_receive_ns;
-  return last != 0 && monotonic_ns() - last < s_to_ns(1.0);
+  return last != 0 && core::monotonic_ns() - last < core::s_to_ns(1.0);
 }
 
 int VisionClient::reconnects() const {
@@ -260,7 +260,7 @@ Result<CameraInfoReply> VisionClient::get_camera_info() {
   grpc::ClientContext context;
   impl_->add_metadata(context);
   context.set_deadline(std::chrono::system_clock::now() +
-                       std::chrono::nanoseconds(s_to_ns(impl_->options.rpc_timeout_s)));
+                       std::chrono::nanoseconds(core::s_to_ns(impl_->options.rpc_timeout_s)));
   telear::v1::CameraInfo info;
   const grpc::Status status =
       impl_->stub->GetCameraInfo(&context, telear::v1::GetCameraInfoRequest(), &info);
@@ -280,7 +280,7 @@ Result<CameraInfoReply> VisionClient::get_camera_info() {
   reply.source_fps = info.source_fps();
   if (!reply.found) return reply;
   // The file itself carries everything (poses included); the fields are the fallback.
-  auto file = parse_camera_yaml(info.calibration_yaml(), "vision server calibration");
+  auto file = vision::parse_camera_yaml(info.calibration_yaml(), "vision server calibration");
   if (file && file->is_stereo()) {
     reply.cameras.left = file->left;
     reply.cameras.right = *file->right;
@@ -299,7 +299,7 @@ std::optional<std::shared_ptr<const DecodedStereoFrame>> VisionClient::latest_fr
 
 std::optional<std::pair<std::shared_ptr<const DecodedStereoFrame>, std::uint64_t>>
 VisionClient::wait_frame(std::uint64_t after, double timeout_s) const {
-  auto taken = impl_->decoded.wait_take(after, std::chrono::nanoseconds(s_to_ns(timeout_s)));
+  auto taken = impl_->decoded.wait_take(after, std::chrono::nanoseconds(core::s_to_ns(timeout_s)));
   if (!taken) return std::nullopt;
   return std::make_pair(taken->item, taken->number);
 }

@@ -1,8 +1,8 @@
-#include "net/vision_pipeline.hpp"
+#include "telear/net/vision_pipeline.hpp"
 
 #include <cmath>
 
-#include "net/opencv_frame.hpp"
+#include "telear/vision/opencv_frame.hpp"
 
 namespace telear::net {
 
@@ -26,24 +26,24 @@ Status validate_stream_settings(const StreamSettings& s) {
   return {};
 }
 
-Result<EncodedStereo> encode_stereo(JpegEncoder& encoder, const StereoCapture& capture, int width,
-                                    int height, int quality) {
+Result<EncodedStereo> encode_stereo(JpegEncoder& encoder, const vision::StereoCapture& capture,
+                                    int width, int height, int quality) {
   EncodedStereo out;
   out.frame_id = capture.frame_number;
   out.capture_ns_left = capture.capture_ns_left;
   out.capture_ns_right = capture.capture_ns_right;
   out.scene = capture.scene;
   out.quality = quality;
-  out.encode_start_ns = monotonic_ns();
+  out.encode_start_ns = core::monotonic_ns();
   const bool scale =
       width > 0 && height > 0 && (width != capture.left.width || height != capture.left.height);
-  auto left = scale ? encoder.encode(resize_rgb(capture.left, width, height), quality)
+  auto left = scale ? encoder.encode(vision::resize_rgb(capture.left, width, height), quality)
                     : encoder.encode(capture.left, quality);
   if (!left) return Error{"left eye: " + left.error().message};
-  auto right = scale ? encoder.encode(resize_rgb(capture.right, width, height), quality)
+  auto right = scale ? encoder.encode(vision::resize_rgb(capture.right, width, height), quality)
                      : encoder.encode(capture.right, quality);
   if (!right) return Error{"right eye: " + right.error().message};
-  out.encode_end_ns = monotonic_ns();
+  out.encode_end_ns = core::monotonic_ns();
   out.left_jpeg = std::move(*left);
   out.right_jpeg = std::move(*right);
   out.width = scale ? width : capture.left.width;
@@ -53,7 +53,8 @@ Result<EncodedStereo> encode_stereo(JpegEncoder& encoder, const StereoCapture& c
 
 // [SECTION] pipeline
 
-VisionPipeline::VisionPipeline(std::unique_ptr<StereoSource> source, VisionPipelineOptions options)
+VisionPipeline::VisionPipeline(std::unique_ptr<vision::StereoSource> source,
+                               VisionPipelineOptions options)
     : source_(std::move(source)), options_(options) {
   assert(source_ != nullptr && "VisionPipeline: no source");
   assert(options_.default_quality >= 1 && options_.default_quality <= 100 &&
@@ -165,18 +166,18 @@ bool FrameSubscriber::closed() const {
 }
 
 std::optional<FrameSubscriber::Delivery> FrameSubscriber::next(std::chrono::nanoseconds timeout) {
-  const std::int64_t deadline = monotonic_ns() + timeout.count();
+  const std::int64_t deadline = core::monotonic_ns() + timeout.count();
   // The rate limit: wait out the rest of the period, in short steps to notice a shutdown.
   if (settings_.max_rate_hz > 0.0 && last_delivery_ns_ != 0) {
-    const std::int64_t due = last_delivery_ns_ + s_to_ns(1.0 / settings_.max_rate_hz);
-    for (std::int64_t now = monotonic_ns(); now < due; now = monotonic_ns()) {
+    const std::int64_t due = last_delivery_ns_ + core::s_to_ns(1.0 / settings_.max_rate_hz);
+    for (std::int64_t now = core::monotonic_ns(); now < due; now = core::monotonic_ns()) {
       if (closed() || now >= deadline) return std::nullopt;
       std::this_thread::sleep_for(std::chrono::nanoseconds(
           std::min<std::int64_t>({due - now, deadline - now, 20'000'000})));
     }
   }
   const auto remaining =
-      std::chrono::nanoseconds(std::max<std::int64_t>(0, deadline - monotonic_ns()));
+      std::chrono::nanoseconds(std::max<std::int64_t>(0, deadline - core::monotonic_ns()));
   std::shared_ptr<const EncodedStereo> frame;
   if (custom_) {
     auto taken = pipeline_->captured().wait_take(last_number_, remaining);
@@ -200,7 +201,7 @@ std::optional<FrameSubscriber::Delivery> FrameSubscriber::next(std::chrono::nano
                                 ? 0
                                 : frame->frame_id - last_frame_id_ - 1;
   last_frame_id_ = frame->frame_id;
-  last_delivery_ns_ = monotonic_ns();
+  last_delivery_ns_ = core::monotonic_ns();
   delivery.frame = std::move(frame);
   return delivery;
 }

@@ -1,4 +1,4 @@
-#include "net/vision_server.hpp"
+#include "telear/net/vision_server.hpp"
 
 #include <grpcpp/grpcpp.h>
 
@@ -6,9 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "net/bearer_auth.hpp"
-#include "net/vision_service.hpp"
-#include "vision/camera_file.hpp"
+#include "telear/net/bearer_auth.hpp"
+#include "telear/net/vision_service.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::net {
 
@@ -47,7 +47,7 @@ Result<std::unique_ptr<VisionServer>> VisionServer::start(VisionServerOptions op
     config.auth.emplace(*token, false);
   }
   if (!options.calibration_file.empty()) {
-    auto file = load_camera_file(options.calibration_file);
+    auto file = vision::load_camera_file(options.calibration_file);
     if (!file) return Error{"vision server: " + file.error().message};
     if (!file->is_stereo()) {
       return Error{"vision server: calibration '" + options.calibration_file +

@@ -1,11 +1,11 @@
-#include "net/vision_service.hpp"
+#include "telear/net/vision_service.hpp"
 
-#include "net/clock.hpp"
+#include "telear/core/clock.hpp"
 
 namespace telear::net {
 namespace {
 
-void fill_intrinsics(const CameraModel& camera, telear::v1::CameraIntrinsics* out) {
+void fill_intrinsics(const vision::CameraModel& camera, telear::v1::CameraIntrinsics* out) {
   out->set_width(camera.width);
   out->set_height(camera.height);
   out->add_fc(camera.fx);
@@ -27,14 +27,14 @@ void fill_eye(const std::string& jpeg, int width, int height, std::int64_t captu
 }  // namespace
 
 telear::v1::CameraInfo camera_info_message(const VisionServiceConfig& config,
-                                           const StereoSource& source) {
+                                           const vision::StereoSource& source) {
   telear::v1::CameraInfo info;
   info.set_source(source.name());
   info.set_source_width(source.width());
   info.set_source_height(source.height());
   info.set_source_fps(source.fps());
   if (!config.calibration || !config.calibration->right) return info;
-  const CameraFile& file = *config.calibration;
+  const vision::CameraFile& file = *config.calibration;
   info.set_found(true);
   fill_intrinsics(file.left, info.mutable_left());
   fill_intrinsics(*file.right, info.mutable_right());
@@ -75,11 +75,11 @@ grpc::Status VisionServiceImpl::GetCameraInfo(grpc::ServerContext* context,
 grpc::Status VisionServiceImpl::Ping(grpc::ServerContext* context,
                                      const telear::v1::PingRequest* request,
                                      telear::v1::PingResponse* reply) {
-  const std::int64_t received = monotonic_ns();
+  const std::int64_t received = core::monotonic_ns();
   if (auto status = authorize(*context); !status.ok()) return status;
   reply->set_client_send_ns(request->client_send_ns());
   reply->set_server_receive_ns(received);
-  reply->set_server_send_ns(monotonic_ns());
+  reply->set_server_send_ns(core::monotonic_ns());
   return grpc::Status::OK;
 }
 
@@ -143,7 +143,7 @@ grpc::Status VisionServiceImpl::StreamFrames(grpc::ServerContext* context,
         message.add_scene_q(frame.scene->q[i]);
       message.set_scene_state_ns(frame.scene->state_ns);
     }
-    message.set_server_send_ns(monotonic_ns());
+    message.set_server_send_ns(core::monotonic_ns());
     if (!writer->Write(message)) break;  // the client went away (or the server cancelled)
     ++sent;
     skipped += delivery->frames_skipped;

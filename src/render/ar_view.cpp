@@ -1,4 +1,4 @@
-#include "render/ar_view.hpp"
+#include "telear/render/ar_view.hpp"
 
 #include <epoxy/gl.h>
 
@@ -8,27 +8,27 @@ namespace telear::render {
 
 namespace {
 
-float gripper_opening_m(const ArmBody& body, double opening) {
+float gripper_opening_m(const core::ArmBody& body, double opening) {
   if (!body.gripper) return 0.0f;
   const double clamped = std::clamp(opening, 0.0, 1.0);
   return static_cast<float>(clamped) * body.gripper->max_opening;
 }
 
-bool frame_fits(const Image* frame, const CameraModel& camera) {
+bool frame_fits(const core::Image* frame, const vision::CameraModel& camera) {
   return frame != nullptr && frame->width == camera.width && frame->height == camera.height &&
          frame->channels == 3;
 }
 
 }  // namespace
 
-ArView::ArView(const RobotModel& model, const ArmBody& body)
+ArView::ArView(const core::RobotModel& model, const core::ArmBody& body)
     : model_(&model),
       body_(body),
-      ghost_pose_(std::make_unique<ArmBodyPose>(model, body_)),
-      reported_pose_(std::make_unique<ArmBodyPose>(model, body_)) {}
+      ghost_pose_(std::make_unique<core::ArmBodyPose>(model, body_)),
+      reported_pose_(std::make_unique<core::ArmBodyPose>(model, body_)) {}
 
-Result<ArView> ArView::create(const RobotModel& model, const ArmBody& body,
-                              const StereoCameraModel& cameras,
+Result<ArView> ArView::create(const core::RobotModel& model, const core::ArmBody& body,
+                              const vision::StereoCameraModel& cameras,
                               const std::vector<SceneObject>& objects,
                               const ArViewOptions& options) {
   ArView view(model, body);
@@ -45,7 +45,7 @@ Result<ArView> ArView::create(const RobotModel& model, const ArmBody& body,
     if (!scene) return scene.error();
     view.objects_ = std::move(scene.value());
   }
-  const CameraModel* eyes[2] = {&cameras.left, &cameras.right};
+  const vision::CameraModel* eyes[2] = {&cameras.left, &cameras.right};
   for (int i = 0; i < 2; ++i) {
     OverlayOptions overlay_options;
     overlay_options.mode = options.overlay_mode;
@@ -101,7 +101,7 @@ void ArView::render(const ArViewInput& input) {
 void ArView::draw_eye(int index, const ArViewInput& input, bool video_ok) {
   Overlay& overlay = overlays_[index];
   if (video_ok) {
-    const Image* frame = index == 0 ? input.left : input.right;
+    const core::Image* frame = index == 0 ? input.left : input.right;
     overlay.upload_frame(frame->pixels.data(), ChannelOrder::kRgb);
   } else {
     overlay.clear_frame();

@@ -1,12 +1,12 @@
-#include "render/arm_renderer.hpp"
+#include "telear/render/arm_renderer.hpp"
 
 #include <cassert>
 
 namespace telear::render {
 
-Result<ArmRenderer> ArmRenderer::create(const ArmBody& body) {
-  std::vector<const Mesh*> meshes;
-  for (const BodyPart& part : body.parts) meshes.push_back(&part.mesh);
+Result<ArmRenderer> ArmRenderer::create(const core::ArmBody& body) {
+  std::vector<const core::Mesh*> meshes;
+  for (const core::BodyPart& part : body.parts) meshes.push_back(&part.mesh);
   auto parts = MeshSetRenderer::create(meshes);
   if (!parts) return Error{"arm renderer: " + parts.error().message};
   ArmRenderer r;
@@ -14,10 +14,10 @@ Result<ArmRenderer> ArmRenderer::create(const ArmBody& body) {
   return r;
 }
 
-PartRange ArmRenderer::update(ArmBodyPose& pose) {
+core::PartRange ArmRenderer::update(core::ArmBodyPose& pose) {
   assert(pose.part_count() == parts_.part_count() &&
          "ArmRenderer::update(): the pose belongs to another body");
-  const PartRange range = pose.changed();
+  const core::PartRange range = pose.changed();
   matrices_uploaded_ += parts_.set_matrices(pose.T_base_part(), range);
   pose.clear_changes();
   return range;

@@ -1,11 +1,11 @@
-#include "render/camera_projection.hpp"
+#include "telear/render/camera_projection.hpp"
 
 #include <cassert>
 #include <cmath>
 
 namespace telear::render {
 
-PinholeProjection PinholeProjection::from_camera(const CameraModel& camera, double near_m,
+PinholeProjection PinholeProjection::from_camera(const vision::CameraModel& camera, double near_m,
                                                  double far_m) {
   PinholeProjection p;
   p.fx = camera.fx;

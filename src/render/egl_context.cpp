@@ -1,4 +1,4 @@
-#include "render/egl_context.hpp"
+#include "telear/render/egl_context.hpp"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>

@@ -1,4 +1,4 @@
-#include "render/gl_context.hpp"
+#include "telear/render/gl_context.hpp"
 
 #include <epoxy/gl.h>
 

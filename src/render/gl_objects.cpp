@@ -1,4 +1,4 @@
-#include "render/gl_objects.hpp"
+#include "telear/render/gl_objects.hpp"
 
 #include <cassert>
 #include <vector>

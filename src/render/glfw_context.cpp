@@ -1,4 +1,4 @@
-#include "render/glfw_context.hpp"
+#include "telear/render/glfw_context.hpp"
 
 #include <epoxy/gl.h>
 // epoxy first: GLFW must not pull in a GL header of its own.

@@ -1,9 +1,9 @@
-#include "render/mesh_set_renderer.hpp"
+#include "telear/render/mesh_set_renderer.hpp"
 
 #include <cassert>
 #include <cstddef>
 
-#include "render/shaders.hpp"
+#include "telear/render/shaders.hpp"
 
 namespace telear::render {
 namespace {
@@ -12,7 +12,7 @@ constexpr GLsizeiptr kMat4Bytes = 16 * sizeof(float);
 
 }  // namespace
 
-Result<MeshSetRenderer> MeshSetRenderer::create(const std::vector<const Mesh*>& meshes) {
+Result<MeshSetRenderer> MeshSetRenderer::create(const std::vector<const core::Mesh*>& meshes) {
   if (static_cast<int>(meshes.size()) > kMaxParts) {
     return Error{"a mesh set holds at most " + std::to_string(kMaxParts) + " parts, got " +
                  std::to_string(meshes.size())};
@@ -42,7 +42,7 @@ Result<MeshSetRenderer> MeshSetRenderer::create(const std::vector<const Mesh*>& 
   r.matrices_ = Buffer::create();
   r.matrices_.set_data(GL_UNIFORM_BUFFER, kMaxParts * kMat4Bytes, identity.data(), GL_DYNAMIC_DRAW);
 
-  for (const Mesh* mesh : meshes) {
+  for (const core::Mesh* mesh : meshes) {
     assert(mesh != nullptr && "MeshSetRenderer::create(): null mesh");
     Part part;
     part.triangle_indices = static_cast<GLsizei>(mesh->triangles.size());
@@ -53,9 +53,10 @@ Result<MeshSetRenderer> MeshSetRenderer::create(const std::vector<const Mesh*>& 
       part.vao = VertexArray::create();
       part.vao.bind();
       part.vertices = Buffer::create();
-      part.vertices.set_data(GL_ARRAY_BUFFER,
-                             static_cast<GLsizeiptr>(mesh->vertices.size() * sizeof(MeshVertex)),
-                             mesh->vertices.data(), GL_STATIC_DRAW);
+      part.vertices.set_data(
+          GL_ARRAY_BUFFER,
+          static_cast<GLsizeiptr>(mesh->vertices.size() * sizeof(core::MeshVertex)),
+          mesh->vertices.data(), GL_STATIC_DRAW);
       std::vector<std::uint32_t> indices(mesh->triangles);
       indices.insert(indices.end(), mesh->lines.begin(), mesh->lines.end());
       part.indices = Buffer::create();
@@ -63,16 +64,16 @@ Result<MeshSetRenderer> MeshSetRenderer::create(const std::vector<const Mesh*>& 
       part.indices.set_data(GL_ELEMENT_ARRAY_BUFFER,
                             static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
                             indices.data(), GL_STATIC_DRAW);
-      const auto stride = static_cast<GLsizei>(sizeof(MeshVertex));
+      const auto stride = static_cast<GLsizei>(sizeof(core::MeshVertex));
       glEnableVertexAttribArray(0);
       glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride,
-                            reinterpret_cast<const void*>(offsetof(MeshVertex, position)));
+                            reinterpret_cast<const void*>(offsetof(core::MeshVertex, position)));
       glEnableVertexAttribArray(1);
       glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
-                            reinterpret_cast<const void*>(offsetof(MeshVertex, normal)));
+                            reinterpret_cast<const void*>(offsetof(core::MeshVertex, normal)));
       glEnableVertexAttribArray(2);
       glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, stride,
-                            reinterpret_cast<const void*>(offsetof(MeshVertex, colour)));
+                            reinterpret_cast<const void*>(offsetof(core::MeshVertex, colour)));
       glBindVertexArray(0);
     }
     r.parts_.push_back(std::move(part));
@@ -80,7 +81,8 @@ Result<MeshSetRenderer> MeshSetRenderer::create(const std::vector<const Mesh*>& 
   return r;
 }
 
-int MeshSetRenderer::set_matrices(const std::vector<Eigen::Matrix4f>& matrices, PartRange range) {
+int MeshSetRenderer::set_matrices(const std::vector<Eigen::Matrix4f>& matrices,
+                                  core::PartRange range) {
   assert(static_cast<int>(matrices.size()) >= range.end() && range.first >= 0 &&
          range.end() <= part_count() && "MeshSetRenderer::set_matrices(): range out of bounds");
   if (range.empty()) return 0;

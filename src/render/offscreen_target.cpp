@@ -1,4 +1,4 @@
-#include "render/offscreen_target.hpp"
+#include "telear/render/offscreen_target.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -100,14 +100,14 @@ void OffscreenTarget::read_pixels(int channels, std::uint8_t* pixels) const {
   }
 }
 
-Image OffscreenTarget::read_rgb() const {
-  Image image(width_, height_, 3);
+core::Image OffscreenTarget::read_rgb() const {
+  core::Image image(width_, height_, 3);
   read_pixels(3, image.pixels.data());
   return image;
 }
 
-Image OffscreenTarget::read_rgba() const {
-  Image image(width_, height_, 4);
+core::Image OffscreenTarget::read_rgba() const {
+  core::Image image(width_, height_, 4);
   read_pixels(4, image.pixels.data());
   return image;
 }

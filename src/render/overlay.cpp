@@ -1,11 +1,11 @@
-#include "render/overlay.hpp"
+#include "telear/render/overlay.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <vector>
 
-#include "vision/distortion_maps.hpp"
+#include "telear/vision/distortion_maps.hpp"
 
 namespace telear::render {
 namespace {
@@ -74,8 +74,8 @@ Texture upload_rg32f(int width, int height, const std::vector<float>& rg) {
 
 }  // namespace
 
-Result<Overlay> Overlay::create(const CameraModel& camera, const OverlayOptions& options) {
-  if (Status valid = validate_camera(camera); !valid) {
+Result<Overlay> Overlay::create(const vision::CameraModel& camera, const OverlayOptions& options) {
+  if (Status valid = vision::validate_camera(camera); !valid) {
     return Error{"overlay: " + valid.error().message};
   }
   Overlay o;
@@ -90,7 +90,7 @@ Result<Overlay> Overlay::create(const CameraModel& camera, const OverlayOptions&
       PinholeProjection::from_camera(camera, options.near_m, options.far_m);
 
   if (options.mode == OverlayMode::kUndistorted) {
-    const UndistortMaps maps = compute_undistort_maps(camera);
+    const vision::UndistortMaps maps = vision::compute_undistort_maps(camera);
     std::vector<float> rg(static_cast<size_t>(W) * H * 2);
     for (int v = 0; v < H; ++v) {
       for (int u = 0; u < W; ++u) {
@@ -115,7 +115,7 @@ Result<Overlay> Overlay::create(const CameraModel& camera, const OverlayOptions&
   // kRaw: the pinhole region spans every raw pixel's pinhole position, plus 2 pixels for the
   // bilinear footprint, and at least the image itself; at most one image size of margin on
   // each side (rays beyond it, at the corners of extreme lenses, are not drawn).
-  const RawToPinholeLut lut = compute_raw_to_pinhole_lut(camera);
+  const vision::RawToPinholeLut lut = vision::compute_raw_to_pinhole_lut(camera);
   const double min_u = std::max(std::min(lut.min_u, 0.0), -static_cast<double>(W));
   const double min_v = std::max(std::min(lut.min_v, 0.0), -static_cast<double>(H));
   const double max_u = std::min(std::max(lut.max_u, W - 1.0), 2.0 * W - 1.0);

@@ -1,4 +1,4 @@
-#include "render/point_markers.hpp"
+#include "telear/render/point_markers.hpp"
 
 #include <cassert>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/scene_objects.hpp"
+#include "telear/render/scene_objects.hpp"
 
 namespace telear::render {
 
@@ -6,7 +6,7 @@ SceneObject make_cube(float edge_m, const Eigen::Vector3f& centre_base,
                       const Eigen::Vector3f& colour) {
   SceneObject o;
   o.name = "cube";
-  append_box(o.mesh, Eigen::Vector3f::Zero(), Eigen::Vector3f::Constant(edge_m), colour);
+  core::append_box(o.mesh, Eigen::Vector3f::Zero(), Eigen::Vector3f::Constant(edge_m), colour);
   o.T_base_object.translation() = centre_base;
   return o;
 }
@@ -14,14 +14,14 @@ SceneObject make_cube(float edge_m, const Eigen::Vector3f& centre_base,
 SceneObject make_floor(float size_m, int tiles, float z_base) {
   SceneObject o;
   o.name = "floor";
-  append_checker_floor(o.mesh, size_m, tiles, Eigen::Vector3f(0.55f, 0.55f, 0.55f),
-                       Eigen::Vector3f(0.4f, 0.4f, 0.42f));
+  core::append_checker_floor(o.mesh, size_m, tiles, Eigen::Vector3f(0.55f, 0.55f, 0.55f),
+                             Eigen::Vector3f(0.4f, 0.4f, 0.42f));
   o.T_base_object.translation() = Eigen::Vector3f(0, 0, z_base);
   return o;
 }
 
 Result<MeshSetRenderer> create_scene_renderer(const std::vector<SceneObject>& objects) {
-  std::vector<const Mesh*> meshes;
+  std::vector<const core::Mesh*> meshes;
   std::vector<Eigen::Matrix4f> matrices;
   for (const SceneObject& o : objects) {
     meshes.push_back(&o.mesh);
@@ -29,7 +29,7 @@ Result<MeshSetRenderer> create_scene_renderer(const std::vector<SceneObject>& ob
   }
   auto r = MeshSetRenderer::create(meshes);
   if (!r) return r.error();
-  r->set_matrices(matrices, PartRange{0, static_cast<int>(matrices.size())});
+  r->set_matrices(matrices, core::PartRange{0, static_cast<int>(matrices.size())});
   return r;
 }
 

@@ -1,4 +1,4 @@
-#include "render/shaders.hpp"
+#include "telear/render/shaders.hpp"
 
 namespace telear::render::shaders {
 

@@ -1,4 +1,4 @@
-#include "render/stereo_composer.hpp"
+#include "telear/render/stereo_composer.hpp"
 
 #include <cassert>
 

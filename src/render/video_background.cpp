@@ -1,10 +1,10 @@
-#include "render/video_background.hpp"
+#include "telear/render/video_background.hpp"
 
 #include <bit>
 #include <cassert>
 #include <cstring>
 
-#include "render/shaders.hpp"
+#include "telear/render/shaders.hpp"
 
 namespace telear::render {
 

@@ -1,4 +1,4 @@
-#include "render/view_math.hpp"
+#include "telear/render/view_math.hpp"
 
 #include <cassert>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "session/display_mode.hpp"
+#include "telear/session/display_mode.hpp"
 
 #include <cassert>
 #include <cmath>

@@ -1,10 +1,10 @@
-#include "session/embedded_servers.hpp"
+#include "telear/session/embedded_servers.hpp"
 
 #include <cstdio>
 #include <random>
 
-#include "core/robot_loader.hpp"
-#include "net/sim_rig_source.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/sim/sim_rig_source.hpp"
 
 namespace telear::session {
 
@@ -30,24 +30,24 @@ void EmbeddedServers::stop() {
   if (robot_) robot_->shutdown();
 }
 
-Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::Start(RobotModelPtr model,
-                                                                EmbeddedServersOptions options) {
+Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotModelPtr model,
+                                                                 EmbeddedServersOptions options) {
   std::unique_ptr<EmbeddedServers> servers(new EmbeddedServers());
   servers->token_ = options.token.empty() ? random_token() : options.token;
 
-  net::SimRobotDriverOptions driver_options;
+  sim::SimRobotDriverOptions driver_options;
   driver_options.robot.initial_q = options.initial_q;
   if (driver_options.robot.initial_q.size() == 0) {
     if (auto qr = model->named_configuration("qr")) driver_options.robot.initial_q = *qr;
   }
-  auto driver = net::SimRobotDriver::Create(model, driver_options);
+  auto driver = sim::SimRobotDriver::create(model, driver_options);
   if (!driver) return Error{"embedded robot server: " + driver.error().message};
   servers->driver_ = driver->get();
 
   net::RobotServerOptions robot_options;
   robot_options.listen_address = "127.0.0.1:0";
   robot_options.token = servers->token_;
-  auto robot = net::RobotServer::Start(std::move(*driver), robot_options);
+  auto robot = net::RobotServer::create(std::move(*driver), robot_options);
   if (!robot) return Error{"embedded robot server: " + robot.error().message};
   servers->robot_ = std::move(*robot);
 
@@ -59,19 +59,20 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::Start(RobotModelPtr mo
   servers->follower_ = std::make_unique<net::RobotClient>(follower_options);
   servers->follower_->start();
 
-  net::SimRigSourceOptions rig_options;
-  rig_options.rig = options.rig.empty() ? data_directory() + "/rigs/puma560_rig.yaml" : options.rig;
+  sim::SimRigSourceOptions rig_options;
+  rig_options.rig =
+      options.rig.empty() ? core::data_directory() + "/rigs/puma560_rig.yaml" : options.rig;
   rig_options.fps = options.fps;
   rig_options.supersample = options.supersample;
   rig_options.noise_sigma = options.noise_sigma;
   rig_options.seed = options.seed;
   net::RobotClient* follower = servers->follower_.get();
-  rig_options.scene_state = [follower]() -> std::optional<net::SceneState> {
+  rig_options.scene_state = [follower]() -> std::optional<vision::SceneState> {
     const auto sample = follower->latest_state();
     if (!sample) return std::nullopt;
-    return net::SceneState{sample->state.q, sample->state.gripper, sample->capture_ns};
+    return vision::SceneState{sample->state.q, sample->state.gripper, sample->capture_ns};
   };
-  auto source = net::SimRigSource::create(rig_options);
+  auto source = sim::SimRigSource::create(rig_options);
   if (!source) return Error{"embedded vision server: " + source.error().message};
 
   net::VisionServerOptions vision_options;

@@ -1,4 +1,4 @@
-#include "session/execution_monitor.hpp"
+#include "telear/session/execution_monitor.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -6,17 +6,18 @@
 #include <cstdio>
 #include <utility>
 
-#include "core/angles.hpp"
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
 
 namespace telear::session {
 namespace {
 
-std::string amount(const RobotModel& model, int joint, double value) {
+std::string amount(const core::RobotModel& model, int joint, double value) {
   char text[96];
-  if (model.joint(joint).type == JointType::kRevolute) {
-    std::snprintf(text, sizeof text, "%.3f rad (%.1f deg)", value, degrees_from_radians(value));
+  if (model.joint(joint).type == core::JointType::kRevolute) {
+    std::snprintf(text, sizeof text, "%.3f rad (%.1f deg)", value,
+                  core::degrees_from_radians(value));
   } else {
     std::snprintf(text, sizeof text, "%.4f m (%.1f mm)", value, value * 1000.0);
   }
@@ -31,8 +32,8 @@ std::string seconds(double value) {
 
 }  // namespace
 
-ExecutionMonitor::ExecutionMonitor(RobotModelPtr model, Trajectory trajectory, double start_time,
-                                   MonitorOptions options)
+ExecutionMonitor::ExecutionMonitor(core::RobotModelPtr model, core::Trajectory trajectory,
+                                   double start_time, MonitorOptions options)
     : model_(std::move(model)),
       trajectory_(std::move(trajectory)),
       start_time_(start_time),
@@ -55,7 +56,8 @@ const TrackingStatus& ExecutionMonitor::update_at_plan_time(double plan_time,
   s.progress = duration > 0.0 ? t / duration : 1.0;
   if (s.cancel) return s;  // latched: the decision and its message stay
 
-  if (Status valid = check_joint_vector(*model_, q_real); !valid || !std::isfinite(plan_time)) {
+  if (Status valid = core::check_joint_vector(*model_, q_real);
+      !valid || !std::isfinite(plan_time)) {
     s.error.resize(0);
     s.max_abs_error = 0.0;
     s.worst_joint = -1;
@@ -82,12 +84,12 @@ const TrackingStatus& ExecutionMonitor::update_at_plan_time(double plan_time,
     const int j = s.worst_joint;
     s.cancel = true;
     s.complete = false;
-    s.cancel_message = "execution monitor: at " + seconds(t) + " of " + seconds(duration) +
-                       " into the plan, " + joint_label(*model_, j) + " is " +
-                       amount(*model_, j, s.max_abs_error) + " from the plan (real " +
-                       format_joint_value(*model_, j, q_real[j]) + ", plan " +
-                       format_joint_value(*model_, j, q_plan_[j]) + "), beyond the tolerance of " +
-                       amount(*model_, j, options_.tolerance) + "; cancelling";
+    s.cancel_message =
+        "execution monitor: at " + seconds(t) + " of " + seconds(duration) + " into the plan, " +
+        core::joint_label(*model_, j) + " is " + amount(*model_, j, s.max_abs_error) +
+        " from the plan (real " + core::format_joint_value(*model_, j, q_real[j]) + ", plan " +
+        core::format_joint_value(*model_, j, q_plan_[j]) + "), beyond the tolerance of " +
+        amount(*model_, j, options_.tolerance) + "; cancelling";
     return s;
   }
   s.complete = t >= duration;

@@ -1,11 +1,11 @@
-#include "session/ghost_arm.hpp"
+#include "telear/session/ghost_arm.hpp"
 
 #include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
-#include "core/joint_limits.hpp"
+#include "telear/core/joint_limits.hpp"
 
 namespace telear::session {
 namespace {
@@ -21,15 +21,15 @@ Status check_gripper(double opening) {
 
 }  // namespace
 
-std::string named_configuration_list(const RobotModel& model) {
+std::string named_configuration_list(const core::RobotModel& model) {
   std::string list;
-  for (const NamedConfiguration& c : model.named_configurations()) {
+  for (const core::NamedConfiguration& c : model.named_configurations()) {
     list += (list.empty() ? "" : ", ") + c.name;
   }
   return list.empty() ? "none" : list;
 }
 
-GhostArm::GhostArm(RobotModelPtr model, MotionOptions options)
+GhostArm::GhostArm(core::RobotModelPtr model, core::MotionOptions options)
     : model_(std::move(model)), options_(options), data_(*model_) {
   assert(model_ && "GhostArm: model must not be null");
   q_ = Eigen::VectorXd::Zero(model_->dof())
@@ -37,30 +37,30 @@ GhostArm::GhostArm(RobotModelPtr model, MotionOptions options)
            .cwiseMin(model_->upper_limits());
 }
 
-Result<GhostArm> GhostArm::Create(RobotModelPtr model, const Eigen::VectorXd& q, double gripper,
-                                  MotionOptions options) {
+Result<GhostArm> GhostArm::create(core::RobotModelPtr model, const Eigen::VectorXd& q,
+                                  double gripper, core::MotionOptions options) {
   GhostArm ghost(std::move(model), options);
   if (Status s = ghost.reset_to(q, gripper); !s) return s.error();
   return ghost;
 }
 
-MotionOutcome GhostArm::apply(const MotionCommand& command) {
-  MotionOutcome outcome = apply_motion(*model_, q_, command, options_);
+core::MotionOutcome GhostArm::apply(const core::MotionCommand& command) {
+  core::MotionOutcome outcome = core::apply_motion(*model_, q_, command, options_);
   if (outcome.accepted) q_ = outcome.q;
   return outcome;
 }
 
-MotionOutcome GhostArm::go_to(const std::string& name) {
+core::MotionOutcome GhostArm::go_to(const std::string& name) {
   const std::optional<Eigen::VectorXd> q = model_->named_configuration(name);
   if (!q) {
-    MotionOutcome outcome;
+    core::MotionOutcome outcome;
     outcome.q = q_;
-    outcome.rejection.kind = RejectionKind::kInvalidInput;
+    outcome.rejection.kind = core::RejectionKind::kInvalidInput;
     outcome.rejection.message = "unknown named configuration '" + name + "' of " + model_->name() +
                                 "; known: " + named_configuration_list(*model_);
     return outcome;
   }
-  MotionOutcome outcome = apply(JointTarget{*q});
+  core::MotionOutcome outcome = apply(core::JointTarget{*q});
   if (!outcome.accepted) {
     outcome.rejection.message = "named configuration '" + name + "': " + outcome.rejection.message;
   }
@@ -74,10 +74,10 @@ Status GhostArm::set_gripper(double opening) {
 }
 
 Status GhostArm::reset_to(const Eigen::VectorXd& q, std::optional<double> gripper) {
-  if (Status s = check_joint_vector(*model_, q); !s)
+  if (Status s = core::check_joint_vector(*model_, q); !s)
     return Error{"ghost = real: " + s.error().message};
-  if (const auto violation = first_limit_violation(*model_, q, kResetTolerance)) {
-    return Error{"ghost = real: " + describe_violation(*model_, *violation)};
+  if (const auto violation = core::first_limit_violation(*model_, q, kResetTolerance)) {
+    return Error{"ghost = real: " + core::describe_violation(*model_, *violation)};
   }
   if (gripper) {
     if (Status s = check_gripper(*gripper); !s) return Error{"ghost = real: " + s.error().message};
@@ -88,12 +88,12 @@ Status GhostArm::reset_to(const Eigen::VectorXd& q, std::optional<double> grippe
 }
 
 Eigen::Isometry3d GhostArm::T_base_tool() const {
-  update_kinematics(*model_, data_, q_);
+  core::update_kinematics(*model_, data_, q_);
   return data_.T_base_tool;
 }
 
 Eigen::Isometry3d GhostArm::T_base_flange() const {
-  update_kinematics(*model_, data_, q_);
+  core::update_kinematics(*model_, data_, q_);
   return data_.T_base_link.back();
 }
 

@@ -1,6 +1,6 @@
-#include "session/plan.hpp"
+#include "telear/session/plan.hpp"
 
-#include "core/yaml_number.hpp"
+#include "telear/core/yaml_number.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,8 +12,8 @@
 #include <sstream>
 #include <utility>
 
-#include "core/joint_limits.hpp"
-#include "session/ghost_arm.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/session/ghost_arm.hpp"
 
 namespace telear::session {
 namespace {
@@ -28,10 +28,10 @@ std::string waypoint_name(std::size_t index) {
   return "waypoint[" + std::to_string(index) + "]";
 }
 
-using ParseError = YamlParseError;
+using ParseError = core::YamlParseError;
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  return yaml_number(node, what);
+  return core::yaml_number(node, what);
 }
 
 void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& known,
@@ -49,7 +49,7 @@ void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& kno
 
 }  // namespace
 
-Plan::Plan(RobotModelPtr model) : model_(std::move(model)) {
+Plan::Plan(core::RobotModelPtr model) : model_(std::move(model)) {
   assert(model_ && "Plan: model must not be null");
 }
 
@@ -60,11 +60,11 @@ Status Plan::check_waypoint(const PlanWaypoint& w, const std::string& where) con
   }
   for (int j = 0; j < model_->dof(); ++j) {
     if (!std::isfinite(w.q[j])) {
-      return Error{where + ": " + joint_label(*model_, j) + " is not finite (NaN or inf)"};
+      return Error{where + ": " + core::joint_label(*model_, j) + " is not finite (NaN or inf)"};
     }
   }
-  if (const auto violation = first_limit_violation(*model_, w.q)) {
-    return Error{where + ": " + describe_violation(*model_, *violation)};
+  if (const auto violation = core::first_limit_violation(*model_, w.q)) {
+    return Error{where + ": " + core::describe_violation(*model_, *violation)};
   }
   if (!std::isfinite(w.min_duration) || w.min_duration < 0.0 ||
       w.min_duration > options_.max_segment_duration) {
@@ -172,19 +172,19 @@ Status Plan::set_scales(double velocity_scale, double acceleration_scale) {
   return Status::Ok();
 }
 
-std::vector<JointWaypoint> Plan::joint_waypoints() const {
-  std::vector<JointWaypoint> list;
+std::vector<core::JointWaypoint> Plan::joint_waypoints() const {
+  std::vector<core::JointWaypoint> list;
   list.reserve(waypoints_.size());
   for (const PlanWaypoint& w : waypoints_) list.emplace_back(w.q, w.min_duration, w.gripper);
   return list;
 }
 
-Result<Trajectory> Plan::trajectory() const {
+Result<core::Trajectory> Plan::trajectory() const {
   if (waypoints_.empty()) return Error{"the plan is empty; add at least one waypoint"};
-  return Trajectory::Create(*model_, joint_waypoints(), options_);
+  return core::Trajectory::create(*model_, joint_waypoints(), options_);
 }
 
-Result<TimedWaypoints> Plan::timed_waypoints(double rate_hz) const {
+Result<core::TimedWaypoints> Plan::timed_waypoints(double rate_hz) const {
   auto trajectory = this->trajectory();
   if (!trajectory) return trajectory.error();
   return trajectory->sampled(rate_hz);
@@ -213,7 +213,7 @@ std::string Plan::to_yaml() const {
   return std::string(out.c_str()) + "\n";
 }
 
-Result<Plan> Plan::from_yaml(RobotModelPtr model, const std::string& text,
+Result<Plan> Plan::from_yaml(core::RobotModelPtr model, const std::string& text,
                              const std::string& source) {
   const std::string where = "plan '" + source + "': ";
   YAML::Node root;
@@ -292,7 +292,7 @@ Status Plan::save(const std::string& path) const {
   return Status::Ok();
 }
 
-Result<Plan> Plan::load(RobotModelPtr model, const std::string& path) {
+Result<Plan> Plan::load(core::RobotModelPtr model, const std::string& path) {
   std::ifstream file(path);
   if (!file) return Error{"plan '" + path + "': cannot be opened"};
   std::ostringstream text;

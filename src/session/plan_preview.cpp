@@ -1,4 +1,4 @@
-#include "session/plan_preview.hpp"
+#include "telear/session/plan_preview.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 namespace telear::session {
 
-PlanPreview::PlanPreview(Trajectory trajectory, PreviewOptions options)
+PlanPreview::PlanPreview(core::Trajectory trajectory, PreviewOptions options)
     : trajectory_(std::move(trajectory)), options_(options) {
   if (!std::isfinite(options_.speed) || options_.speed <= 0.0) options_.speed = 1.0;
   options_.speed = std::min(options_.speed, kMaxSpeed);

@@ -1,14 +1,14 @@
-#include "session/plan_validation.hpp"
+#include "telear/session/plan_validation.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include "core/angles.hpp"
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
-#include "core/motion_command.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/motion_command.hpp"
 
 namespace telear::session {
 namespace {
@@ -20,16 +20,17 @@ std::string format(const char* pattern, double value) {
 }
 
 // "0.120 rad (6.9 deg)" or "0.0120 m (12.0 mm)".
-std::string distance(const RobotModel& model, int joint, double value) {
-  if (model.joint(joint).type == JointType::kRevolute) {
-    return format("%.3f rad", value) + " (" + format("%.1f deg", degrees_from_radians(value)) + ")";
+std::string distance(const core::RobotModel& model, int joint, double value) {
+  if (model.joint(joint).type == core::JointType::kRevolute) {
+    return format("%.3f rad", value) + " (" +
+           format("%.1f deg", core::degrees_from_radians(value)) + ")";
   }
   return format("%.4f m", value) + " (" + format("%.1f mm", value * 1000.0) + ")";
 }
 
-std::string tolerance_text(const RobotModel& model, int joint, double value) {
-  return model.joint(joint).type == JointType::kRevolute ? format("%.3f rad", value)
-                                                         : format("%.4f m", value);
+std::string tolerance_text(const core::RobotModel& model, int joint, double value) {
+  return model.joint(joint).type == core::JointType::kRevolute ? format("%.3f rad", value)
+                                                               : format("%.4f m", value);
 }
 
 }  // namespace
@@ -69,7 +70,7 @@ std::string ValidationReport::summary() const {
 
 ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::VectorXd>& q_real,
                                const ValidationOptions& options) {
-  const RobotModel& model = plan.model();
+  const core::RobotModel& model = plan.model();
   std::vector<ValidationIssue> errors, warnings;
   auto error = [&](int waypoint, int joint, std::string message) {
     errors.push_back({IssueSeverity::kError, waypoint, joint, std::move(message)});
@@ -95,7 +96,7 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
     if (Status s = plan.check_waypoint(waypoints[i], name); !s) {
       int joint = -1;
       if (waypoints[i].q.size() == model.dof()) {
-        if (const auto v = first_limit_violation(model, waypoints[i].q)) joint = v->joint;
+        if (const auto v = core::first_limit_violation(model, waypoints[i].q)) joint = v->joint;
       }
       error(static_cast<int>(i), joint, s.error().message);
       waypoints_valid = false;
@@ -107,7 +108,7 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
 
   if (!q_real) {
     warning(0, -1, "the real robot's state is unknown: the plan's start was not checked");
-  } else if (Status s = check_joint_vector(model, *q_real); !s) {
+  } else if (Status s = core::check_joint_vector(model, *q_real); !s) {
     error(0, -1, "the real robot's reported state is invalid: " + s.error().message);
   } else if (waypoints.front().q.size() == model.dof()) {
     const Eigen::VectorXd gap = (waypoints.front().q - *q_real).cwiseAbs();
@@ -135,15 +136,15 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
   if (!sampled) {
     error(-1, -1, "the plan cannot be sent: " + sampled.error().message);
   } else {
-    TimedWaypointsLimits limits;
+    core::TimedWaypointsLimits limits;
     limits.max_samples = options.max_samples;
-    if (Status s = validate_timed_waypoints(model, *sampled, limits); !s) {
+    if (Status s = core::validate_timed_waypoints(model, *sampled, limits); !s) {
       error(-1, -1, "the robot would refuse the sampled plan: " + s.error().message);
     }
   }
 
   // Near-singular segments: one warning per segment, at its closest sample.
-  KinematicsData data(model);
+  core::KinematicsData data(model);
   const int samples = std::max(2, options.singularity_samples);
   for (std::size_t i = 0; i < waypoints.size(); ++i) {
     const Eigen::VectorXd& q0 = waypoints[i == 0 ? 0 : i - 1].q;
@@ -154,7 +155,7 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
     const int count = (i == 0) ? 1 : samples;
     for (int k = 0; k < count; ++k) {
       const double s = count == 1 ? 1.0 : static_cast<double>(k) / (count - 1);
-      const double sigma = jacobian_min_singular_value(model, data, q0 + s * (q1 - q0));
+      const double sigma = core::jacobian_min_singular_value(model, data, q0 + s * (q1 - q0));
       if (sigma < lowest) {
         lowest = sigma;
         where = s;

@@ -1,12 +1,12 @@
-#include "session/registration_check.hpp"
+#include "telear/session/registration_check.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <utility>
 
-#include "core/kinematics.hpp"
-#include "vision/marker_detection.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/vision/marker_detection.hpp"
 
 namespace telear::session {
 
@@ -24,17 +24,17 @@ void corner_residual(const std::vector<Eigen::Vector2d>& detected,
   rms_px = std::sqrt(sum2 / static_cast<double>(detected.size()));
 }
 
-RegistrationCheck::RegistrationCheck(RobotModelPtr model, StereoCameraModel cameras,
+RegistrationCheck::RegistrationCheck(core::RobotModelPtr model, vision::StereoCameraModel cameras,
                                      GripperMarker marker)
     : model_(std::move(model)), cameras_(std::move(cameras)), marker_(marker) {
   assert(model_ && "RegistrationCheck: model must not be null");
 }
 
-std::vector<Eigen::Vector2d> RegistrationCheck::predict(const CameraModel& camera,
+std::vector<Eigen::Vector2d> RegistrationCheck::predict(const vision::CameraModel& camera,
                                                         const Eigen::VectorXd& q) const {
-  assert(check_joint_vector(*model_, q).ok() && "RegistrationCheck::predict(): invalid q");
-  KinematicsData data(*model_);
-  forward_kinematics(*model_, data, q);
+  assert(core::check_joint_vector(*model_, q).ok() && "RegistrationCheck::predict(): invalid q");
+  core::KinematicsData data(*model_);
+  core::forward_kinematics(*model_, data, q);
   const Eigen::Isometry3d& T_base_flange = data.T_base_link.back();
   std::vector<Eigen::Vector2d> pixels;
   for (const Eigen::Vector3d& p_flange : marker_.corners_flange) {
@@ -45,12 +45,12 @@ std::vector<Eigen::Vector2d> RegistrationCheck::predict(const CameraModel& camer
   return pixels;
 }
 
-EyeResidual RegistrationCheck::check_eye(const cv::Mat& image, const CameraModel& camera,
+EyeResidual RegistrationCheck::check_eye(const cv::Mat& image, const vision::CameraModel& camera,
                                          const Eigen::VectorXd& q) const {
   EyeResidual r;
   r.predicted_px = predict(camera, q);
   r.predicted = !r.predicted_px.empty();
-  r.detected_px = detect_aruco_marker(image, marker_.id);
+  r.detected_px = vision::detect_aruco_marker(image, marker_.id);
   r.detected = !r.detected_px.empty();
   if (!r.detected) {
     r.message = "marker " + std::to_string(marker_.id) + " not detected in the image";

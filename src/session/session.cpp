@@ -1,36 +1,37 @@
-#include "session/session.hpp"
+#include "telear/session/session.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <sstream>
 
-#include "net/clock.hpp"
+#include "telear/core/clock.hpp"
 
 namespace telear::session {
 
 namespace {
 
-cv::Mat as_mat(const render::Image& image) {
+cv::Mat as_mat(const core::Image& image) {
   return cv::Mat(image.height, image.width, image.channels == 4 ? CV_8UC4 : CV_8UC3,
                  const_cast<std::uint8_t*>(image.pixels.data()));
 }
 
 }  // namespace
 
-Session::Session(RobotModelPtr model, SessionOptions options)
+Session::Session(core::RobotModelPtr model, SessionOptions options)
     : model_(std::move(model)),
       options_(std::move(options)),
       ghost_(model_),
       plan_(model_),
       display_(options_.display),
-      epoch_ns_(net::monotonic_ns()) {}
+      epoch_ns_(core::monotonic_ns()) {}
 
 Session::~Session() {
   disconnect();
 }
 
-Result<std::unique_ptr<Session>> Session::Create(RobotModelPtr model, SessionOptions options) {
+Result<std::unique_ptr<Session>> Session::create(core::RobotModelPtr model,
+                                                 SessionOptions options) {
   if (!model) return Error{"session: no robot model"};
   if (!(std::isfinite(options.sample_rate_hz) && options.sample_rate_hz > 0.0)) {
     return Error{"session: sample_rate_hz must be a positive number"};
@@ -55,7 +56,7 @@ Result<std::unique_ptr<Session>> Session::Create(RobotModelPtr model, SessionOpt
 }
 
 double Session::now() const {
-  return net::ns_to_s(net::monotonic_ns() - epoch_ns_);
+  return core::ns_to_s(core::monotonic_ns() - epoch_ns_);
 }
 
 void Session::log(SessionEvent::Kind kind, std::string message) {
@@ -133,8 +134,8 @@ Status Session::reset_estop() {
 
 // [SECTION] ghost
 
-MotionOutcome Session::move_ghost(const MotionCommand& command) {
-  MotionOutcome outcome = ghost_.apply(command);
+core::MotionOutcome Session::move_ghost(const core::MotionCommand& command) {
+  core::MotionOutcome outcome = ghost_.apply(command);
   if (!outcome.accepted) {
     log(SessionEvent::Kind::kWarning, "ghost: " + outcome.rejection.message);
   } else if (outcome.singularity) {
@@ -159,7 +160,7 @@ Status Session::ghost_to_real() {
 
 // [SECTION] real robot
 
-Result<net::JogAck> Session::jog_real(const MotionCommand& command) {
+Result<net::JogAck> Session::jog_real(const core::MotionCommand& command) {
   auto ack = robot_->jog(command, options_.jog_validity_s);
   if (!ack) log(SessionEvent::Kind::kWarning, ack.error().message);
   return ack;
@@ -262,7 +263,7 @@ void Session::update(double dt) {
   view_.real = robot_->latest_state();
   if (view_.real) {
     const auto& real = *view_.real;
-    const double capture_s = net::ns_to_s(real.capture_client_ns() - epoch_ns_);
+    const double capture_s = core::ns_to_s(real.capture_client_ns() - epoch_ns_);
     view_.real_state_age_s = std::max(0.0, t - capture_s);
     if (state_history_.empty() || state_history_.back().first < capture_s) {
       state_history_.emplace_back(capture_s, real.state.q);
@@ -312,8 +313,8 @@ void Session::update_frame(double t) {
     }
   }
   // The newest frame that has been "delivered" (held back by the injected delay, if any).
-  const std::int64_t now_ns = epoch_ns_ + net::s_to_ns(t);
-  const std::int64_t delay_ns = net::s_to_ns(options_.injected_video_delay_s);
+  const std::int64_t now_ns = epoch_ns_ + core::s_to_ns(t);
+  const std::int64_t delay_ns = core::s_to_ns(options_.injected_video_delay_s);
   while (!delayed_.empty() && delayed_.front().second->decoded_ns + delay_ns <= now_ns) {
     view_.frame = delayed_.front().second;
     delayed_.pop_front();
@@ -321,7 +322,7 @@ void Session::update_frame(double t) {
   while (delayed_.size() > 512) delayed_.pop_front();  // a delay longer than the buffer
 
   std::optional<double> capture;
-  if (view_.frame) capture = net::ns_to_s(view_.frame->capture_ns_left - epoch_ns_);
+  if (view_.frame) capture = core::ns_to_s(view_.frame->capture_ns_left - epoch_ns_);
   const DisplayMode before = display_.mode();
   view_.display = display_.update(t, capture);
   if (display_.mode() != before) {
@@ -346,14 +347,14 @@ void Session::update_monitor() {
     return;
   }
   if (sample.last_trajectory_id == executing_id_ &&
-      sample.last_trajectory_status != TrajectoryStatus::kRunning) {
+      sample.last_trajectory_status != core::TrajectoryStatus::kRunning) {
     monitor_->update_at_plan_time(monitor_->trajectory().duration(), real.q);
     executing_ = false;
     last_result_ = to_string(sample.last_trajectory_status);
     if (!sample.last_trajectory_message.empty()) {
       last_result_ += ": " + sample.last_trajectory_message;
     }
-    log(sample.last_trajectory_status == TrajectoryStatus::kCompleted
+    log(sample.last_trajectory_status == core::TrajectoryStatus::kCompleted
             ? SessionEvent::Kind::kInfo
             : SessionEvent::Kind::kWarning,
         executing_id_ + " " + last_result_);
@@ -368,7 +369,7 @@ void Session::update_registration(double t) {
   if (frame.scene_q.size() == model_->dof()) {
     q = frame.scene_q;
   } else {
-    const double capture_s = net::ns_to_s(frame.capture_ns_left - epoch_ns_);
+    const double capture_s = core::ns_to_s(frame.capture_ns_left - epoch_ns_);
     double best = 1e300;
     for (const auto& [time, q_at] : state_history_) {
       if (std::abs(time - capture_s) < best) {
@@ -414,7 +415,7 @@ SessionStats Session::stats() const {
   stats.robot_state_age_s = view_.real_state_age_s;
   stats.command_bytes_sent = robot_->command_bytes_sent();
   if (auto offset = robot_->clock_offset())
-    stats.robot_round_trip_s = net::ns_to_s(offset->delay_ns);
+    stats.robot_round_trip_s = core::ns_to_s(offset->delay_ns);
   stats.residual = residual_;
   stats.residual_checks = residual_checks_;
   stats.frame_age_s = view_.display.frame_age.value_or(0.0);

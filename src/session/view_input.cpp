@@ -1,4 +1,4 @@
-#include "session/view_input.hpp"
+#include "telear/session/view_input.hpp"
 
 namespace telear::session {
 

@@ -1,4 +1,4 @@
-#include "sim/calibration_targets.hpp"
+#include "telear/sim/calibration_targets.hpp"
 
 #include <cmath>
 #include <opencv2/aruco.hpp>
@@ -11,7 +11,7 @@ const Eigen::Vector3f kBlack(0.04f, 0.04f, 0.045f);
 const Eigen::Vector3f kWhite(0.93f, 0.93f, 0.92f);
 
 // A quad with corners a, b, c, d (counter-clockwise seen from the side `normal` points to).
-void add_quad(Mesh& mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
+void add_quad(core::Mesh& mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
               const Eigen::Vector3f& c, const Eigen::Vector3f& d, const Eigen::Vector3f& normal,
               const Eigen::Vector3f& colour) {
   const std::uint32_t i0 = mesh.add_vertex(a, normal, colour);
@@ -23,7 +23,7 @@ void add_quad(Mesh& mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
 }
 
 // An axis-aligned rectangle [x0, x1] x [y0, y1] at height z of the target frame, facing -z.
-void add_rect(Mesh& mesh, double x0, double y0, double x1, double y1, double z,
+void add_rect(core::Mesh& mesh, double x0, double y0, double x1, double y1, double z,
               const Eigen::Vector3f& colour) {
   const Eigen::Vector3f n(0.f, 0.f, -1.f);
   const auto p = [z](double x, double y) {
@@ -49,16 +49,16 @@ Eigen::Vector3d CalibrationTarget::pattern_centre() const {
   return sum / static_cast<double>(points_target.size());
 }
 
-CalibrationTarget make_calibration_target(const CalibrationPattern& pattern,
+CalibrationTarget make_calibration_target(const vision::CalibrationPattern& pattern,
                                           double margin_squares) {
   CalibrationTarget target;
   target.pattern = pattern;
-  for (const cv::Point3f& p : pattern_object_points(pattern)) {
+  for (const cv::Point3f& p : vision::pattern_object_points(pattern)) {
     target.points_target.emplace_back(p.x, p.y, p.z);
   }
   const double s = pattern.spacing;
   const double m = margin_squares * s;
-  if (pattern.kind == PatternKind::kChessboard) {
+  if (pattern.kind == vision::PatternKind::kChessboard) {
     // Squares from -s to cols * s (x) and -s to rows * s (y); margin outside that.
     const double x0 = -s, y0 = -s, x1 = pattern.cols * s, y1 = pattern.rows * s;
     for (int j = -1; j < pattern.rows; ++j) {
@@ -121,7 +121,7 @@ Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec) {
   cv::aruco::drawMarker(cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50), spec.id, 6,
                         cells, 1);
   const double cell = spec.side_m / 6.0;
-  Mesh face;
+  core::Mesh face;
   const Eigen::Vector3f n(0.f, 0.f, 1.f);
   for (int row = -1; row <= 6; ++row) {
     for (int col = -1; col <= 6; ++col) {
@@ -139,8 +139,8 @@ Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec) {
   }
   // Backing plate behind the face (z < 0), slightly larger than the quiet zone.
   const float half = static_cast<float>(4.5 * cell);
-  append_box(face, Eigen::Vector3f(0.f, 0.f, -0.0051f), Eigen::Vector3f(2 * half, 2 * half, 0.01f),
-             Eigen::Vector3f(0.18f, 0.18f, 0.2f));
+  core::append_box(face, Eigen::Vector3f(0.f, 0.f, -0.0051f),
+                   Eigen::Vector3f(2 * half, 2 * half, 0.01f), Eigen::Vector3f(0.18f, 0.18f, 0.2f));
   face.transform(spec.T_flange_marker.matrix().cast<float>());
   marker.mesh = std::move(face);
   const double h = spec.side_m / 2.0;
@@ -153,7 +153,7 @@ Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec) {
 
 namespace {
 
-bool visible_in(const CameraModel& camera, const Eigen::Isometry3d& T_base_target,
+bool visible_in(const vision::CameraModel& camera, const Eigen::Isometry3d& T_base_target,
                 const CalibrationTarget& target, double margin_px) {
   const Eigen::Isometry3d T_cam_target = camera.T_cam_base * T_base_target;
   // The printed face is seen from -z_target: the camera must be on that side.
@@ -186,16 +186,14 @@ bool visible_in(const CameraModel& camera, const Eigen::Isometry3d& T_base_targe
 
 }  // namespace
 
-Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(const StereoCameraModel& cameras,
-                                                                const Eigen::Isometry3d& T_base_rig,
-                                                                const CalibrationTarget& target,
-                                                                int count, std::uint64_t seed,
-                                                                double margin_px) {
+Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(
+    const vision::StereoCameraModel& cameras, const Eigen::Isometry3d& T_base_rig,
+    const CalibrationTarget& target, int count, std::uint64_t seed, double margin_px) {
   std::mt19937_64 generator(seed);
   const auto uniform = [&generator](double lo, double hi) {
     return lo + (hi - lo) * (static_cast<double>(generator() >> 11) / 9007199254740992.0);
   };
-  const CameraModel& left = cameras.left;
+  const vision::CameraModel& left = cameras.left;
   const double board_width = target.outline_max.x() - target.outline_min.x();
   const Eigen::Vector3d centre_target =
       0.5 * (Eigen::Vector3d(target.outline_min.x(), target.outline_min.y(), 0.0) +

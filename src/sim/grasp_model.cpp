@@ -1,4 +1,4 @@
-#include "sim/grasp_model.hpp"
+#include "telear/sim/grasp_model.hpp"
 
 #include <algorithm>
 

@@ -1,8 +1,8 @@
-#include "sim/joint_fault.hpp"
+#include "telear/sim/joint_fault.hpp"
 
 #include <cmath>
 
-namespace telear {
+namespace telear::sim {
 
 const char* to_string(JointFaultKind kind) {
   switch (kind) {
@@ -35,4 +35,4 @@ JointMotion apply_joint_fault(const JointFault& fault, const JointMotion& measur
   return commanded;
 }
 
-}  // namespace telear
+}  // namespace telear::sim

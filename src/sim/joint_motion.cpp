@@ -1,11 +1,11 @@
-#include "sim/joint_motion.hpp"
+#include "telear/sim/joint_motion.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
 
-namespace telear {
+namespace telear::sim {
 namespace {
 
 // Below this distance (rad or m) a joint at rest counts as on its target; far below any
@@ -77,4 +77,4 @@ double worst_case_stopping_time(const Eigen::VectorXd& max_velocity,
   return stopping_time(max_velocity, max_acceleration, deceleration_scale);
 }
 
-}  // namespace telear
+}  // namespace telear::sim

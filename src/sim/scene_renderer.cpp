@@ -1,11 +1,11 @@
-#include "sim/scene_renderer.hpp"
+#include "telear/sim/scene_renderer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <random>
 
-#include "core/kinematics.hpp"
-#include "render/camera_projection.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/render/camera_projection.hpp"
 
 namespace telear::sim {
 namespace {
@@ -13,8 +13,8 @@ namespace {
 // A floor of square tiles whose grey varies a little from tile to tile (a fixed generator),
 // like worn concrete slabs: texture for the eye, but no high-contrast checkerboard that a
 // chessboard detector could mistake for the target.
-Mesh make_tiled_floor(double size_m, int tiles) {
-  Mesh mesh;
+core::Mesh make_tiled_floor(double size_m, int tiles) {
+  core::Mesh mesh;
   std::mt19937 generator(12345u);
   std::uniform_real_distribution<float> shade(0.42f, 0.52f);
   const Eigen::Vector3f n(0.f, 0.f, 1.f);
@@ -47,28 +47,28 @@ Mesh make_tiled_floor(double size_m, int tiles) {
 }
 
 // A wooden table (top and four legs); the box to pick is a part of its own (it can be carried).
-Mesh make_table() {
-  Mesh mesh;
+core::Mesh make_table() {
+  core::Mesh mesh;
   const Eigen::Vector3f wood(0.55f, 0.38f, 0.22f);
   const Eigen::Vector3f leg(0.25f, 0.2f, 0.16f);
   const Eigen::Vector3f top_centre(0.55f, -0.45f, 0.385f);
   const Eigen::Vector3f top_size(0.5f, 0.7f, 0.03f);
-  append_box(mesh, top_centre, top_size, wood);
+  core::append_box(mesh, top_centre, top_size, wood);
   for (int sx : {-1, 1}) {
     for (int sy : {-1, 1}) {
       const Eigen::Vector3f c(top_centre.x() + sx * 0.21f, top_centre.y() + sy * 0.31f, 0.185f);
-      append_box(mesh, c, Eigen::Vector3f(0.04f, 0.04f, 0.37f), leg);
+      core::append_box(mesh, c, Eigen::Vector3f(0.04f, 0.04f, 0.37f), leg);
     }
   }
   return mesh;
 }
 
 // The box to pick, centred on its own frame's origin.
-Mesh make_object(const WorkspaceObject& object) {
-  Mesh mesh;
+core::Mesh make_object(const WorkspaceObject& object) {
+  core::Mesh mesh;
   const float e = static_cast<float>(object.edge_m);
-  append_box(mesh, Eigen::Vector3f::Zero(), Eigen::Vector3f(e, e, e),
-             Eigen::Vector3f(0.8f, 0.18f, 0.12f));
+  core::append_box(mesh, Eigen::Vector3f::Zero(), Eigen::Vector3f(e, e, e),
+                   Eigen::Vector3f(0.8f, 0.18f, 0.12f));
   return mesh;
 }
 
@@ -81,8 +81,8 @@ std::uint64_t splitmix64(std::uint64_t x) {
 
 }  // namespace
 
-CameraModel supersampled_camera(const CameraModel& camera, int factor) {
-  CameraModel scaled = camera;
+vision::CameraModel supersampled_camera(const vision::CameraModel& camera, int factor) {
+  vision::CameraModel scaled = camera;
   const double s = factor;
   scaled.width = camera.width * factor;
   scaled.height = camera.height * factor;
@@ -93,10 +93,10 @@ CameraModel supersampled_camera(const CameraModel& camera, int factor) {
   return scaled;
 }
 
-render::Image downsample_box(const render::Image& image, int factor) {
+core::Image downsample_box(const core::Image& image, int factor) {
   const int width = image.width / factor;
   const int height = image.height / factor;
-  render::Image out(width, height, 3);
+  core::Image out(width, height, 3);
   const int channels = image.channels;
   const int area = factor * factor;
   std::vector<int> sums(static_cast<std::size_t>(width) * 3);
@@ -125,7 +125,7 @@ std::uint64_t noise_seed(std::uint64_t seed, std::uint64_t frame, Eye eye) {
   return splitmix64(splitmix64(splitmix64(seed) ^ frame) ^ (eye == Eye::kLeft ? 1u : 2u));
 }
 
-void add_sensor_noise(render::Image& image, double sigma, std::uint64_t seed) {
+void add_sensor_noise(core::Image& image, double sigma, std::uint64_t seed) {
   if (sigma <= 0.0) return;
   std::mt19937_64 generator(seed);
   // Uniform in (0, 1] from 53 random bits, then Box-Muller: two normals per pair.
@@ -144,8 +144,8 @@ void add_sensor_noise(render::Image& image, double sigma, std::uint64_t seed) {
   }
 }
 
-Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const RobotModel& model,
-                                            const BodyDescription& body,
+Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const core::RobotModel& model,
+                                            const core::BodyDescription& body,
                                             const SceneOptions& options) {
   if (options.supersample < 1 || options.supersample > 8) {
     return Error{"supersampling factor " + std::to_string(options.supersample) +
@@ -158,15 +158,15 @@ Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const RobotMod
   scene.rig_ = rig;
   scene.options_ = options;
   scene.model_ = &model;
-  scene.body_ = build_arm_body(body);
+  scene.body_ = core::build_arm_body(body);
   scene.pose_.emplace(model, scene.body_);
   auto arm = render::ArmRenderer::create(scene.body_);
   if (!arm) return arm.error();
   scene.arm_ = std::move(*arm);
 
-  const Mesh floor = make_tiled_floor(8.0, 20);
-  const Mesh table = make_table();
-  const Mesh object = make_object(workspace_object());
+  const core::Mesh floor = make_tiled_floor(8.0, 20);
+  const core::Mesh table = make_table();
+  const core::Mesh object = make_object(workspace_object());
   auto environment = render::MeshSetRenderer::create({&floor, &table, &object});
   if (!environment) return environment.error();
   scene.environment_ = std::move(*environment);
@@ -185,7 +185,7 @@ Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const RobotMod
   overlay_options.mode = render::OverlayMode::kRaw;
   overlay_options.clear_colour = options.background;
   for (int eye = 0; eye < 2; ++eye) {
-    const CameraModel camera =
+    const vision::CameraModel camera =
         supersampled_camera(rig.camera(eye == 0 ? Eye::kLeft : Eye::kRight), options.supersample);
     auto overlay = render::Overlay::create(camera, overlay_options);
     if (!overlay) return overlay.error();
@@ -238,7 +238,7 @@ Status SceneRenderer::set_target(const CalibrationTarget& target,
   return Status::Ok();
 }
 
-render::Image SceneRenderer::render_clean(Eye eye) {
+core::Image SceneRenderer::render_clean(Eye eye) {
   const int index = eye == Eye::kLeft ? 0 : 1;
   arm_.update(*pose_);
   if (marker_) {
@@ -257,12 +257,12 @@ render::Image SceneRenderer::render_clean(Eye eye) {
         }
         if (has_target_) target_.draw(projection, T_view_base, flat);
       });
-  const render::Image high = high_res_[index].read_rgba();
+  const core::Image high = high_res_[index].read_rgba();
   return downsample_box(high, options_.supersample);
 }
 
-render::Image SceneRenderer::render(Eye eye, std::uint64_t frame) {
-  render::Image image = render_clean(eye);
+core::Image SceneRenderer::render(Eye eye, std::uint64_t frame) {
+  core::Image image = render_clean(eye);
   const std::uint64_t seed = noise_seed(options_.seed, frame, eye);
   if (!options_.fast_noise || options_.noise_sigma <= 0.0) {
     add_sensor_noise(image, options_.noise_sigma, seed);
@@ -271,7 +271,7 @@ render::Image SceneRenderer::render(Eye eye, std::uint64_t frame) {
   constexpr std::size_t kTableSize = std::size_t{1} << 20;
   if (noise_table_.empty()) {
     // The table is the exact generator's output on a mid-grey image, minus the grey.
-    render::Image grey(static_cast<int>(kTableSize), 1, 1);
+    core::Image grey(static_cast<int>(kTableSize), 1, 1);
     std::fill(grey.pixels.begin(), grey.pixels.end(), std::uint8_t{128});
     add_sensor_noise(grey, options_.noise_sigma, options_.seed);
     noise_table_.resize(kTableSize);

@@ -1,9 +1,9 @@
-#include "sim/servo_thread.hpp"
+#include "telear/sim/servo_thread.hpp"
 
 #include <cassert>
 #include <chrono>
 
-namespace telear {
+namespace telear::sim {
 
 ServoThread::ServoThread(SimulatedRobot& robot, double period) : robot_(robot), period_(period) {
   assert(period > 0.0 && "ServoThread: period must be positive");
@@ -40,4 +40,4 @@ void ServoThread::run() {
   }
 }
 
-}  // namespace telear
+}  // namespace telear::sim

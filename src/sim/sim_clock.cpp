@@ -1,9 +1,9 @@
-#include "sim/sim_clock.hpp"
+#include "telear/sim/sim_clock.hpp"
 
 #include <cassert>
 #include <cmath>
 
-namespace telear {
+namespace telear::sim {
 
 SteadyClock::SteadyClock() : epoch_(std::chrono::steady_clock::now()) {}
 
@@ -32,4 +32,4 @@ void ManualClock::set(double t) {
   now_.store(t);
 }
 
-}  // namespace telear
+}  // namespace telear::sim

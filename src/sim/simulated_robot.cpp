@@ -1,16 +1,16 @@
-#include "sim/simulated_robot.hpp"
+#include "telear/sim/simulated_robot.hpp"
 
-#include "core/number_format.hpp"
+#include "telear/core/number_format.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
-#include "sim/true_model.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/sim/true_model.hpp"
 
-namespace telear {
+namespace telear::sim {
 namespace {
 
 // Slack when comparing the clock with the servo grid t0 + k dt (s): a ManualClock advanced in
@@ -21,60 +21,60 @@ bool is_printable_ascii(const std::string& text) {
   return std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });
 }
 
-const char* mode_activity(RobotMode mode) {
+const char* mode_activity(core::RobotMode mode) {
   switch (mode) {
-    case RobotMode::kJogging:
+    case core::RobotMode::kJogging:
       return "jogging";
-    case RobotMode::kStopping:
+    case core::RobotMode::kStopping:
       return "stopping";
-    case RobotMode::kTrajectory:
+    case core::RobotMode::kTrajectory:
       return "running a trajectory";
-    case RobotMode::kEStopped:
+    case core::RobotMode::kEStopped:
       return "e-stopped";
-    case RobotMode::kIdle:
+    case core::RobotMode::kIdle:
       break;
   }
   return "idle";
 }
 
-Status check_options(const RobotModel& model, const SimulatedRobotOptions& o) {
+Status check_options(const core::RobotModel& model, const SimulatedRobotOptions& o) {
   if (!(std::isfinite(o.servo_period) && o.servo_period > 0.0 && o.servo_period <= 0.1)) {
-    return Error{"servo_period must be in (0, 0.1] s, got " + format_number(o.servo_period)};
+    return Error{"servo_period must be in (0, 0.1] s, got " + core::format_number(o.servo_period)};
   }
   if (!(std::isfinite(o.gripper_speed) && o.gripper_speed > 0.0)) {
     return Error{"gripper_speed must be a positive finite number (opening per second), got " +
-                 format_number(o.gripper_speed)};
+                 core::format_number(o.gripper_speed)};
   }
   if (!(std::isfinite(o.initial_gripper) && o.initial_gripper >= 0.0 && o.initial_gripper <= 1.0)) {
     return Error{"initial_gripper must be in [0, 1] (0 closed, 1 open), got " +
-                 format_number(o.initial_gripper)};
+                 core::format_number(o.initial_gripper)};
   }
   if (!(std::isfinite(o.start_tolerance) && o.start_tolerance >= 0.0)) {
     return Error{"start_tolerance must be a non-negative finite number, got " +
-                 format_number(o.start_tolerance)};
+                 core::format_number(o.start_tolerance)};
   }
   if (!(std::isfinite(o.stop_deceleration_scale) && o.stop_deceleration_scale > 0.0 &&
         o.stop_deceleration_scale <= 1.0)) {
     return Error{"stop_deceleration_scale must be in (0, 1], got " +
-                 format_number(o.stop_deceleration_scale)};
+                 core::format_number(o.stop_deceleration_scale)};
   }
   if (!(std::isfinite(o.max_jog_duration) && o.max_jog_duration > 0.0)) {
     return Error{"max_jog_duration must be a positive finite number of seconds, got " +
-                 format_number(o.max_jog_duration)};
+                 core::format_number(o.max_jog_duration)};
   }
   if (o.max_trajectory_id_length < 1) {
     return Error{"max_trajectory_id_length must be at least 1"};
   }
   if (!(std::isfinite(o.limit_fault_tolerance) && o.limit_fault_tolerance >= 0.0)) {
     return Error{"limit_fault_tolerance must be a non-negative finite number, got " +
-                 format_number(o.limit_fault_tolerance)};
+                 core::format_number(o.limit_fault_tolerance)};
   }
   if (o.initial_q.size() != 0) {
-    if (Status s = check_joint_vector(model, o.initial_q); !s) {
+    if (Status s = core::check_joint_vector(model, o.initial_q); !s) {
       return Error{"initial_q: " + s.error().message};
     }
-    if (const auto violation = first_limit_violation(model, o.initial_q)) {
-      return Error{"initial_q: " + describe_violation(model, *violation)};
+    if (const auto violation = core::first_limit_violation(model, o.initial_q)) {
+      return Error{"initial_q: " + core::describe_violation(model, *violation)};
     }
   }
   return Status::Ok();
@@ -82,55 +82,26 @@ Status check_options(const RobotModel& model, const SimulatedRobotOptions& o) {
 
 }  // namespace
 
-const char* to_string(RobotMode mode) {
-  switch (mode) {
-    case RobotMode::kIdle:
-      return "idle";
-    case RobotMode::kJogging:
-      return "jogging";
-    case RobotMode::kTrajectory:
-      return "trajectory";
-    case RobotMode::kStopping:
-      return "stopping";
-    case RobotMode::kEStopped:
-      return "estopped";
-  }
-  return "?";
-}
-
-const char* to_string(TrajectoryStatus status) {
-  switch (status) {
-    case TrajectoryStatus::kRunning:
-      return "running";
-    case TrajectoryStatus::kCompleted:
-      return "completed";
-    case TrajectoryStatus::kCancelled:
-      return "cancelled";
-    case TrajectoryStatus::kAborted:
-      return "aborted";
-  }
-  return "?";
-}
-
 // [SECTION] Construction
 
-Result<std::unique_ptr<SimulatedRobot>> SimulatedRobot::Create(
-    RobotModelPtr model, std::shared_ptr<const SimClock> clock, SimulatedRobotOptions options) {
-  assert(model && clock && "SimulatedRobot::Create(): model and clock are required");
+Result<std::unique_ptr<SimulatedRobot>> SimulatedRobot::create(
+    core::RobotModelPtr model, std::shared_ptr<const SimClock> clock,
+    SimulatedRobotOptions options) {
+  assert(model && clock && "SimulatedRobot::create(): model and clock are required");
   if (Status s = check_options(*model, options); !s) {
     return Error{"simulated robot options: " + s.error().message};
   }
-  RobotModelPtr true_model = model;
+  core::RobotModelPtr true_model = model;
   if (options.true_joint_offsets.size() != 0) {
     auto offset_model = with_joint_offsets(*model, options.true_joint_offsets);
     if (!offset_model) return Error{"simulated robot options: " + offset_model.error().message};
-    true_model = std::make_shared<const RobotModel>(std::move(offset_model).value());
+    true_model = std::make_shared<const core::RobotModel>(std::move(offset_model).value());
   }
   return std::unique_ptr<SimulatedRobot>(
       new SimulatedRobot(std::move(model), std::move(true_model), std::move(clock), options));
 }
 
-SimulatedRobot::SimulatedRobot(RobotModelPtr model, RobotModelPtr true_model,
+SimulatedRobot::SimulatedRobot(core::RobotModelPtr model, core::RobotModelPtr true_model,
                                std::shared_ptr<const SimClock> clock, SimulatedRobotOptions options)
     : model_(std::move(model)),
       true_model_(std::move(true_model)),
@@ -138,7 +109,7 @@ SimulatedRobot::SimulatedRobot(RobotModelPtr model, RobotModelPtr true_model,
       options_(std::move(options)) {
   const int n = model_->dof();
   for (int j = 0; j < n; ++j) {
-    const JointLimits& l = model_->joint(j).limits;
+    const core::JointLimits& l = model_->joint(j).limits;
     limits_.push_back({l.lower, l.upper, l.max_velocity, l.max_acceleration});
   }
   t0_ = clock_->now();
@@ -179,9 +150,9 @@ double SimulatedRobot::time() const {
   return now();
 }
 
-RobotState SimulatedRobot::state() const {
+core::RobotState SimulatedRobot::state() const {
   std::lock_guard lock(mutex_);
-  RobotState s;
+  core::RobotState s;
   s.time = now();
   s.mode = mode_;
   s.q = q_;
@@ -191,7 +162,7 @@ RobotState SimulatedRobot::state() const {
   s.gripper = gripper_;
   s.gripper_target = gripper_target_;
   s.gripper_moving = gripper_ != gripper_target_;
-  s.estop = mode_ == RobotMode::kEStopped;
+  s.estop = mode_ == core::RobotMode::kEStopped;
   s.estop_reason = estop_reason_;
   s.estop_time = estop_time_;
   if (trajectory_) {
@@ -203,13 +174,14 @@ RobotState SimulatedRobot::state() const {
     s.trajectory_progress =
         s.trajectory_duration > 0.0 ? s.trajectory_time / s.trajectory_duration : 0.0;
   }
-  if (mode_ == RobotMode::kJogging) s.jog_expires_at = jog_expires_at_;
-  if (mode_ == RobotMode::kStopping) s.stop_reason = stop_reason_;
+  if (mode_ == core::RobotMode::kJogging) s.jog_expires_at = jog_expires_at_;
+  if (mode_ == core::RobotMode::kStopping) s.stop_reason = stop_reason_;
   s.fault = fault_;
   return s;
 }
 
-std::optional<TrajectoryRecord> SimulatedRobot::trajectory_record(const std::string& id) const {
+std::optional<core::TrajectoryRecord> SimulatedRobot::trajectory_record(
+    const std::string& id) const {
   std::lock_guard lock(mutex_);
   const auto it = records_.find(id);
   if (it == records_.end()) return std::nullopt;
@@ -222,16 +194,16 @@ void SimulatedRobot::step() {
   const double dt = options_.servo_period;
   const double t = now();
   const int n = model_->dof();
-  if (mode_ == RobotMode::kJogging && t >= jog_expires_at_) {
-    begin_stop("the jog expired at t = " + format_seconds(jog_expires_at_),
-               TrajectoryStatus::kCancelled);
+  if (mode_ == core::RobotMode::kJogging && t >= jog_expires_at_) {
+    begin_stop("the jog expired at t = " + core::format_seconds(jog_expires_at_),
+               core::TrajectoryStatus::kCancelled);
   }
   switch (mode_) {
-    case RobotMode::kIdle:
-    case RobotMode::kEStopped:
+    case core::RobotMode::kIdle:
+    case core::RobotMode::kEStopped:
       qd_cmd_.setZero();
       break;
-    case RobotMode::kJogging: {
+    case core::RobotMode::kJogging: {
       bool all_arrived = true;
       for (int j = 0; j < n; ++j) {
         JointMotion m;
@@ -245,13 +217,13 @@ void SimulatedRobot::step() {
         q_cmd_[j] = m.q;
         qd_cmd_[j] = m.qd;
       }
-      if (jog_kind_ == JogKind::kTarget && all_arrived) mode_ = RobotMode::kIdle;
+      if (jog_kind_ == JogKind::kTarget && all_arrived) mode_ = core::RobotMode::kIdle;
       break;
     }
-    case RobotMode::kTrajectory:
+    case core::RobotMode::kTrajectory:
       step_trajectory(t + dt);
       break;
-    case RobotMode::kStopping: {
+    case core::RobotMode::kStopping: {
       bool at_rest = true;
       for (int j = 0; j < n; ++j) {
         const JointMotion m =
@@ -261,13 +233,13 @@ void SimulatedRobot::step() {
         at_rest = at_rest && m.qd == 0.0;
       }
       if (at_rest) {
-        mode_ = RobotMode::kIdle;
+        mode_ = core::RobotMode::kIdle;
         stop_reason_.clear();
       }
       break;
     }
   }
-  if (mode_ != RobotMode::kEStopped && gripper_ != gripper_target_) {
+  if (mode_ != core::RobotMode::kEStopped && gripper_ != gripper_target_) {
     const double max_step = options_.gripper_speed * dt;
     gripper_ += std::clamp(gripper_target_ - gripper_, -max_step, max_step);
   }
@@ -300,8 +272,8 @@ void SimulatedRobot::step_trajectory(double t_next) {
   apply_gripper_events(tau);
   if (tau >= active.reference.duration()) {
     qd_cmd_.setZero();
-    finish_trajectory(TrajectoryStatus::kCompleted, "");
-    mode_ = RobotMode::kIdle;
+    finish_trajectory(core::TrajectoryStatus::kCompleted, "");
+    mode_ = core::RobotMode::kIdle;
   }
 }
 
@@ -316,7 +288,7 @@ void SimulatedRobot::apply_gripper_events(double trajectory_time) {
 }
 
 void SimulatedRobot::update_measured(double dt) {
-  const bool braked = mode_ == RobotMode::kEStopped;
+  const bool braked = mode_ == core::RobotMode::kEStopped;
   bool clamped = false;  // beyond a limit by more than the tolerance
   for (int j = 0; j < model_->dof(); ++j) {
     JointMotion m{q_[j], qd_[j]};
@@ -336,10 +308,11 @@ void SimulatedRobot::update_measured(double dt) {
         clamped = true;
         m.qd = 0.0;
         if (!fault_) {
-          fault_ = joint_label(*model_, j) + " measured at " + format_joint_value(*model_, j, m.q) +
-                   ", beyond its " + (upper ? "upper" : "lower") + " limit of " +
-                   format_joint_value(*model_, j, bound) +
-                   ": hard-clamped to the limit at t = " + format_seconds(now());
+          fault_ = core::joint_label(*model_, j) + " measured at " +
+                   core::format_joint_value(*model_, j, m.q) + ", beyond its " +
+                   (upper ? "upper" : "lower") + " limit of " +
+                   core::format_joint_value(*model_, j, bound) +
+                   ": hard-clamped to the limit at t = " + core::format_seconds(now());
         }
       }
       m.q = bound;
@@ -347,23 +320,24 @@ void SimulatedRobot::update_measured(double dt) {
     q_[j] = m.q;
     qd_[j] = m.qd;
   }
-  if (clamped && (mode_ == RobotMode::kJogging || mode_ == RobotMode::kTrajectory)) {
+  if (clamped && (mode_ == core::RobotMode::kJogging || mode_ == core::RobotMode::kTrajectory)) {
     gripper_target_ = gripper_;
     begin_stop("joint-limit fault: " + fault_.value_or("a joint was clamped at its limit"),
-               TrajectoryStatus::kAborted);
+               core::TrajectoryStatus::kAborted);
   }
 }
 
 // [SECTION] Stops and records
 
-void SimulatedRobot::begin_stop(const std::string& reason, TrajectoryStatus trajectory_status) {
-  if (mode_ == RobotMode::kIdle || mode_ == RobotMode::kEStopped) return;
+void SimulatedRobot::begin_stop(const std::string& reason,
+                                core::TrajectoryStatus trajectory_status) {
+  if (mode_ == core::RobotMode::kIdle || mode_ == core::RobotMode::kEStopped) return;
   if (trajectory_) finish_trajectory(trajectory_status, reason);
   jog_expires_at_ = 0.0;
   const double scale = options_.stop_deceleration_scale;
   const double T = stopping_time(qd_cmd_, model_->max_accelerations(), scale);
   if (T == 0.0) {
-    mode_ = RobotMode::kIdle;
+    mode_ = core::RobotMode::kIdle;
     stop_reason_.clear();
     return;
   }
@@ -372,11 +346,11 @@ void SimulatedRobot::begin_stop(const std::string& reason, TrajectoryStatus traj
     stop_deceleration_[j] = std::min(std::abs(qd_cmd_[j]) / T, a_max);
   }
   stop_reason_ = reason;
-  mode_ = RobotMode::kStopping;
+  mode_ = core::RobotMode::kStopping;
 }
 
-void SimulatedRobot::finish_trajectory(TrajectoryStatus status, const std::string& message) {
-  TrajectoryRecord& record = records_.at(trajectory_->id);
+void SimulatedRobot::finish_trajectory(core::TrajectoryStatus status, const std::string& message) {
+  core::TrajectoryRecord& record = records_.at(trajectory_->id);
   record.status = status;
   record.finished_at = now();
   record.message = message;
@@ -393,10 +367,10 @@ void SimulatedRobot::sync_command_to_measured() {
 // [SECTION] Commands
 
 Status SimulatedRobot::check_can_move(const char* what) const {
-  if (mode_ == RobotMode::kEStopped) {
-    return Error{std::string(what) +
-                 " rejected: the e-stop is engaged (since t = " + format_seconds(estop_time_) +
-                 ": " + estop_reason_ + "); reset it once the arm is at rest"};
+  if (mode_ == core::RobotMode::kEStopped) {
+    return Error{std::string(what) + " rejected: the e-stop is engaged (since t = " +
+                 core::format_seconds(estop_time_) + ": " + estop_reason_ +
+                 "); reset it once the arm is at rest"};
   }
   if (trajectory_) {
     return Error{std::string(what) + " rejected: trajectory '" + trajectory_->id +
@@ -409,16 +383,17 @@ Status SimulatedRobot::check_jog_expiry(double expires_at) const {
   const double t = now();
   if (!std::isfinite(expires_at)) {
     return Error{"jog rejected: its expiry time is not a finite number: " +
-                 format_number(expires_at)};
+                 core::format_number(expires_at)};
   }
   if (expires_at <= t) {
-    return Error{"jog ignored: it expired at t = " + format_seconds(expires_at) + ", " +
-                 format_seconds(t - expires_at) + " before it arrived at t = " + format_seconds(t)};
+    return Error{"jog ignored: it expired at t = " + core::format_seconds(expires_at) + ", " +
+                 core::format_seconds(t - expires_at) +
+                 " before it arrived at t = " + core::format_seconds(t)};
   }
   if (expires_at - t > options_.max_jog_duration) {
-    return Error{"jog rejected: it expires " + format_seconds(expires_at - t) +
+    return Error{"jog rejected: it expires " + core::format_seconds(expires_at - t) +
                  " from now, later than the maximum of " +
-                 format_seconds(options_.max_jog_duration)};
+                 core::format_seconds(options_.max_jog_duration)};
   }
   return Status::Ok();
 }
@@ -428,51 +403,52 @@ Status SimulatedRobot::jog_velocity(const Eigen::VectorXd& qd, double expires_at
   catch_up();
   if (Status s = check_can_move("jog"); !s) return s;
   if (Status s = check_jog_expiry(expires_at); !s) return s;
-  if (Status s = check_joint_vector(*model_, qd); !s) {
+  if (Status s = core::check_joint_vector(*model_, qd); !s) {
     return Error{"joint velocity jog rejected: " + s.error().message};
   }
   for (int j = 0; j < model_->dof(); ++j) {
     if (std::abs(qd[j]) > model_->max_velocities()[j]) {
-      return Error{"joint velocity jog rejected: " + joint_label(*model_, j) + " at " +
-                   format_joint_value(*model_, j, qd[j]) + "/s exceeds its max velocity of " +
-                   format_joint_value(*model_, j, model_->max_velocities()[j]) + "/s"};
+      return Error{"joint velocity jog rejected: " + core::joint_label(*model_, j) + " at " +
+                   core::format_joint_value(*model_, j, qd[j]) + "/s exceeds its max velocity of " +
+                   core::format_joint_value(*model_, j, model_->max_velocities()[j]) + "/s"};
     }
   }
   jog_kind_ = JogKind::kVelocity;
   jog_velocity_ = qd;
   jog_expires_at_ = expires_at;
   stop_reason_.clear();
-  mode_ = RobotMode::kJogging;
+  mode_ = core::RobotMode::kJogging;
   return Status::Ok();
 }
 
-Result<MotionOutcome> SimulatedRobot::jog(const MotionCommand& command, double expires_at,
-                                          const MotionOptions& motion_options) {
+Result<core::MotionOutcome> SimulatedRobot::jog(const core::MotionCommand& command,
+                                                double expires_at,
+                                                const core::MotionOptions& motion_options) {
   std::lock_guard lock(mutex_);
   catch_up();
   if (Status s = check_can_move("jog"); !s) return s.error();
   if (Status s = check_jog_expiry(expires_at); !s) return s.error();
-  const bool accumulating = mode_ == RobotMode::kJogging && jog_kind_ == JogKind::kTarget;
+  const bool accumulating = mode_ == core::RobotMode::kJogging && jog_kind_ == JogKind::kTarget;
   const Eigen::VectorXd base = accumulating ? jog_target_ : q_cmd_;
-  MotionOutcome outcome = apply_motion(*model_, base, command, motion_options);
+  core::MotionOutcome outcome = core::apply_motion(*model_, base, command, motion_options);
   if (!outcome.accepted) return Error{"jog rejected: " + outcome.rejection.message};
   jog_kind_ = JogKind::kTarget;
   jog_target_ = outcome.q;
   jog_expires_at_ = expires_at;
   stop_reason_.clear();
-  mode_ = RobotMode::kJogging;
+  mode_ = core::RobotMode::kJogging;
   return outcome;
 }
 
 Result<TrajectoryAcceptance> SimulatedRobot::execute(const std::string& id,
-                                                     const Trajectory& trajectory) {
+                                                     const core::Trajectory& trajectory) {
   // Validation needs only the immutable model: done before taking the lock, so that a long
   // trajectory does not hold up the servo.
   return start_trajectory(id, TrajectoryReference::FromTrajectory(*model_, trajectory));
 }
 
 Result<TrajectoryAcceptance> SimulatedRobot::execute(const std::string& id,
-                                                     TimedWaypoints waypoints) {
+                                                     core::TimedWaypoints waypoints) {
   return start_trajectory(id,
                           TrajectoryReference::FromTimedWaypoints(*model_, std::move(waypoints)));
 }
@@ -495,7 +471,7 @@ Result<TrajectoryAcceptance> SimulatedRobot::start_trajectory(
     return TrajectoryAcceptance{true, it->second};
   }
   if (Status s = check_can_move(label.c_str()); !s) return s.error();
-  if (mode_ != RobotMode::kIdle) {
+  if (mode_ != core::RobotMode::kIdle) {
     return Error{label + " rejected: the arm is " + mode_activity(mode_) +
                  "; wait until it is at rest (or cancel the motion)"};
   }
@@ -505,20 +481,20 @@ Result<TrajectoryAcceptance> SimulatedRobot::start_trajectory(
   const double deviation = (start - q_).cwiseAbs().maxCoeff(&worst);
   if (deviation > options_.start_tolerance) {
     const int j = static_cast<int>(worst);
-    return Error{label + " rejected: it starts " + format_joint_value(*model_, j, deviation) +
-                 " away from the arm: " + joint_label(*model_, j) + " is at " +
-                 format_joint_value(*model_, j, q_[j]) + ", the trajectory starts at " +
-                 format_joint_value(*model_, j, start[j]) + " (tolerance " +
-                 format_joint_value(*model_, j, options_.start_tolerance) + ")"};
+    return Error{label + " rejected: it starts " + core::format_joint_value(*model_, j, deviation) +
+                 " away from the arm: " + core::joint_label(*model_, j) + " is at " +
+                 core::format_joint_value(*model_, j, q_[j]) + ", the trajectory starts at " +
+                 core::format_joint_value(*model_, j, start[j]) + " (tolerance " +
+                 core::format_joint_value(*model_, j, options_.start_tolerance) + ")"};
   }
-  TrajectoryRecord record;
+  core::TrajectoryRecord record;
   record.id = id;
   record.accepted_at = now();
   record.duration = reference->duration();
   records_.emplace(id, record);
   const bool at_start = q_cmd_ == start;
   trajectory_.emplace(ActiveTrajectory{std::move(reference).value(), id, !at_start, now(), 0});
-  mode_ = RobotMode::kTrajectory;
+  mode_ = core::RobotMode::kTrajectory;
   stop_reason_.clear();
   if (at_start) apply_gripper_events(0.0);
   return TrajectoryAcceptance{false, record};
@@ -527,21 +503,21 @@ Result<TrajectoryAcceptance> SimulatedRobot::start_trajectory(
 void SimulatedRobot::cancel(const std::string& reason) {
   std::lock_guard lock(mutex_);
   catch_up();
-  if (mode_ == RobotMode::kEStopped) return;
+  if (mode_ == core::RobotMode::kEStopped) return;
   gripper_target_ = gripper_;
-  begin_stop(reason, TrajectoryStatus::kCancelled);
+  begin_stop(reason, core::TrajectoryStatus::kCancelled);
 }
 
 Status SimulatedRobot::set_gripper(double opening) {
   std::lock_guard lock(mutex_);
   catch_up();
-  if (mode_ == RobotMode::kEStopped) {
+  if (mode_ == core::RobotMode::kEStopped) {
     return Error{"gripper command rejected: the e-stop is engaged (since t = " +
-                 format_seconds(estop_time_) + ": " + estop_reason_ +
+                 core::format_seconds(estop_time_) + ": " + estop_reason_ +
                  "); reset it once the arm is at rest"};
   }
   if (!(std::isfinite(opening) && opening >= 0.0 && opening <= 1.0)) {
-    return Error{"gripper command rejected: opening " + format_number(opening) +
+    return Error{"gripper command rejected: opening " + core::format_number(opening) +
                  " is outside [0, 1] (0 closed, 1 open)"};
   }
   gripper_target_ = opening;
@@ -551,9 +527,9 @@ Status SimulatedRobot::set_gripper(double opening) {
 void SimulatedRobot::estop(const std::string& reason) {
   std::lock_guard lock(mutex_);
   catch_up();
-  if (mode_ == RobotMode::kEStopped) return;
-  if (trajectory_) finish_trajectory(TrajectoryStatus::kAborted, "e-stop: " + reason);
-  mode_ = RobotMode::kEStopped;
+  if (mode_ == core::RobotMode::kEStopped) return;
+  if (trajectory_) finish_trajectory(core::TrajectoryStatus::kAborted, "e-stop: " + reason);
+  mode_ = core::RobotMode::kEStopped;
   estop_reason_ = reason;
   estop_time_ = now();
   qd_cmd_.setZero();
@@ -566,20 +542,20 @@ void SimulatedRobot::estop(const std::string& reason) {
 Status SimulatedRobot::reset_estop() {
   std::lock_guard lock(mutex_);
   catch_up();
-  if (mode_ != RobotMode::kEStopped) return Status::Ok();
+  if (mode_ != core::RobotMode::kEStopped) return Status::Ok();
   for (int j = 0; j < model_->dof(); ++j) {
     const auto& fault = faults_[static_cast<size_t>(j)];
     const bool drifting =
         fault && fault->kind == JointFaultKind::kDrift && fault->drift_rate != 0.0;
     if (qd_[j] != 0.0 || drifting) {
       const double speed = qd_[j] != 0.0 ? qd_[j] : fault->drift_rate;
-      return Error{"cannot reset the e-stop while the arm moves: " + joint_label(*model_, j) +
-                   " moves at " + format_joint_value(*model_, j, speed) +
+      return Error{"cannot reset the e-stop while the arm moves: " + core::joint_label(*model_, j) +
+                   " moves at " + core::format_joint_value(*model_, j, speed) +
                    "/s; wait until it is at rest"};
     }
   }
   sync_command_to_measured();
-  mode_ = RobotMode::kIdle;
+  mode_ = core::RobotMode::kIdle;
   estop_reason_.clear();
   return Status::Ok();
 }
@@ -601,7 +577,7 @@ Status SimulatedRobot::inject_fault(const JointFault& fault) {
     return Error{
         "fault injection: lag time constant must be a positive finite number of "
         "seconds, got " +
-        format_number(fault.lag_time_constant)};
+        core::format_number(fault.lag_time_constant)};
   }
   if (fault.kind == JointFaultKind::kDrift && !std::isfinite(fault.drift_rate)) {
     return Error{"fault injection: drift rate is not a finite number"};
@@ -615,7 +591,7 @@ Status SimulatedRobot::inject_fault(const JointFault& fault) {
 Status SimulatedRobot::clear_injected_faults() {
   std::lock_guard lock(mutex_);
   catch_up();
-  if (mode_ != RobotMode::kIdle && mode_ != RobotMode::kEStopped) {
+  if (mode_ != core::RobotMode::kIdle && mode_ != core::RobotMode::kEStopped) {
     return Error{std::string("clear injected faults while the arm is idle or e-stopped; it is ") +
                  mode_activity(mode_)};
   }
@@ -624,4 +600,4 @@ Status SimulatedRobot::clear_injected_faults() {
   return Status::Ok();
 }
 
-}  // namespace telear
+}  // namespace telear::sim

@@ -1,4 +1,4 @@
-#include "sim/stereo_rig.hpp"
+#include "telear/sim/stereo_rig.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -47,8 +47,8 @@ Result<Eigen::Vector3d> read_vector3(const Context& ctx, const YAML::Node& node,
   return Eigen::Vector3d((*values)[0], (*values)[1], (*values)[2]);
 }
 
-Result<CameraModel> read_camera(const Context& ctx, const YAML::Node& node,
-                                const std::string& field) {
+Result<vision::CameraModel> read_camera(const Context& ctx, const YAML::Node& node,
+                                        const std::string& field) {
   if (!node || !node.IsMap()) return ctx.error(field, "missing (a map of the camera's values)");
   for (const auto& entry : node) {
     const auto key = entry.first.as<std::string>();
@@ -56,7 +56,7 @@ Result<CameraModel> read_camera(const Context& ctx, const YAML::Node& node,
       return ctx.error(field + "." + key, "unknown key (expected image_size, fc, cc, alpha_c, kc)");
     }
   }
-  CameraModel camera;
+  vision::CameraModel camera;
   auto size = read_numbers(ctx, node["image_size"], field + ".image_size", 2);
   if (!size) return size.error();
   if ((*size)[0] != std::floor((*size)[0]) || (*size)[1] != std::floor((*size)[1])) {
@@ -82,9 +82,9 @@ Result<CameraModel> read_camera(const Context& ctx, const YAML::Node& node,
   if (node["kc"]) {
     auto kc = read_numbers(ctx, node["kc"], field + ".kc", 5);
     if (!kc) return kc.error();
-    camera.kc = Distortion{(*kc)[0], (*kc)[1], (*kc)[2], (*kc)[3], (*kc)[4]};
+    camera.kc = vision::Distortion{(*kc)[0], (*kc)[1], (*kc)[2], (*kc)[3], (*kc)[4]};
   }
-  if (auto valid = validate_camera(camera); !valid) {
+  if (auto valid = vision::validate_camera(camera); !valid) {
     return ctx.error(field, valid.error().message);
   }
   return camera;

@@ -1,12 +1,12 @@
-#include "sim/true_model.hpp"
+#include "telear/sim/true_model.hpp"
 
 #include <cmath>
 #include <string>
 
-namespace telear {
+namespace telear::sim {
 
-Result<RobotModel> with_joint_offsets(const RobotModel& nominal,
-                                      const Eigen::VectorXd& joint_offsets) {
+Result<core::RobotModel> with_joint_offsets(const core::RobotModel& nominal,
+                                            const Eigen::VectorXd& joint_offsets) {
   if (joint_offsets.size() != nominal.dof()) {
     return Error{"true joint offsets: expected " + std::to_string(nominal.dof()) +
                  " values for robot '" + nominal.name() + "', got " +
@@ -18,7 +18,7 @@ Result<RobotModel> with_joint_offsets(const RobotModel& nominal,
                    nominal.joint(j).name + ") is not a finite number"};
     }
   }
-  RobotModel::Description d;
+  core::RobotModel::Description d;
   d.name = nominal.name();
   d.joints = nominal.joints();
   d.T_flange_tool = nominal.T_flange_tool();
@@ -29,7 +29,7 @@ Result<RobotModel> with_joint_offsets(const RobotModel& nominal,
     d.joints[static_cast<size_t>(j)].offset += joint_offsets[j];
     if (d.dh) (*d.dh)[static_cast<size_t>(j)].offset += joint_offsets[j];
   }
-  return RobotModel::Create(std::move(d));
+  return core::RobotModel::create(std::move(d));
 }
 
-}  // namespace telear
+}  // namespace telear::sim

@@ -1,4 +1,4 @@
-#include "vision/calibration_file.hpp"
+#include "telear/vision/calibration_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,7 +9,7 @@
 #include <cstring>
 #include <opencv2/core/persistence.hpp>
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 // The camera keys of docs/cameras.md without T_cam_base: a calibrated camera that is not yet
@@ -235,4 +235,4 @@ Status write_files_atomically(const std::vector<std::pair<std::string, std::stri
   return Status::Ok();
 }
 
-}  // namespace telear
+}  // namespace telear::vision

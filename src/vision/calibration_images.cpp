@@ -1,11 +1,11 @@
-#include "vision/calibration_images.hpp"
+#include "telear/vision/calibration_images.hpp"
 
 #include <glob.h>
 
 #include <algorithm>
 #include <opencv2/imgcodecs.hpp>
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 std::string size_text(cv::Size size) {
@@ -179,4 +179,4 @@ Result<StereoImageViews> detect_in_image_pairs(const std::vector<std::string>& l
   return result;
 }
 
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,4 +1,4 @@
-#include "vision/calibration_pattern.hpp"
+#include "telear/vision/calibration_pattern.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 constexpr int kMaxPatternSide = 200;
@@ -202,4 +202,4 @@ Result<std::vector<cv::Point2f>> detect_pattern(const cv::Mat& image,
                                                   : detect_circles(grey, pattern);
 }
 
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,4 +1,4 @@
-#include "vision/calibration_report.hpp"
+#include "telear/vision/calibration_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
 
-#include "vision/calibration_images.hpp"
+#include "telear/vision/calibration_images.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 // Keys in the order written (the report is read by people too).
@@ -277,4 +277,4 @@ std::string calibration_summary(const CalibrationReport& report) {
   return out;
 }
 
-}  // namespace telear
+}  // namespace telear::vision

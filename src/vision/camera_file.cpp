@@ -1,6 +1,6 @@
-#include "vision/camera_file.hpp"
+#include "telear/vision/camera_file.hpp"
 
-#include "core/yaml_number.hpp"
+#include "telear/core/yaml_number.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -11,17 +11,17 @@
 #include <sstream>
 #include <vector>
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
-using ParseError = YamlParseError;
+using ParseError = core::YamlParseError;
 
 std::string join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
 }
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  return yaml_number(node, what);
+  return core::yaml_number(node, what);
 }
 
 int integer(const YAML::Node& node, const std::string& what) {
@@ -351,4 +351,4 @@ std::string ros_camera_info_yaml(const CameraModel& camera, const std::string& c
   return std::string(out.c_str()) + "\n";
 }
 
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,4 +1,4 @@
-#include "vision/camera_model.hpp"
+#include "telear/vision/camera_model.hpp"
 
 #include <cassert>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <limits>
 #include <string>
 
-#include "core/pose.hpp"
+#include "telear/core/pose.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 std::string number(double value) {
@@ -153,7 +153,7 @@ Status validate_camera(const CameraModel& c) {
       return Error{std::string("distortion_coefficients: ") + names[i] + " must be finite"};
     }
   }
-  if (!is_valid_rigid_transform(c.T_cam_base.matrix(), 1e-6)) {
+  if (!core::is_valid_rigid_transform(c.T_cam_base.matrix(), 1e-6)) {
     return Error{
         "T_cam_base must be a rigid transform (orthonormal rotation with determinant +1, "
         "finite translation, last row 0 0 0 1)"};
@@ -204,4 +204,4 @@ CameraModel resized_camera(const CameraModel& camera, int width, int height) {
   return resized;
 }
 
-}  // namespace telear
+}  // namespace telear::vision

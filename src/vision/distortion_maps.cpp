@@ -1,4 +1,4 @@
-#include "vision/distortion_maps.hpp"
+#include "telear/vision/distortion_maps.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace telear {
+namespace telear::vision {
 
 UndistortMaps compute_undistort_maps(const CameraModel& camera) {
   UndistortMaps maps;
@@ -85,4 +85,4 @@ RawToPinholeLut compute_raw_to_pinhole_lut(const CameraModel& camera) {
   return lut;
 }
 
-}  // namespace telear
+}  // namespace telear::vision

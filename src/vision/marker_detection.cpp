@@ -1,4 +1,4 @@
-#include "vision/marker_detection.hpp"
+#include "telear/vision/marker_detection.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <opencv2/aruco.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 // Bilinear sample of a CV_8UC1 image at (x, y) (pixel centres at integers); the caller keeps
@@ -139,4 +139,4 @@ std::vector<Eigen::Vector2d> detect_aruco_marker(const cv::Mat& image, int id,
   return refine_marker_corners(grey, found, options.cells);
 }
 
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,13 +1,13 @@
-#include "vision/mono_calibration.hpp"
+#include "telear/vision/mono_calibration.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
-#include "vision/opencv_pose.hpp"
+#include "telear/vision/opencv_pose.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 std::string format_px(double value) {
@@ -160,4 +160,4 @@ Result<MonoCalibration> calibrate_mono(const CalibrationPattern& pattern,
   }
 }
 
-}  // namespace telear
+}  // namespace telear::vision

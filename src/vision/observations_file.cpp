@@ -1,6 +1,6 @@
-#include "vision/observations_file.hpp"
+#include "telear/vision/observations_file.hpp"
 
-#include "core/yaml_number.hpp"
+#include "telear/core/yaml_number.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -9,15 +9,15 @@
 #include <fstream>
 #include <sstream>
 
-#include "vision/calibration_file.hpp"
+#include "telear/vision/calibration_file.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
-using ParseError = YamlParseError;
+using ParseError = core::YamlParseError;
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  return yaml_number(node, what);
+  return core::yaml_number(node, what);
 }
 
 std::vector<double> numbers(const YAML::Node& node, const std::string& what) {
@@ -196,4 +196,4 @@ Status write_observations_file(const RegistrationObservations& observations,
   return write_files_atomically({{path, observations_yaml(observations)}});
 }
 
-}  // namespace telear
+}  // namespace telear::vision

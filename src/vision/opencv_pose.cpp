@@ -1,8 +1,8 @@
-#include "vision/opencv_pose.hpp"
+#include "telear/vision/opencv_pose.hpp"
 
 #include <opencv2/calib3d.hpp>
 
-namespace telear {
+namespace telear::vision {
 
 Eigen::Isometry3d pose_from_rvec_tvec(const cv::Mat& rvec, const cv::Mat& tvec) {
   cv::Mat R;
@@ -15,4 +15,4 @@ Eigen::Isometry3d pose_from_rvec_tvec(const cv::Mat& rvec, const cv::Mat& tvec) 
   return T;
 }
 
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,21 +1,21 @@
-#include "vision/overlay_accuracy.hpp"
+#include "telear/vision/overlay_accuracy.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
 
-#include "core/kinematics.hpp"
-#include "core/random_configuration.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/random_configuration.hpp"
 
-namespace telear {
+namespace telear::vision {
 
-std::vector<LinkSamples> sample_arm_body(const ArmBody& body, double spacing_m) {
+std::vector<LinkSamples> sample_arm_body(const core::ArmBody& body, double spacing_m) {
   assert(spacing_m > 0.0);
   std::vector<LinkSamples> result;
   const float opening = body.gripper ? body.gripper->opening : 0.0f;
   for (int k = 0; k < body.part_count(); ++k) {
-    const BodyPart& part = body.parts[static_cast<std::size_t>(k)];
+    const core::BodyPart& part = body.parts[static_cast<std::size_t>(k)];
     if (part.mesh.vertices.empty()) continue;
     const Eigen::Isometry3d T_link_part = body.T_link_part(k, opening).cast<double>();
     LinkSamples samples;
@@ -40,25 +40,26 @@ std::vector<LinkSamples> sample_arm_body(const ArmBody& body, double spacing_m) 
   return result;
 }
 
-std::vector<Eigen::VectorXd> workspace_configurations(const RobotModel& model, int count,
+std::vector<Eigen::VectorXd> workspace_configurations(const core::RobotModel& model, int count,
                                                       unsigned seed) {
   std::vector<Eigen::VectorXd> result;
-  for (const NamedConfiguration& named : model.named_configurations()) result.push_back(named.q);
+  for (const core::NamedConfiguration& named : model.named_configurations())
+    result.push_back(named.q);
   std::mt19937_64 rng(seed);
   for (int c = 0; c < count; ++c) {
-    result.push_back(random_configuration(model, rng));
+    result.push_back(core::random_configuration(model, rng));
   }
   return result;
 }
 
-OverlayError overlay_error(const RobotModel& model, const std::vector<LinkSamples>& samples,
+OverlayError overlay_error(const core::RobotModel& model, const std::vector<LinkSamples>& samples,
                            const std::vector<Eigen::VectorXd>& configurations,
                            const CameraModel& truth, const CameraModel& estimate) {
   OverlayError result;
-  KinematicsData data(model);
+  core::KinematicsData data(model);
   double sum = 0.0;
   for (const Eigen::VectorXd& q : configurations) {
-    forward_kinematics(model, data, q);
+    core::forward_kinematics(model, data, q);
     for (const LinkSamples& part : samples) {
       const Eigen::Isometry3d& T_base_link = data.T_base_link[static_cast<std::size_t>(part.link)];
       for (const Eigen::Vector3d& p_link : part.p_link) {
@@ -98,7 +99,7 @@ double stereo_baseline_m(const CameraModel& left, const CameraModel& right) {
   return (right.T_cam_base * left.T_cam_base.inverse()).translation().norm();
 }
 
-AccuracyReport evaluate_accuracy(const RobotModel& model, const ArmBody& body,
+AccuracyReport evaluate_accuracy(const core::RobotModel& model, const core::ArmBody& body,
                                  const StereoCameraModel& truth, const StereoCameraModel& estimate,
                                  const AccuracyOptions& options) {
   AccuracyReport report;
@@ -124,4 +125,4 @@ AccuracyReport evaluate_accuracy(const RobotModel& model, const ArmBody& body,
   return report;
 }
 
-}  // namespace telear
+}  // namespace telear::vision

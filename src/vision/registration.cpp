@@ -1,4 +1,4 @@
-#include "vision/registration.hpp"
+#include "telear/vision/registration.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -6,10 +6,10 @@
 #include <limits>
 #include <opencv2/calib3d.hpp>
 
-#include "core/kinematics.hpp"
-#include "vision/opencv_pose.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/vision/opencv_pose.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 // One observed point: where it is in the base frame and the pixel one eye saw.
@@ -169,14 +169,14 @@ std::optional<Eigen::Isometry3d> pnp(const CameraModel& camera,
   return T;
 }
 
-Result<EyeObservations> collect(const RobotModel& model,
+Result<EyeObservations> collect(const core::RobotModel& model,
                                 const RegistrationObservations& observations,
                                 const RegistrationOptions& options, std::vector<std::string>& notes,
                                 int& distinct_count) {
   if (Status status = validate_observations(observations, "registration"); !status) {
     return status.error();
   }
-  KinematicsData data(model);
+  core::KinematicsData data(model);
   EyeObservations result;
   std::vector<Eigen::Vector3d> distinct_origins;
   std::vector<std::string> set_aside;
@@ -193,7 +193,7 @@ Result<EyeObservations> collect(const RobotModel& model,
       set_aside.push_back(name + " (seen by neither eye)");
       continue;
     }
-    forward_kinematics(model, data, configuration.q);
+    core::forward_kinematics(model, data, configuration.q);
     const Eigen::Isometry3d& T_base_flange = data.T_base_link.back();
     const Eigen::Vector3d origin = T_base_flange.translation();
     bool distinct = true;
@@ -251,7 +251,7 @@ Result<EyeObservations> collect(const RobotModel& model,
 
 }  // namespace
 
-Result<RegistrationResult> register_stereo(const RobotModel& model, const CameraModel& left,
+Result<RegistrationResult> register_stereo(const core::RobotModel& model, const CameraModel& left,
                                            const CameraModel& right,
                                            const Eigen::Isometry3d& T_right_left,
                                            const RegistrationObservations& observations,
@@ -299,7 +299,7 @@ Result<RegistrationResult> register_stereo(const RobotModel& model, const Camera
   return result;
 }
 
-StereoResiduals registration_residuals(const RobotModel& model, const CameraModel& left,
+StereoResiduals registration_residuals(const core::RobotModel& model, const CameraModel& left,
                                        const CameraModel& right,
                                        const Eigen::Isometry3d& T_left_base,
                                        const Eigen::Isometry3d& T_right_base,
@@ -317,7 +317,7 @@ StereoResiduals registration_residuals(const RobotModel& model, const CameraMode
   return result;
 }
 
-RegistrationObservations tool_tip_observations(const RobotModel& model,
+RegistrationObservations tool_tip_observations(const core::RobotModel& model,
                                                const std::vector<ToolTipClick>& clicks) {
   RegistrationObservations observations;
   observations.robot = model.name();
@@ -332,4 +332,4 @@ RegistrationObservations tool_tip_observations(const RobotModel& model,
   return observations;
 }
 
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,4 +1,4 @@
-#include "vision/stereo_calibration.hpp"
+#include "telear/vision/stereo_calibration.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
-#include "vision/opencv_pose.hpp"
+#include "telear/vision/opencv_pose.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 std::string format_px(double value) {
@@ -384,4 +384,4 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
   }
 }
 
-}  // namespace telear
+}  // namespace telear::vision

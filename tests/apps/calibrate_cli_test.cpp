@@ -11,8 +11,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli_runner.hpp"
-#include "vision/calibration_file.hpp"
-#include "vision/camera_file.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear {
 namespace {
@@ -64,13 +64,13 @@ TEST_F(CalibrateCli, StereoSetGivesACameraFileAndAReport) {
   EXPECT_EQ(files_in(dir), (std::vector<std::string>{"report.json", "rig_left.yaml",
                                                      "rig_right.yaml", "stereo.yaml"}));
 
-  const auto cameras = load_camera_file(dir + "/stereo.yaml");
+  const auto cameras = vision::load_camera_file(dir + "/stereo.yaml");
   ASSERT_TRUE(cameras.ok()) << cameras.error().message;
   ASSERT_TRUE(cameras->is_stereo());
   EXPECT_EQ(cameras->left.width, 640);
   EXPECT_NEAR(cameras->left.fx, 534.0, 5.0);
   EXPECT_FALSE(cameras->left_has_pose);  // calibrated, not registered
-  const auto geometry = load_stereo_geometry(dir + "/stereo.yaml");
+  const auto geometry = vision::load_stereo_geometry(dir + "/stereo.yaml");
   ASSERT_TRUE(geometry.ok()) << geometry.error().message;
   EXPECT_NEAR(cv::norm(geometry->T), 3.33, 0.05);  // squares
 
@@ -81,7 +81,7 @@ TEST_F(CalibrateCli, StereoSetGivesACameraFileAndAReport) {
   EXPECT_LT(report["rms_px"].get<double>(), 0.3);
   EXPECT_EQ(report["views"].size(), 13u);
 
-  const auto left_info = load_camera_file(dir + "/rig_left.yaml");
+  const auto left_info = vision::load_camera_file(dir + "/rig_left.yaml");
   ASSERT_TRUE(left_info.ok()) << left_info.error().message;
   EXPECT_NEAR(left_info->left.fx, cameras->left.fx, 1e-9);
 }
@@ -111,7 +111,7 @@ TEST_F(CalibrateCli, ImagesWithoutThePatternOrCorruptAreSkippedAndSaidSo) {
   EXPECT_EQ(report["views"][4]["status"], "rejected");
   EXPECT_THAT(report["views"][4]["reason"].get<std::string>(), HasSubstr("no pattern found"));
   EXPECT_THAT(report["views"][5]["reason"].get<std::string>(), HasSubstr("cannot decode image"));
-  EXPECT_TRUE(load_camera_file(dir + "/camera.yaml").ok());
+  EXPECT_TRUE(vision::load_camera_file(dir + "/camera.yaml").ok());
 }
 
 TEST_F(CalibrateCli, BadInputGetsOneLineThatSaysWhatToDoAndWritesNothing) {

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "cli_runner.hpp"
-#include "core/kinematics.hpp"
-#include "core/pose.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/pose.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear {
@@ -122,7 +122,7 @@ TEST(CliKinIk, JsonGivesAllEightSolutionsReproducingThePose) {
   const auto model = test::puma560();
   Eigen::VectorXd q(6);
   q << 0.3, -0.5, 0.4, 1.0, -0.7, 0.2;
-  const Eigen::Isometry3d T = tool_pose(*model, q);
+  const Eigen::Isometry3d T = core::tool_pose(*model, q);
   const auto r = run_telear("kin ik --robot puma560 --T " + row_major_text(T, ",") + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -137,7 +137,8 @@ TEST(CliKinIk, JsonGivesAllEightSolutionsReproducingThePose) {
     ASSERT_TRUE(s["within_limits"].is_boolean());
     const Eigen::VectorXd qi = json_vector(s["q"]);
     ASSERT_EQ(qi.size(), 6);
-    EXPECT_LT(test::max_abs_diff(tool_pose(*model, qi).matrix(), T.matrix()), 1e-9) << configs[i];
+    EXPECT_LT(test::max_abs_diff(core::tool_pose(*model, qi).matrix(), T.matrix()), 1e-9)
+        << configs[i];
     contains = contains || (qi - q).cwiseAbs().maxCoeff() < 1e-9;
   }
   EXPECT_TRUE(contains);
@@ -153,14 +154,15 @@ TEST(CliKinIk, PoseInDegreesWithAConfiguration) {
   EXPECT_EQ(j["solutions"][0]["config"], "lun");
   const Eigen::VectorXd q_deg = json_vector(j["solutions"][0]["q"]);
   const Eigen::Isometry3d expected =
-      pose_from_xyz_rpy({0.5, 0.1, 0.4}, Eigen::Vector3d(10, 80, -20) * M_PI / 180.0);
-  EXPECT_LT(test::max_abs_diff(tool_pose(*model, q_deg * M_PI / 180.0).matrix(), expected.matrix()),
-            1e-9);
+      core::pose_from_xyz_rpy({0.5, 0.1, 0.4}, Eigen::Vector3d(10, 80, -20) * M_PI / 180.0);
+  EXPECT_LT(
+      test::max_abs_diff(core::tool_pose(*model, q_deg * M_PI / 180.0).matrix(), expected.matrix()),
+      1e-9);
 }
 
 TEST(CliKinIk, HumanReadableOutputWithBlankSeparatedMatrix) {
   const auto model = test::puma560();
-  const Eigen::Isometry3d T = tool_pose(*model, *model->named_configuration("qn"));
+  const Eigen::Isometry3d T = core::tool_pose(*model, *model->named_configuration("qn"));
   const auto r = run_telear("kin ik --T \"" + row_major_text(T, " ") + "\" --config ru --deg");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("puma560: 2 solutions (closed form) for\n"));
@@ -193,8 +195,8 @@ TEST(CliKinIk, UrdfRobotsUseNumericIk) {
   EXPECT_EQ(j["solutions"][0]["config"], "numeric");
   EXPECT_TRUE(j["solutions"][0]["within_limits"].get<bool>());
   const Eigen::VectorXd q = json_vector(j["solutions"][0]["q"]);
-  const Eigen::Isometry3d expected = pose_from_xyz_rpy({0.5, 0.1, 0.4}, {0, 1.5, 0});
-  EXPECT_LT(test::max_abs_diff(tool_pose(*model, q).matrix(), expected.matrix()), 1e-6);
+  const Eigen::Isometry3d expected = core::pose_from_xyz_rpy({0.5, 0.1, 0.4}, {0, 1.5, 0});
+  EXPECT_LT(test::max_abs_diff(core::tool_pose(*model, q).matrix(), expected.matrix()), 1e-6);
 }
 
 TEST(CliKinIk, BadInputGetsOneClearLineAndNonZeroExit) {

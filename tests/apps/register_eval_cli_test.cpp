@@ -16,13 +16,13 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
-#include "core/kinematics.hpp"
 #include "synthetic_observations.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/camera_file.hpp"
+#include "telear/vision/observations_file.hpp"
+#include "telear/vision/registration.hpp"
 #include "test_util/test_util.hpp"
-#include "vision/calibration_file.hpp"
-#include "vision/camera_file.hpp"
-#include "vision/observations_file.hpp"
-#include "vision/registration.hpp"
 
 namespace telear {
 namespace {
@@ -50,7 +50,7 @@ std::string truth_path() {
 
 // A flange marker at `count` random configurations where both eyes see it, projected by the
 // true cameras plus N(0, 0.1 px).
-RegistrationObservations synthetic_observations(int count, unsigned seed) {
+vision::RegistrationObservations synthetic_observations(int count, unsigned seed) {
   return test::synthetic_observations(*test::puma560(), test::shipped_stereo_cameras(),
                                       test::flange_marker_corners(), count, 0.1, seed);
 }
@@ -58,12 +58,13 @@ RegistrationObservations synthetic_observations(int count, unsigned seed) {
 // What a stereo `telear calibrate` hands over: the true intrinsics, no registration (identity
 // poses here), and the pair's geometry R, T.
 std::string calibrated_rig_yaml() {
-  StereoCameraModel rig = test::shipped_stereo_cameras();
-  const Eigen::Isometry3d T_right_left = right_from_left(rig.left.T_cam_base, rig.right.T_cam_base);
+  vision::StereoCameraModel rig = test::shipped_stereo_cameras();
+  const Eigen::Isometry3d T_right_left =
+      vision::right_from_left(rig.left.T_cam_base, rig.right.T_cam_base);
   rig.left.T_cam_base = Eigen::Isometry3d::Identity();
   rig.right.T_cam_base = Eigen::Isometry3d::Identity();
   std::ostringstream s;
-  s << std::setprecision(17) << opencv_stereo_camera_yaml(rig);
+  s << std::setprecision(17) << vision::opencv_stereo_camera_yaml(rig);
   s << "R: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n   data: [ ";
   for (int i = 0; i < 9; ++i) s << T_right_left.linear()(i / 3, i % 3) << (i < 8 ? ", " : " ]\n");
   s << "T: !!opencv-matrix\n   rows: 3\n   cols: 1\n   dt: d\n   data: [ ";
@@ -81,7 +82,8 @@ double table_value(const std::string& out, const std::string& name) {
 
 TEST(RegisterEvalCli, RegistersSyntheticObservationsAndEvalPassesTheTargets) {
   const std::string dir = fresh_dir("end_to_end");
-  ASSERT_TRUE(write_observations_file(synthetic_observations(15, 7), dir + "/obs.yaml").ok());
+  ASSERT_TRUE(
+      vision::write_observations_file(synthetic_observations(15, 7), dir + "/obs.yaml").ok());
   write(dir + "/stereo.yaml", calibrated_rig_yaml());
 
   const auto r = run_telear("register --rig " + dir + "/stereo.yaml --robot puma560 " +
@@ -93,13 +95,13 @@ TEST(RegisterEvalCli, RegistersSyntheticObservationsAndEvalPassesTheTargets) {
   EXPECT_THAT(r.out, HasSubstr("residuals after refinement ("));
   EXPECT_THAT(r.out, HasSubstr("left                       60 points"));
 
-  Result<CameraFile> registered = load_camera_file(dir + "/registered.yaml");
+  Result<vision::CameraFile> registered = vision::load_camera_file(dir + "/registered.yaml");
   ASSERT_TRUE(registered.ok()) << registered.error().message;
   ASSERT_TRUE(registered->is_stereo());
   EXPECT_TRUE(registered->left_has_pose);
   EXPECT_TRUE(registered->right_has_pose);
   // The geometry is kept, so the output can be registered again.
-  EXPECT_TRUE(load_stereo_geometry(dir + "/registered.yaml").ok());
+  EXPECT_TRUE(vision::load_stereo_geometry(dir + "/registered.yaml").ok());
 
   const auto e = run_telear("eval --truth " + truth_path() + " --estimate " + dir +
                             "/registered.yaml --robot puma560 --configurations 4 --json " + dir +
@@ -124,7 +126,8 @@ TEST(RegisterEvalCli, RegistersSyntheticObservationsAndEvalPassesTheTargets) {
 TEST(RegisterEvalCli, ARegisteredFileWithoutRAndTUsesItsPoses) {
   // The truth file has both T_cam_base and no R, T: the geometry comes from the poses.
   const std::string dir = fresh_dir("poses");
-  ASSERT_TRUE(write_observations_file(synthetic_observations(6, 3), dir + "/obs.yaml").ok());
+  ASSERT_TRUE(
+      vision::write_observations_file(synthetic_observations(6, 3), dir + "/obs.yaml").ok());
   const auto r = run_telear("register --rig " + truth_path() + " --observations " + dir +
                             "/obs.yaml -o " + dir + "/out.yaml");
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
@@ -134,8 +137,8 @@ TEST(RegisterEvalCli, ARegisteredFileWithoutRAndTUsesItsPoses) {
 TEST(RegisterEvalCli, BadInputIsOneLineAndNoOutputFile) {
   const std::string dir = fresh_dir("bad");
   write(dir + "/stereo.yaml", calibrated_rig_yaml());
-  RegistrationObservations two = synthetic_observations(2, 5);
-  ASSERT_TRUE(write_observations_file(two, dir + "/two.yaml").ok());
+  vision::RegistrationObservations two = synthetic_observations(2, 5);
+  ASSERT_TRUE(vision::write_observations_file(two, dir + "/two.yaml").ok());
   const std::string out = dir + "/out.yaml";
 
   auto r = run_telear("register --rig " + dir + "/stereo.yaml --observations " + dir +
@@ -150,7 +153,7 @@ TEST(RegisterEvalCli, BadInputIsOneLineAndNoOutputFile) {
   EXPECT_THAT(r.err, HasSubstr("telear register: observations '"));
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 
-  write(dir + "/mono.yaml", opencv_camera_yaml(test::shipped_stereo_cameras().left));
+  write(dir + "/mono.yaml", vision::opencv_camera_yaml(test::shipped_stereo_cameras().left));
   r = run_telear("register --rig " + dir + "/mono.yaml --observations " + dir + "/two.yaml -o " +
                  out);
   EXPECT_EQ(r.exit_code, 2);

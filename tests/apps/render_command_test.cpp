@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "cli_runner.hpp"
-#include "render/image_io.hpp"
+#include "telear/render/image_io.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear {
@@ -27,7 +27,7 @@ std::string rig() {
 }
 
 // Pixels that differ from the top-left pixel (the background) in a region.
-long covered(const render::Image& image, int x0, int x1) {
+long covered(const core::Image& image, int x0, int x1) {
   long n = 0;
   for (int y = 0; y < image.height; ++y) {
     for (int x = x0; x < x1; ++x) {
@@ -92,7 +92,7 @@ TEST(CliRender, StereoRigSideBySideAndSeparate) {
 
 TEST(CliRender, ArmOnABackgroundFrameInBothOverlayModes) {
   const std::string background = temp("bg.png");
-  render::Image frame(640, 480, 3);
+  core::Image frame(640, 480, 3);
   for (size_t i = 0; i < frame.pixels.size(); ++i) frame.pixels[i] = (i % 3 == 1) ? 200 : 40;
   ASSERT_TRUE(render::write_png(background, frame));
   for (const char* mode : {"", " --undistort"}) {
@@ -125,7 +125,7 @@ TEST(CliRender, BadInputIsOneLineAndNonZero) {
   expect_one_line_error(run_telear("render --q qn --background " + not_image + " -o " + out),
                         "cannot read image '" + not_image + "'");
   const std::string small = temp("small.png");
-  ASSERT_TRUE(render::write_png(small, render::Image(320, 240, 3)));
+  ASSERT_TRUE(render::write_png(small, core::Image(320, 240, 3)));
   expect_one_line_error(run_telear("render --q qn --camera " + rig() + " --eye left --background " +
                                    small + " -o " + out),
                         "--background image is 320x240 but the left camera's image is 640x480");

@@ -1,7 +1,7 @@
 // The console headless (EGL frame buffer, no window, no X) against the embedded simulated
 // servers, driven by a UI script exactly as `telear console --headless --script` runs it.
 
-#include "console/console_app.hpp"
+#include "telear/console/console_app.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,8 +12,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "console/console_actions.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/console/console_actions.hpp"
+#include "telear/core/robot_loader.hpp"
 
 namespace telear::console {
 namespace {
@@ -40,7 +40,7 @@ struct Stats {
   int cyan = 0;  // pixels with the ghost's tint (blue-green high, red low)
 };
 
-Stats region_stats(const render::Image& image, int x0, int y0, int x1, int y1) {
+Stats region_stats(const core::Image& image, int x0, int y0, int x1, int y1) {
   Stats s;
   double sum = 0, sum2 = 0;
   int n = 0;
@@ -94,7 +94,7 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   options.script = script;
   options.frames = 1000000;  // keep running after the script (connection loss below)
   std::ostringstream log;
-  auto created = ConsoleApp::Create(options, log);
+  auto created = ConsoleApp::create(options, log);
   ASSERT_TRUE(created) << created.error().message;
   ConsoleApp& app = **created;
   session::Session& session = app.session();
@@ -116,7 +116,7 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
 
   // The screenshot: the whole console, with the video and the arm in the view panel.
   ASSERT_TRUE(fs::exists(shot));
-  const render::Image& image = app.last_image();
+  const core::Image& image = app.last_image();
   ASSERT_EQ(image.width, kWidth);
   ASSERT_EQ(image.height, kHeight);
   const Stats view = region_stats(image, 10, 80, static_cast<int>(kWidth * 0.69) - 10,
@@ -135,9 +135,9 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   EXPECT_TRUE(session.connected());  // still trying: the panel shows "CONNECTION LOST"
 
   // Reconnection through the connection panel's path: new servers, Connect.
-  auto model = load_robot("puma560");
+  auto model = core::load_robot("puma560");
   ASSERT_TRUE(model);
-  auto servers = session::EmbeddedServers::Start(*model);
+  auto servers = session::EmbeddedServers::create(*model);
   ASSERT_TRUE(servers) << servers.error().message;
   UiState& ui = app.ui();
   std::snprintf(ui.robot_address, sizeof ui.robot_address, "%s",

@@ -1,4 +1,4 @@
-#include "console/ui_script.hpp"
+#include "telear/console/ui_script.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -33,7 +33,7 @@ TEST(UiScript, ParsesActionsWithUnits) {
   EXPECT_EQ(joint.index, 1);
   EXPECT_NEAR(joint.value, 5 * M_PI / 180, 1e-12);
   const auto& cart = std::get<UiAction>((*lines)[1].step);
-  EXPECT_EQ(cart.frame, MotionFrame::kTool);
+  EXPECT_EQ(cart.frame, core::MotionFrame::kTool);
   EXPECT_NEAR(cart.dX.z(), -0.02, 1e-12);
   EXPECT_NEAR(std::get<UiAction>((*lines)[2].step).dM.x(), 0.1, 1e-12);
   EXPECT_EQ(std::get<UiAction>((*lines)[3].step).value, 0.0);

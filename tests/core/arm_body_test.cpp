@@ -1,16 +1,16 @@
 // The arm body (no GL): primitive counts and winding, the body file, the default body for a
 // robot without one, and the per-link pose with its changed-part range.
 
-#include "core/arm_body.hpp"
+#include "telear/core/arm_body.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/arm_body_pose.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/core/arm_body_pose.hpp"
+#include "telear/core/robot_loader.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using ::testing::HasSubstr;
@@ -261,4 +261,4 @@ TEST(BodyFileTest, AMissingFileIsAnError) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

@@ -1,4 +1,4 @@
-#include "core/fast_sincos.hpp"
+#include "telear/core/fast_sincos.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 // Reference values in long double (x87 extended precision on x86-64: 11 more bits than double),
@@ -208,4 +208,4 @@ TEST(FastSinCos, OddCountsAndEmpty) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

@@ -1,4 +1,4 @@
-#include "core/ik_analytic.hpp"
+#include "telear/core/ik_analytic.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,12 +7,12 @@
 #include <numbers>
 #include <random>
 
-#include "core/angles.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using test::dh_product;
@@ -39,7 +39,7 @@ RobotModel dh_model(const std::vector<DhRow>& rows,
   d.joints = joints_from_dh(rows, {}, limits);
   d.dh = rows;
   d.T_flange_tool = T_flange_tool;
-  auto model = RobotModel::Create(std::move(d));
+  auto model = RobotModel::create(std::move(d));
   EXPECT_TRUE(model) << model.error().message;
   return std::move(model).value();
 }
@@ -423,4 +423,4 @@ TEST(AnalyticIkClass, RejectsArmsOutsideTheClassWithTheParameter) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

@@ -1,16 +1,16 @@
-#include "core/ik_numeric.hpp"
+#include "telear/core/ik_numeric.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using ::testing::HasSubstr;
@@ -204,4 +204,4 @@ TEST(NumericIk, ASeedNearTheAnswerConvergesToIt) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

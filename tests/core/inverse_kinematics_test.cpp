@@ -1,4 +1,4 @@
-#include "core/inverse_kinematics.hpp"
+#include "telear/core/inverse_kinematics.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -6,13 +6,13 @@
 #include <numbers>
 #include <random>
 
-#include "core/angles.hpp"
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using test::max_abs_diff;
@@ -142,7 +142,7 @@ TEST_F(NearestIk, EverySolutionOutsideTheLimitsSaysWhichJoint) {
   limits[0].upper = radians_from_degrees(10.0);
   d.joints = joints_from_dh(*model->dh(), {"waist", "shoulder", "elbow", "r", "b", "s"}, limits);
   d.dh = model->dh();
-  auto narrow = RobotModel::Create(d);
+  auto narrow = RobotModel::create(d);
   ASSERT_TRUE(narrow) << narrow.error().message;
   Eigen::VectorXd q(6);
   q << kPi / 2, -0.3, 0.2, 0.4, -0.6, 0.1;
@@ -202,4 +202,4 @@ TEST(NearestIkNumeric, SingularNumericSolutionIsFlagged) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

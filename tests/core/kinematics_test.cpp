@@ -1,4 +1,4 @@
-#include "core/kinematics.hpp"
+#include "telear/core/kinematics.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,10 +6,10 @@
 #include <numbers>
 #include <random>
 
-#include "core/robot_loader.hpp"
+#include "telear/core/robot_loader.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using test::dh_product;
@@ -196,4 +196,4 @@ TEST_F(PumaKinematics, CheckJointVectorRejectsWrongSizeAndNaN) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

@@ -1,4 +1,4 @@
-#include "core/motion_command.hpp"
+#include "telear/core/motion_command.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,14 +7,14 @@
 #include <limits>
 #include <numbers>
 
-#include "core/angles.hpp"
-#include "core/ik_analytic.hpp"
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
-#include "core/pose.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/ik_analytic.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/pose.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using ::testing::HasSubstr;
@@ -465,4 +465,4 @@ TEST(MotionNames, FramesAndKindsHaveNames) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

@@ -1,13 +1,13 @@
-#include "core/pose.hpp"
+#include "telear/core/pose.hpp"
 
 #include <gtest/gtest.h>
 
 #include <numbers>
 #include <random>
 
-#include "core/angles.hpp"
+#include "telear/core/angles.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 TEST(Pose, RpyIsZyxFixedAxesAndRoundTrips) {
@@ -62,4 +62,4 @@ TEST(Angles, ConvertAndWrap) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

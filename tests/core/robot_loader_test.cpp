@@ -1,16 +1,16 @@
-#include "core/robot_loader.hpp"
+#include "telear/core/robot_loader.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <numbers>
 
-#include "core/angles.hpp"
-#include "core/joint_limits.hpp"
-#include "core/kinematics.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using ::testing::HasSubstr;
@@ -188,4 +188,4 @@ TEST(UrdfLoader, HandlesArbitraryAxesPrismaticAndFixedJoints) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

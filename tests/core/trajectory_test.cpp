@@ -1,4 +1,4 @@
-#include "core/trajectory.hpp"
+#include "telear/core/trajectory.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,12 +9,12 @@
 #include <numbers>
 #include <random>
 
-#include "core/angles.hpp"
-#include "core/joint_limits.hpp"
-#include "core/trapezoidal_profile.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/trapezoidal_profile.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::core {
 namespace {
 
 using ::testing::HasSubstr;
@@ -99,7 +99,7 @@ class PumaTrajectory : public ::testing::Test {
   }
 
   Trajectory make(std::vector<JointWaypoint> waypoints, const TrajectoryOptions& options = {}) {
-    auto trajectory = Trajectory::Create(*model, std::move(waypoints), options);
+    auto trajectory = Trajectory::create(*model, std::move(waypoints), options);
     EXPECT_TRUE(trajectory.ok()) << trajectory.error().message;
     return *trajectory;
   }
@@ -336,7 +336,7 @@ class WaypointValidation : public PumaTrajectory {
  protected:
   std::string rejection(const std::vector<JointWaypoint>& waypoints,
                         const TrajectoryOptions& options = {}) {
-    const auto trajectory = Trajectory::Create(*model, waypoints, options);
+    const auto trajectory = Trajectory::create(*model, waypoints, options);
     EXPECT_FALSE(trajectory.ok());
     const Status status = validate_waypoints(*model, waypoints, options);
     EXPECT_FALSE(status.ok());
@@ -404,7 +404,7 @@ class TimedValidation : public PumaTrajectory {
   TimedWaypoints valid() const {
     JointWaypoint end{deg({1, 0, 0, 0, 0, 0})};
     end.min_duration = 1.0;
-    const Trajectory traj = *Trajectory::Create(*model, {{deg({0, 0, 0, 0, 0, 0})}, end});
+    const Trajectory traj = *Trajectory::create(*model, {{deg({0, 0, 0, 0, 0, 0})}, end});
     return *traj.sampled(100.0);
   }
   std::string rejection(const TimedWaypoints& w, const TimedWaypointsLimits& limits = {}) {
@@ -530,4 +530,4 @@ TEST_F(TimedValidation, RejectsBadGripperEvents) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::core

@@ -1,28 +1,28 @@
 // What a motion costs on the wire: the plan is exactly the request RobotClient sends, the jog
 // stream one joint-target jog per sample of the same span.
 
-#include "net/command_bytes.hpp"
+#include "telear/net/command_bytes.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "net/robot_client.hpp"
 #include "robot_test_support.hpp"
+#include "telear/net/robot_client.hpp"
 
 namespace telear::net::test {
 namespace {
 
 // A core-timed motion from `q0` by `delta` on every joint, at most `velocity_scale` of the
 // limits, sampled at rate_hz.
-TimedWaypoints motion(const Eigen::VectorXd& q0, double delta, double velocity_scale,
-                      double rate_hz) {
-  TrajectoryOptions options;
+core::TimedWaypoints motion(const Eigen::VectorXd& q0, double delta, double velocity_scale,
+                            double rate_hz) {
+  core::TrajectoryOptions options;
   options.velocity_scale = velocity_scale;
   options.acceleration_scale = velocity_scale;
-  auto trajectory = Trajectory::Create(*telear::test::puma560(),
-                                       {{q0}, {Eigen::VectorXd(q0.array() + delta)}}, options);
+  auto trajectory = core::Trajectory::create(
+      *telear::test::puma560(), {{q0}, {Eigen::VectorXd(q0.array() + delta)}}, options);
   EXPECT_TRUE(trajectory) << trajectory.error().message;
   auto sampled = trajectory->sampled(rate_hz);
   EXPECT_TRUE(sampled) << sampled.error().message;
@@ -44,7 +44,7 @@ TEST(CommandBytes, ThePlanIsTheRequestTheClientSends) {
     EXPECT_TRUE(sample.has_value());
     return sample ? sample->state.q : Eigen::VectorXd::Zero(6).eval();
   }();
-  const TimedWaypoints plan = motion(q0, 0.02, 1.0, 50.0);
+  const core::TimedWaypoints plan = motion(q0, 0.02, 1.0, 50.0);
   auto ack = client.execute("reach-1", plan);
   ASSERT_TRUE(ack) << ack.error().message;
   const std::uint64_t sent = client.command_bytes_sent() - before;
@@ -56,7 +56,7 @@ TEST(CommandBytes, ThePlanIsTheRequestTheClientSends) {
 TEST(CommandBytes, JogsOncePerSampleOfTheSpanAndCostsMoreThanThePlan) {
   const Eigen::VectorXd q0 = Eigen::VectorXd::Zero(6);
   // Slow enough to take several seconds.
-  const TimedWaypoints plan = motion(q0, 0.5, 0.1, 100.0);
+  const core::TimedWaypoints plan = motion(q0, 0.5, 0.1, 100.0);
   const double span = plan.times.back() - plan.times.front();
   ASSERT_GT(span, 3.0);
   const CommandBytes bytes = compare_command_bytes(plan, 100.0, std::string(32, '0'), "plan-1");
@@ -73,7 +73,7 @@ TEST(CommandBytes, JogsOncePerSampleOfTheSpanAndCostsMoreThanThePlan) {
 }
 
 TEST(CommandBytes, ASingleSampleIsOneJog) {
-  TimedWaypoints plan;
+  core::TimedWaypoints plan;
   plan.times = {0.0};
   plan.q = {Eigen::VectorXd::Zero(6)};
   const CommandBytes bytes = compare_command_bytes(plan, 100.0, "lease", "id");

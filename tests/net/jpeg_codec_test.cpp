@@ -1,4 +1,4 @@
-#include "net/jpeg_codec.hpp"
+#include "telear/net/jpeg_codec.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -11,8 +11,8 @@ namespace {
 using ::testing::HasSubstr;
 
 // A smooth gradient with a square: JPEG's easy case, so q95 must come back close.
-render::Image test_image(int width, int height) {
-  render::Image image(width, height, 3);
+core::Image test_image(int width, int height) {
+  core::Image image(width, height, 3);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const bool square = x > width / 4 && x < width / 2 && y > height / 4 && y < height / 2;
@@ -24,14 +24,14 @@ render::Image test_image(int width, int height) {
   return image;
 }
 
-double mean_abs_diff(const render::Image& a, const render::Image& b) {
+double mean_abs_diff(const core::Image& a, const core::Image& b) {
   double sum = 0;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) sum += std::abs(a.pixels[i] - b.pixels[i]);
   return sum / static_cast<double>(a.pixels.size());
 }
 
 TEST(JpegCodec, RoundTripKeepsSizeAndContent) {
-  const render::Image image = test_image(160, 120);
+  const core::Image image = test_image(160, 120);
   JpegEncoder encoder;
   JpegDecoder decoder;
   auto jpeg = encoder.encode(image, 95);
@@ -48,7 +48,7 @@ TEST(JpegCodec, RoundTripKeepsSizeAndContent) {
 }
 
 TEST(JpegCodec, LowerQualityIsSmaller) {
-  const render::Image image = test_image(320, 240);
+  const core::Image image = test_image(320, 240);
   JpegEncoder encoder;
   auto high = encoder.encode(image, 95);
   auto low = encoder.encode(image, 20);
@@ -61,7 +61,7 @@ TEST(JpegCodec, EncodeRejectsBadQualityAndImages) {
   auto bad_quality = encoder.encode(test_image(32, 32), 0);
   ASSERT_FALSE(bad_quality);
   EXPECT_THAT(bad_quality.error().message, HasSubstr("quality 0 is outside 1..100"));
-  auto grey = encoder.encode(render::Image(32, 32, 1), 80);
+  auto grey = encoder.encode(core::Image(32, 32, 1), 80);
   ASSERT_FALSE(grey);
   EXPECT_THAT(grey.error().message, HasSubstr("expected a non-empty RGB8 image, got 32x32x1"));
 }

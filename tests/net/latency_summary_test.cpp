@@ -1,5 +1,5 @@
-// Nearest-rank percentiles (net/latency_summary.hpp): always a measured value.
-#include "net/latency_summary.hpp"
+// Nearest-rank percentiles (telear/net/latency_summary.hpp): always a measured value.
+#include "telear/net/latency_summary.hpp"
 
 #include <gtest/gtest.h>
 

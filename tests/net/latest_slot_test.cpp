@@ -1,4 +1,4 @@
-#include "net/latest_slot.hpp"
+#include "telear/net/latest_slot.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // RobotClient against a real robot server on loopback: the state stream, the lease with its
 // heartbeat, commands with the server's reasons, reconnecting after a server restart.
 
-#include "net/robot_client.hpp"
+#include "telear/net/robot_client.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -30,9 +30,9 @@ RobotClientOptions client_options(const RobotServer& server, const std::string& 
 // Waits for a state that satisfies `done`; fails the test after timeout_s.
 template <typename Done>
 RobotStateSample wait_for(const RobotClient& client, Done done, double timeout_s = 5.0) {
-  const std::int64_t deadline = monotonic_ns() + s_to_ns(timeout_s);
+  const std::int64_t deadline = core::monotonic_ns() + core::s_to_ns(timeout_s);
   std::uint64_t after = 0;
-  while (monotonic_ns() < deadline) {
+  while (core::monotonic_ns() < deadline) {
     if (auto sample = client.wait_state(after, 0.1)) {
       if (done(*sample)) return *sample;
       after = sample->sequence;
@@ -81,8 +81,8 @@ TEST(RobotClient, HoldsTheLeaseWithItsHeartbeatAndExecutesATrajectory) {
   const RobotStateSample start =
       wait_for(alice, [](const auto& s) { return s.lease_holder == "alice"; });
   const Eigen::VectorXd q0 = start.state.q;
-  auto trajectory =
-      Trajectory::Create(*telear::test::puma560(), {{q0}, {Eigen::VectorXd(q0.array() + 0.05)}});
+  auto trajectory = core::Trajectory::create(*telear::test::puma560(),
+                                             {{q0}, {Eigen::VectorXd(q0.array() + 0.05)}});
   ASSERT_TRUE(trajectory);
   auto sampled = trajectory->sampled(50.0);
   ASSERT_TRUE(sampled);
@@ -94,7 +94,7 @@ TEST(RobotClient, HoldsTheLeaseWithItsHeartbeatAndExecutesATrajectory) {
   // Several heartbeat periods pass while it runs: the lease holds.
   const RobotStateSample done =
       wait_for(alice, [](const auto& s) { return s.last_trajectory_id == "reach-1"; });
-  EXPECT_EQ(done.last_trajectory_status, TrajectoryStatus::kCompleted);
+  EXPECT_EQ(done.last_trajectory_status, core::TrajectoryStatus::kCompleted);
   EXPECT_TRUE(alice.lease_held()) << alice.lease_error();
   EXPECT_TRUE(done.state.q.isApprox(Eigen::VectorXd(q0.array() + 0.05), 1e-9));
 
@@ -115,8 +115,8 @@ TEST(RobotClient, ReportsALostLease) {
   // The server goes away: renewals fail, and a heartbeat period after the last one that
   // succeeded the client reports the lease lost (the server, had it lived, stopped the arm).
   server->shutdown();
-  const std::int64_t deadline = monotonic_ns() + 3'000'000'000;
-  while (alice.lease_held() && monotonic_ns() < deadline) {
+  const std::int64_t deadline = core::monotonic_ns() + 3'000'000'000;
+  while (alice.lease_held() && core::monotonic_ns() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   EXPECT_FALSE(alice.lease_held());
@@ -147,10 +147,10 @@ TEST(RobotClient, JogsAndStopsWithTheServersReasons) {
   RobotClient alice(client_options(*server, "alice"));
   alice.start();
   ASSERT_TRUE(alice.acquire_lease());
-  auto jog = alice.jog(JointIncrement{0, 0.05}, 1.0);
+  auto jog = alice.jog(core::JointIncrement{0, 0.05}, 1.0);
   ASSERT_TRUE(jog) << jog.error().message;
   ASSERT_EQ(jog->target_q.size(), 6);
-  auto expired = alice.jog(JointIncrement{0, 0.05}, -0.05);
+  auto expired = alice.jog(core::JointIncrement{0, 0.05}, -0.05);
   ASSERT_FALSE(expired);
   EXPECT_THAT(expired.error().message, HasSubstr("jog: jog ignored: it expired"));
   auto too_fast = alice.jog_velocity(Eigen::VectorXd::Constant(6, 100.0));
@@ -158,7 +158,7 @@ TEST(RobotClient, JogsAndStopsWithTheServersReasons) {
   EXPECT_THAT(too_fast.error().message, HasSubstr("exceeds its max velocity"));
   ASSERT_TRUE(alice.estop("test"));
   const RobotStateSample halted = wait_for(alice, [](const auto& s) { return s.state.estop; });
-  EXPECT_EQ(halted.state.mode, RobotMode::kEStopped);
+  EXPECT_EQ(halted.state.mode, core::RobotMode::kEStopped);
   ASSERT_TRUE(alice.reset_estop());
   ASSERT_TRUE(alice.set_gripper(0.5));
   ASSERT_TRUE(alice.cancel());

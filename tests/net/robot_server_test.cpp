@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "net/robot_service.hpp"
 #include "robot_test_support.hpp"
+#include "telear/net/robot_service.hpp"
 
 namespace telear::net::test {
 namespace {
@@ -56,7 +56,7 @@ TEST(RobotServer, StreamsStateAtTheRequestedRate) {
   reader->Finish();
   ASSERT_EQ(capture.size(), 21u);
   // 20 periods of 10 ms, paced by the server: the mean is the rate whatever the jitter.
-  const double mean_period_s = ns_to_s(capture.back() - capture.front()) / 20.0;
+  const double mean_period_s = core::ns_to_s(capture.back() - capture.front()) / 20.0;
   EXPECT_NEAR(mean_period_s, 0.010, 0.004);
 
   grpc::ClientContext too_fast;
@@ -134,7 +134,7 @@ TEST(RobotServer, OneOperatorHoldsTheLease) {
   // Commands without the lease are refused, with or without a made-up id.
   v1::JogRequest jog;
   jog.set_lease_id("not-a-lease");
-  jog.set_expires_ns(monotonic_ns() + 500'000'000);
+  jog.set_expires_ns(core::monotonic_ns() + 500'000'000);
   jog.mutable_joint_increment()->set_delta(0.01);
   v1::JogResponse response;
   status = stub->Jog(context(kToken, "bob").get(), jog, &response);
@@ -162,7 +162,7 @@ TEST(RobotServer, LapsedLeaseStopsTheArmWithinTheBound) {
   const v1::Lease lease = acquire(*stub, "alice", 100'000'000);  // 100 ms, never renewed
   v1::JogRequest jog;
   jog.set_lease_id(lease.lease_id());
-  jog.set_expires_ns(monotonic_ns() + 5'000'000'000);  // the jog itself would run for 5 s
+  jog.set_expires_ns(core::monotonic_ns() + 5'000'000'000);  // the jog itself would run for 5 s
   jog.mutable_joint_velocity()->mutable_qd()->Add(0.5);
   for (int j = 1; j < 6; ++j) jog.mutable_joint_velocity()->mutable_qd()->Add(0.0);
   v1::JogResponse response;
@@ -192,7 +192,7 @@ TEST(RobotServer, LapsedLeaseStopsTheArmWithinTheBound) {
 
   // The lapsed holder is told why its commands fail.
   v1::JogResponse again;
-  jog.set_expires_ns(monotonic_ns() + 500'000'000);
+  jog.set_expires_ns(core::monotonic_ns() + 500'000'000);
   const grpc::Status refused = stub->Jog(context().get(), jog, &again);
   EXPECT_EQ(refused.error_code(), grpc::StatusCode::PERMISSION_DENIED);
   EXPECT_THAT(refused.error_message(), HasSubstr("lapsed"));
@@ -314,7 +314,7 @@ TEST(RobotServer, JogPastItsExpiryIsIgnored) {
   const Eigen::VectorXd q0 = q_of(read_state(*stub));
   v1::JogRequest jog;
   jog.set_lease_id(lease.lease_id());
-  jog.set_expires_ns(monotonic_ns() - 20'000'000);  // expired 20 ms ago
+  jog.set_expires_ns(core::monotonic_ns() - 20'000'000);  // expired 20 ms ago
   jog.mutable_joint_increment()->set_joint(0);
   jog.mutable_joint_increment()->set_delta(0.1);
   v1::JogResponse response;
@@ -326,7 +326,7 @@ TEST(RobotServer, JogPastItsExpiryIsIgnored) {
   EXPECT_TRUE(q_of(after).isApprox(q0, 0.0));
 
   // In time, the same jog moves the arm to q0 + 0.1 on the waist.
-  jog.set_expires_ns(monotonic_ns() + 2'000'000'000);
+  jog.set_expires_ns(core::monotonic_ns() + 2'000'000'000);
   ASSERT_TRUE(stub->Jog(context().get(), jog, &response).ok());
   ASSERT_EQ(response.target_q_size(), 6);
   EXPECT_NEAR(response.target_q(0), q0[0] + 0.1, 1e-12);
@@ -338,7 +338,7 @@ TEST(RobotServer, EStopLatchesUntilReset) {
   const v1::Lease lease = acquire(*stub, "alice");
   v1::JogRequest jog;
   jog.set_lease_id(lease.lease_id());
-  jog.set_expires_ns(monotonic_ns() + 2'000'000'000);
+  jog.set_expires_ns(core::monotonic_ns() + 2'000'000'000);
   jog.mutable_joint_increment()->set_joint(0);
   jog.mutable_joint_increment()->set_delta(0.3);
   v1::JogResponse jogged;
@@ -355,7 +355,7 @@ TEST(RobotServer, EStopLatchesUntilReset) {
   EXPECT_EQ(halted.estop_reason(), "bob saw a hand in the cell");
 
   // Latched: motion is refused until reset, and stays refused over time.
-  jog.set_expires_ns(monotonic_ns() + 2'000'000'000);
+  jog.set_expires_ns(core::monotonic_ns() + 2'000'000'000);
   grpc::Status status = stub->Jog(context().get(), jog, &jogged);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
   EXPECT_THAT(status.error_message(), HasSubstr("e-stop is engaged"));
@@ -399,9 +399,9 @@ TEST(RobotServer, StartFailsWithAClearMessage) {
   RobotServerOptions options = server_options();
   options.token.clear();
   options.token_file = "/nonexistent/token";
-  auto driver = SimRobotDriver::Create(telear::test::puma560());
+  auto driver = sim::SimRobotDriver::create(telear::test::puma560());
   ASSERT_TRUE(driver);
-  auto server = RobotServer::Start(std::move(driver).value(), options);
+  auto server = RobotServer::create(std::move(driver).value(), options);
   ASSERT_FALSE(server);
   EXPECT_THAT(server.error().message, HasSubstr("cannot read the token file '/nonexistent/token'"));
 }

@@ -11,10 +11,10 @@
 #include <memory>
 #include <string>
 
-#include "core/trajectory.hpp"
-#include "net/clock.hpp"
-#include "net/robot_server.hpp"
-#include "net/sim_robot_driver.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/core/trajectory.hpp"
+#include "telear/net/robot_server.hpp"
+#include "telear/sim/sim_robot_driver.hpp"
 #include "telear/v1/robot.grpc.pb.h"
 #include "test_util/test_util.hpp"
 
@@ -31,13 +31,13 @@ inline RobotServerOptions server_options(const std::string& listen = "127.0.0.1:
 }
 
 inline std::unique_ptr<RobotServer> start_server(RobotServerOptions options = server_options()) {
-  SimRobotDriverOptions driver_options;
+  sim::SimRobotDriverOptions driver_options;
   // Away from the wrist singularity (q5 = 0), so Cartesian jogs are well defined.
   driver_options.robot.initial_q = Eigen::VectorXd::Zero(6);
   driver_options.robot.initial_q << 0.0, 0.5, -0.5, 0.0, 0.5, 0.0;
-  auto driver = SimRobotDriver::Create(telear::test::puma560(), driver_options);
+  auto driver = sim::SimRobotDriver::create(telear::test::puma560(), driver_options);
   EXPECT_TRUE(driver) << driver.error().message;
-  auto server = RobotServer::Start(std::move(driver).value(), std::move(options));
+  auto server = RobotServer::create(std::move(driver).value(), std::move(options));
   EXPECT_TRUE(server) << server.error().message;
   return server ? std::move(server).value() : nullptr;
 }
@@ -80,7 +80,7 @@ inline Eigen::VectorXd q_of(const v1::RobotState& state) {
 inline v1::ExecuteTrajectoryRequest trajectory_request(const std::string& id,
                                                        const Eigen::VectorXd& q0, double delta) {
   const Eigen::VectorXd q1 = q0.array() + delta;
-  auto trajectory = Trajectory::Create(*telear::test::puma560(), {{q0}, {q1}, {q0}});
+  auto trajectory = core::Trajectory::create(*telear::test::puma560(), {{q0}, {q1}, {q0}});
   EXPECT_TRUE(trajectory) << trajectory.error().message;
   auto sampled = trajectory->sampled(50.0);
   EXPECT_TRUE(sampled) << sampled.error().message;

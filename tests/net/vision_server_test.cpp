@@ -10,13 +10,13 @@
 #include <fstream>
 #include <thread>
 
-#include "net/synthetic_source.hpp"
-#include "net/vision_client.hpp"
-#include "net/vision_server.hpp"
-#include "sim/stereo_rig.hpp"
+#include "telear/net/vision_client.hpp"
+#include "telear/net/vision_server.hpp"
+#include "telear/sim/stereo_rig.hpp"
 #include "telear/v1/vision.grpc.pb.h"
+#include "telear/vision/camera_file.hpp"
+#include "telear/vision/synthetic_source.hpp"
 #include "test_util/test_util.hpp"
-#include "vision/camera_file.hpp"
 
 namespace telear::net {
 namespace {
@@ -24,12 +24,12 @@ namespace {
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 
-std::unique_ptr<StereoSource> synthetic(int width, int height, double fps) {
-  SyntheticSourceOptions options;
+std::unique_ptr<vision::StereoSource> synthetic(int width, int height, double fps) {
+  vision::SyntheticSourceOptions options;
   options.width = width;
   options.height = height;
   options.fps = fps;
-  auto source = SyntheticSource::create(options);
+  auto source = vision::SyntheticSource::create(options);
   EXPECT_TRUE(source) << source.error().message;
   return std::move(*source);
 }
@@ -249,7 +249,7 @@ TEST(VisionServer, CameraInfoReturnsTheLoadedCalibration) {
   auto rig = sim::load_stereo_rig(test::data_path("rigs/puma560_rig.yaml"));
   ASSERT_TRUE(rig) << rig.error().message;
   const std::string path = temp_path("stereo.yaml");
-  ASSERT_TRUE(write_stereo_camera_file(rig->cameras, path));
+  ASSERT_TRUE(vision::write_stereo_camera_file(rig->cameras, path));
   VisionServerOptions server_options;
   server_options.source = synthetic(160, 120, 30);
   server_options.calibration_file = path;
@@ -285,7 +285,7 @@ TEST(VisionServer, MonoCalibrationIsRefused) {
   auto rig = sim::load_stereo_rig(test::data_path("rigs/puma560_rig.yaml"));
   ASSERT_TRUE(rig);
   const std::string path = temp_path("mono.yaml");
-  ASSERT_TRUE(write_camera_file(rig->cameras.left, path));
+  ASSERT_TRUE(vision::write_camera_file(rig->cameras.left, path));
   VisionServerOptions options;
   options.listen_address = "127.0.0.1:0";
   options.source = synthetic(160, 120, 30);

@@ -3,10 +3,10 @@
 
 #include <filesystem>
 
-#include "net/camera_source.hpp"
-#include "net/sim_rig_source.hpp"
-#include "net/synthetic_source.hpp"
-#include "net/video_file_source.hpp"
+#include "telear/sim/sim_rig_source.hpp"
+#include "telear/vision/camera_source.hpp"
+#include "telear/vision/synthetic_source.hpp"
+#include "telear/vision/video_file_source.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::net {
@@ -18,11 +18,11 @@ using ::testing::StartsWith;
 const char* const kVtest = "/usr/share/doc/opencv-doc/examples/data/vtest.avi";
 
 TEST(SyntheticSource, MakesPairsOfTheAskedSizeNumberedFromOne) {
-  SyntheticSourceOptions options;
+  vision::SyntheticSourceOptions options;
   options.width = 64;
   options.height = 48;
   options.fps = 1000;
-  auto source = SyntheticSource::create(options);
+  auto source = vision::SyntheticSource::create(options);
   ASSERT_TRUE(source) << source.error().message;
   for (std::uint64_t k = 1; k <= 3; ++k) {
     auto pair = (*source)->capture();
@@ -36,16 +36,16 @@ TEST(SyntheticSource, MakesPairsOfTheAskedSizeNumberedFromOne) {
 }
 
 TEST(SyntheticSource, RejectsBadOptions) {
-  SyntheticSourceOptions options;
+  vision::SyntheticSourceOptions options;
   options.width = 8;
-  auto source = SyntheticSource::create(options);
+  auto source = vision::SyntheticSource::create(options);
   ASSERT_FALSE(source);
   EXPECT_THAT(source.error().message, HasSubstr("outside 16x16 .. 8192x8192"));
 }
 
 TEST(VideoFileSource, DecodesOpenCvsSampleVideo) {
   if (!std::filesystem::exists(kVtest)) GTEST_SKIP() << kVtest << " missing (apt opencv-doc)";
-  auto source = VideoFileSource::open({kVtest, kVtest, 1000.0, 0, 0});
+  auto source = vision::VideoFileSource::open({kVtest, kVtest, 1000.0, 0, 0});
   ASSERT_TRUE(source) << source.error().message;
   EXPECT_EQ((*source)->name(), "files");
   EXPECT_EQ((*source)->width(), 768);
@@ -65,7 +65,7 @@ TEST(VideoFileSource, DecodesOpenCvsSampleVideo) {
 
 TEST(VideoFileSource, ScalesToAGivenSize) {
   if (!std::filesystem::exists(kVtest)) GTEST_SKIP() << kVtest << " missing";
-  auto source = VideoFileSource::open({kVtest, kVtest, 1000.0, 320, 240});
+  auto source = vision::VideoFileSource::open({kVtest, kVtest, 1000.0, 320, 240});
   ASSERT_TRUE(source);
   auto pair = (*source)->capture();
   ASSERT_TRUE(pair);
@@ -74,34 +74,34 @@ TEST(VideoFileSource, ScalesToAGivenSize) {
 }
 
 TEST(VideoFileSource, MissingFileSaysSo) {
-  auto source = VideoFileSource::open({"/nonexistent/left.avi", kVtest, 0, 0, 0});
+  auto source = vision::VideoFileSource::open({"/nonexistent/left.avi", kVtest, 0, 0, 0});
   ASSERT_FALSE(source);
   EXPECT_EQ(source.error().message, "video file '/nonexistent/left.avi': no such file");
 }
 
 TEST(CameraSource, MissingCameraHasAClearMessage) {
-  CameraSourceOptions options;
+  vision::CameraSourceOptions options;
   options.left_index = 63;  // /dev/video63: not a camera on any test machine
   options.right_index = 62;
-  auto source = CameraSource::open(options);
+  auto source = vision::CameraSource::open(options);
   ASSERT_FALSE(source);
   EXPECT_THAT(source.error().message, StartsWith("no camera at /dev/video63: "));
 }
 
 TEST(SimRigSource, FramesFollowTheProvidedState) {
   int calls = 0;
-  SimRigSourceOptions options;
+  sim::SimRigSourceOptions options;
   options.rig = test::data_path("rigs/puma560_rig.yaml");
   options.fps = 1000;
   options.supersample = 1;
   options.noise_sigma = 0;
   Eigen::VectorXd q_a = Eigen::VectorXd::Zero(6), q_b = Eigen::VectorXd::Zero(6);
   q_b << 0.6, -0.4, 0.3, 0.2, 0.5, -0.3;
-  options.scene_state = [&]() -> std::optional<SceneState> {
+  options.scene_state = [&]() -> std::optional<vision::SceneState> {
     ++calls;
-    return SceneState{calls == 1 ? q_a : q_b, 0.5, 1234};
+    return vision::SceneState{calls == 1 ? q_a : q_b, 0.5, 1234};
   };
-  auto source = SimRigSource::create(options);
+  auto source = sim::SimRigSource::create(options);
   ASSERT_TRUE(source) << source.error().message;
   EXPECT_EQ((*source)->name(), "sim");
   EXPECT_EQ((*source)->width(), 640);

@@ -1,11 +1,11 @@
-// The operator's stereo view (render/ar_view.hpp): video under the ghost in AR, the virtual
+// The operator's stereo view (telear/render/ar_view.hpp): video under the ghost in AR, the virtual
 // scene in VR, the status frame that tells live from virtual from stale.
-#include "render/ar_view.hpp"
+#include "telear/render/ar_view.hpp"
 
 #include <gtest/gtest.h>
 
-#include "core/arm_body.hpp"
 #include "gl_test_util.hpp"
+#include "telear/core/arm_body.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::render {
@@ -16,13 +16,13 @@ class ArViewTest : public test::GlTest {
   void SetUp() override {
     test::GlTest::SetUp();
     model = telear::test::puma560();
-    auto description = body_description_for(*model);
+    auto description = core::body_description_for(*model);
     ASSERT_TRUE(description) << description.error().message;
-    body = build_arm_body(*description);
+    body = core::build_arm_body(*description);
     const Eigen::Vector3d target(0.3, -0.1, 0.4);
-    cameras.left = look_at_camera(160, 120, 0.9, {2.0, -0.5, 1.0}, target, {0, 0, 1});
-    cameras.right = look_at_camera(160, 120, 0.9, {2.0, -0.44, 1.0}, target, {0, 0, 1});
-    video = Image(160, 120, 3);
+    cameras.left = vision::look_at_camera(160, 120, 0.9, {2.0, -0.5, 1.0}, target, {0, 0, 1});
+    cameras.right = vision::look_at_camera(160, 120, 0.9, {2.0, -0.44, 1.0}, target, {0, 0, 1});
+    video = core::Image(160, 120, 3);
     for (size_t i = 0; i < video.pixels.size(); i += 3) {
       video.pixels[i] = 200;  // a red "video"
       video.pixels[i + 1] = 30;
@@ -38,10 +38,10 @@ class ArViewTest : public test::GlTest {
     return input;
   }
 
-  RobotModelPtr model;
-  ArmBody body;
-  StereoCameraModel cameras;
-  Image video;
+  core::RobotModelPtr model;
+  core::ArmBody body;
+  vision::StereoCameraModel cameras;
+  core::Image video;
 };
 
 const Eigen::Vector3i kRed(200, 30, 30);
@@ -52,7 +52,7 @@ TEST_F(ArViewTest, ArModeDrawsTheGhostOverTheVideoAndSaysLive) {
   ASSERT_TRUE(view) << view.error().message;
   view->render(input_at(model->named_configuration("qn").value()));
   EXPECT_EQ(view->status(), ViewStatus::kLive);
-  const Image composed = view->read_composed_rgb();
+  const core::Image composed = view->read_composed_rgb();
   ASSERT_EQ(composed.width, 320);
   ASSERT_EQ(composed.height, 120);
   // The video fills the eye; the ghost covers part of it, the floor is not drawn in AR.
@@ -75,7 +75,7 @@ TEST_F(ArViewTest, VrModeDrawsTheVirtualSceneWithoutTheVideo) {
   input.reported_q = input.ghost_q;
   view->render(input);
   EXPECT_EQ(view->status(), ViewStatus::kVirtual);
-  const Image composed = view->read_composed_rgb();
+  const core::Image composed = view->read_composed_rgb();
   ASSERT_EQ(composed.width, 160);
   ASSERT_EQ(composed.height, 240);
   // No pixel of the red video is left inside the border.
@@ -97,12 +97,12 @@ TEST_F(ArViewTest, StaleOrMismatchedVideoIsMarkedStaleNeverLive) {
   input.stale = true;
   view->render(input);
   EXPECT_EQ(view->status(), ViewStatus::kStale);
-  Image eye = view->eye(0).read_rgb();
+  core::Image eye = view->eye(0).read_rgb();
   const std::uint8_t* corner = &eye.pixels[(1 * eye.width + 1) * 3];
   EXPECT_GT(corner[0], 200);  // red frame
   EXPECT_LT(corner[1], 60);
   // A frame of the wrong size is not drawn at all.
-  Image small(80, 60, 3);
+  core::Image small(80, 60, 3);
   input.stale = false;
   input.left = &small;
   view->render(input);

@@ -1,17 +1,17 @@
 // The arm on a headless EGL context: per-link matrices, solid vs wire-frame coverage, the
 // gripper's silhouette, the triangle count the GPU draws, the ghost's transparency.
 
-#include "render/arm_renderer.hpp"
+#include "telear/render/arm_renderer.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <numbers>
 
-#include "core/robot_loader.hpp"
 #include "gl_test_util.hpp"
-#include "render/offscreen_target.hpp"
-#include "render/view_math.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/render/offscreen_target.hpp"
+#include "telear/render/view_math.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::render {
@@ -30,7 +30,7 @@ class ArmRendererTest : public GlTest {
     if (HasFatalFailure()) return;
     model = telear::test::puma560();
     ASSERT_TRUE(model);
-    auto d = body_description_for(*model);
+    auto d = core::body_description_for(*model);
     ASSERT_TRUE(d) << d.error().message;
     description = *d;
     auto t = OffscreenTarget::create(kW, kH);
@@ -41,22 +41,22 @@ class ArmRendererTest : public GlTest {
     T_cam_base = look_at_cv({2.2f, -1.6f, 1.4f}, {0.2f, 0, 0.6f}).matrix();
   }
 
-  Image render(ArmRenderer& arm, const DrawOptions& options = {}) {
+  core::Image render(ArmRenderer& arm, const DrawOptions& options = {}) {
     target.clear();
     arm.draw(projection, T_cam_base, options);
     return target.read_rgb();
   }
 
-  RobotModelPtr model;
-  BodyDescription description;
+  core::RobotModelPtr model;
+  core::BodyDescription description;
   OffscreenTarget target;
   Eigen::Matrix4f projection;
   Eigen::Matrix4f T_cam_base;
 };
 
 TEST_F(ArmRendererTest, MovingJointFiveUploadsTheMatricesOfLinksFiveAndSixOnly) {
-  const ArmBody body = build_arm_body(description);
-  ArmBodyPose pose(*model, body);
+  const core::ArmBody body = core::build_arm_body(description);
+  core::ArmBodyPose pose(*model, body);
   auto arm = ArmRenderer::create(body);
   ASSERT_TRUE(arm) << arm.error().message;
   EXPECT_EQ(arm->update(pose).count, 9);   // the first upload: every part
@@ -64,7 +64,7 @@ TEST_F(ArmRendererTest, MovingJointFiveUploadsTheMatricesOfLinksFiveAndSixOnly) 
   const long uploaded = arm->matrices_uploaded();
 
   pose.set_joint(4, 0.6);  // joint 5
-  const PartRange r = arm->update(pose);
+  const core::PartRange r = arm->update(pose);
   EXPECT_EQ(r.first, 5);  // link 5 ...
   EXPECT_EQ(r.end(), 9);  // ... link 6 and the two fingers on link 6
   EXPECT_EQ(arm->matrices_uploaded() - uploaded, 4);
@@ -73,7 +73,7 @@ TEST_F(ArmRendererTest, MovingJointFiveUploadsTheMatricesOfLinksFiveAndSixOnly) 
   // What was uploaded is what is drawn: the picture matches a fresh renderer at that pose.
   auto fresh = ArmRenderer::create(body);
   ASSERT_TRUE(fresh);
-  ArmBodyPose pose2(*model, body);
+  core::ArmBodyPose pose2(*model, body);
   pose2.set_configuration(pose.q());
   fresh->update(pose2);
   EXPECT_EQ(render(*arm).pixels, render(*fresh).pixels);
@@ -82,14 +82,14 @@ TEST_F(ArmRendererTest, MovingJointFiveUploadsTheMatricesOfLinksFiveAndSixOnly) 
 TEST_F(ArmRendererTest, TheGpuDrawsTheFormulasTriangleCount) {
   int cylinders = 0;
   for (const auto& link : description.links) {
-    for (const ShapeSpec& s : link) cylinders += s.kind == ShapeSpec::Kind::kCylinder;
+    for (const core::ShapeSpec& s : link) cylinders += s.kind == core::ShapeSpec::Kind::kCylinder;
   }
   GLuint query = 0;
   glGenQueries(1, &query);
   std::vector<long> drawn;
   for (int segments : {8, 50}) {
-    const ArmBody body = build_arm_body(description, {.segments_override = segments});
-    ArmBodyPose pose(*model, body);
+    const core::ArmBody body = core::build_arm_body(description, {.segments_override = segments});
+    core::ArmBodyPose pose(*model, body);
     auto arm = ArmRenderer::create(body);
     ASSERT_TRUE(arm);
     arm->update(pose);
@@ -105,22 +105,22 @@ TEST_F(ArmRendererTest, TheGpuDrawsTheFormulasTriangleCount) {
   }
   glDeleteQueries(1, &query);
   EXPECT_EQ(drawn[1] - drawn[0],
-            cylinders * (cylinder_triangle_count(50) - cylinder_triangle_count(8)));
+            cylinders * (core::cylinder_triangle_count(50) - core::cylinder_triangle_count(8)));
 }
 
 TEST_F(ArmRendererTest, WireframeCoversLessThanSolidAndLiesInsideIt) {
-  const ArmBody body = build_arm_body(description, {.segments_override = 8});
-  ArmBodyPose pose(*model, body);
+  const core::ArmBody body = core::build_arm_body(description, {.segments_override = 8});
+  core::ArmBodyPose pose(*model, body);
   pose.set_configuration(*model->named_configuration("qn"));
   auto arm = ArmRenderer::create(body);
   ASSERT_TRUE(arm);
   arm->update(pose);
   // Closer than the default view, so that the arm fills a good part of the image.
   T_cam_base = look_at_cv({1.2f, -0.9f, 1.0f}, {0.25f, 0, 0.6f}).matrix();
-  const Image solid = render(*arm);
+  const core::Image solid = render(*arm);
   DrawOptions wire;
   wire.style = DrawOptions::Style::kWireframe;
-  const Image lines = render(*arm, wire);
+  const core::Image lines = render(*arm, wire);
   const long solid_px = test::count_covered(solid, kBlack);
   const long line_px = test::count_covered(lines, kBlack);
   EXPECT_GT(solid_px, kW * kH / 10);  // the arm is in view
@@ -149,8 +149,8 @@ TEST_F(ArmRendererTest, WireframeCoversLessThanSolidAndLiesInsideIt) {
 }
 
 TEST_F(ArmRendererTest, GripperOpeningChangesTheSilhouetteWidth) {
-  const ArmBody body = build_arm_body(description);
-  ArmBodyPose pose(*model, body);
+  const core::ArmBody body = core::build_arm_body(description);
+  core::ArmBodyPose pose(*model, body);
   pose.set_configuration(*model->named_configuration("qr"));  // arm straight up
   const Eigen::Isometry3d T_base_6 = pose.kinematics().T_base_link[6];
   ASSERT_GT(T_base_6.linear().col(2).z(), 0.999);  // the tool points up
@@ -158,7 +158,7 @@ TEST_F(ArmRendererTest, GripperOpeningChangesTheSilhouetteWidth) {
   ASSERT_TRUE(arm);
   // Look at the fingers horizontally along x6, image up = the tool direction, so the
   // opening axis y6 is horizontal in the image and nothing else is above the palm.
-  const GripperSpec& g = *body.gripper;
+  const core::GripperSpec& g = *body.gripper;
   const Eigen::Vector3f centre = (T_base_6.cast<float>() * g.centre);
   const float distance = 0.4f;
   const Eigen::Vector3f eye = centre + distance * T_base_6.linear().col(0).cast<float>();
@@ -170,7 +170,7 @@ TEST_F(ArmRendererTest, GripperOpeningChangesTheSilhouetteWidth) {
   for (float opening : {0.0f, 0.02f, 0.08f}) {
     pose.set_gripper_opening(opening);
     arm->update(pose);
-    const Image img = render(*arm);
+    const core::Image img = render(*arm);
     const auto [lo, hi] = test::covered_span(img, row, kBlack);
     ASSERT_LE(lo, hi) << "no gripper at row " << row;
     widths.push_back(hi - lo + 1);
@@ -186,8 +186,8 @@ TEST_F(ArmRendererTest, GripperOpeningChangesTheSilhouetteWidth) {
 }
 
 TEST_F(ArmRendererTest, GhostBlendsItsNearestSurfaceOverTheBackground) {
-  const ArmBody body = build_arm_body(description);
-  ArmBodyPose pose(*model, body);
+  const core::ArmBody body = core::build_arm_body(description);
+  core::ArmBodyPose pose(*model, body);
   auto arm = ArmRenderer::create(body);
   ASSERT_TRUE(arm);
   arm->update(pose);
@@ -202,8 +202,8 @@ TEST_F(ArmRendererTest, GhostBlendsItsNearestSurfaceOverTheBackground) {
     arm->draw(projection, T_cam_base, o);
     return target.read_rgb();
   };
-  const Image a = draw(opaque);
-  const Image b = draw(ghost);
+  const core::Image a = draw(opaque);
+  const core::Image b = draw(ghost);
   const Eigen::Vector3i blue(0, 0, 255);
   const long covered = test::count_covered(a, blue);
   ASSERT_GT(covered, 1000);
@@ -222,10 +222,10 @@ TEST_F(ArmRendererTest, GhostBlendsItsNearestSurfaceOverTheBackground) {
 }
 
 TEST_F(ArmRendererTest, ADefaultBodyRendersForARobotWithoutABodyFile) {
-  auto urdf = load_robot(telear::test::data_path("robots/puma560.urdf"));
+  auto urdf = core::load_robot(telear::test::data_path("robots/puma560.urdf"));
   ASSERT_TRUE(urdf);
-  const ArmBody body = build_arm_body(default_body_description(**urdf));
-  ArmBodyPose pose(**urdf, body);
+  const core::ArmBody body = core::build_arm_body(core::default_body_description(**urdf));
+  core::ArmBodyPose pose(**urdf, body);
   auto arm = ArmRenderer::create(body);
   ASSERT_TRUE(arm);
   arm->update(pose);

@@ -2,7 +2,7 @@
 // cv::projectPoints puts them (no distortion: distortion is not projective and is the
 // overlay's job, tested in overlay_gl_test.cpp).
 
-#include "render/camera_projection.hpp"
+#include "telear/render/camera_projection.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,28 +10,28 @@
 #include <opencv2/calib3d.hpp>
 #include <random>
 
-#include "core/pose.hpp"
+#include "telear/core/pose.hpp"
 
 namespace telear::render {
 namespace {
 
-CameraModel camera() {
-  CameraModel c;
+vision::CameraModel camera() {
+  vision::CameraModel c;
   c.width = 640;
   c.height = 480;
   c.fx = 812.5;
   c.fy = 797.25;
   c.cx = 301.7;  // far from the centre: the principal point matters
   c.cy = 255.2;
-  c.T_cam_base = pose_from_xyz_rpy({0.1, -0.2, 1.5}, {2.1, 0.1, -0.3});
+  c.T_cam_base = core::pose_from_xyz_rpy({0.1, -0.2, 1.5}, {2.1, 0.1, -0.3});
   return c;
 }
 
-std::vector<cv::Point2d> opencv_project(const CameraModel& c,
+std::vector<cv::Point2d> opencv_project(const vision::CameraModel& c,
                                         const std::vector<Eigen::Vector3d>& points) {
   std::vector<cv::Point3d> object;
   for (const Eigen::Vector3d& p : points) object.emplace_back(p.x(), p.y(), p.z());
-  const Eigen::Vector3d r = rotation_vector(c.T_cam_base.linear());
+  const Eigen::Vector3d r = core::rotation_vector(c.T_cam_base.linear());
   const Eigen::Vector3d t = c.T_cam_base.translation();
   std::vector<cv::Point2d> out;
   cv::projectPoints(object, cv::Vec3d(r.x(), r.y(), r.z()), cv::Vec3d(t.x(), t.y(), t.z()),
@@ -39,7 +39,7 @@ std::vector<cv::Point2d> opencv_project(const CameraModel& c,
   return out;
 }
 
-std::vector<Eigen::Vector3d> points_in_front(const CameraModel& c, int count) {
+std::vector<Eigen::Vector3d> points_in_front(const vision::CameraModel& c, int count) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> lateral(-0.6, 0.6), depth(0.2, 30.0);
   std::vector<Eigen::Vector3d> points;
@@ -52,7 +52,7 @@ std::vector<Eigen::Vector3d> points_in_front(const CameraModel& c, int count) {
 }
 
 TEST(CameraProjection, GlPipelineMatchesOpenCvProjectPointsTo1e9Pixels) {
-  const CameraModel c = camera();
+  const vision::CameraModel c = camera();
   const PinholeProjection projection = PinholeProjection::from_camera(c, 0.1, 100.0);
   const std::vector<Eigen::Vector3d> points = points_in_front(c, 2000);
   const std::vector<cv::Point2d> expected = opencv_project(c, points);
@@ -66,7 +66,7 @@ TEST(CameraProjection, GlPipelineMatchesOpenCvProjectPointsTo1e9Pixels) {
 }
 
 TEST(CameraProjection, PixelCentresAndImageEdgesFollowOpenCvConvention) {
-  CameraModel c = camera();
+  vision::CameraModel c = camera();
   c.T_cam_base = Eigen::Isometry3d::Identity();
   const Eigen::Matrix4d P = gl_projection(PinholeProjection::from_camera(c));
   auto ndc = [&](double u, double v) {
@@ -96,7 +96,7 @@ TEST(CameraProjection, DepthMapsNearAndFarToMinusOneAndOne) {
 }
 
 TEST(CameraProjection, SkewIsHonoured) {
-  CameraModel c = camera();
+  vision::CameraModel c = camera();
   c.alpha_c = 0.02;
   const PinholeProjection projection = PinholeProjection::from_camera(c);
   EXPECT_DOUBLE_EQ(projection.skew, 0.02 * c.fx);
@@ -107,7 +107,7 @@ TEST(CameraProjection, SkewIsHonoured) {
 }
 
 TEST(CameraProjection, RegionShowsTheSamePointsShifted) {
-  const CameraModel c = camera();
+  const vision::CameraModel c = camera();
   const PinholeProjection full = PinholeProjection::from_camera(c);
   // A framebuffer with a margin of 37 px left and 21 px above the image (raw overlay mode).
   const PinholeProjection margin = full.region(-37, -21, 640 + 74, 480 + 42);
@@ -119,7 +119,7 @@ TEST(CameraProjection, RegionShowsTheSamePointsShifted) {
 }
 
 TEST(CameraProjection, ViewIsTCamBaseAndFovIsDerivedFromK) {
-  const CameraModel c = camera();
+  const vision::CameraModel c = camera();
   EXPECT_EQ(gl_view(c.T_cam_base), c.T_cam_base.matrix());
   const PinholeProjection p = PinholeProjection::from_camera(c);
   EXPECT_NEAR(vertical_fov(p), 2.0 * std::atan(240.0 / 797.25), 1e-15);

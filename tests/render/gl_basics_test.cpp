@@ -9,11 +9,11 @@
 #include <numbers>
 
 #include "gl_test_util.hpp"
-#include "render/image_io.hpp"
-#include "render/offscreen_target.hpp"
-#include "render/scene_objects.hpp"
-#include "render/video_background.hpp"
-#include "render/view_math.hpp"
+#include "telear/render/image_io.hpp"
+#include "telear/render/offscreen_target.hpp"
+#include "telear/render/scene_objects.hpp"
+#include "telear/render/video_background.hpp"
+#include "telear/render/view_math.hpp"
 
 namespace telear::render {
 namespace {
@@ -70,7 +70,7 @@ TEST_F(GlBasicsTest, ReadBackIsInImageOrderWithTheTopRowFirst) {
   OffscreenTarget t = target();
   t.clear();
   scene->draw(projection(), identity(), flat());
-  const Image img = t.read_rgb();
+  const core::Image img = t.read_rgb();
   ASSERT_EQ(img.width, kW);
   ASSERT_EQ(img.height, kH);
   ASSERT_EQ(gl_errors(), "");
@@ -88,7 +88,7 @@ TEST_F(GlBasicsTest, ReadBackIsInImageOrderWithTheTopRowFirst) {
   EXPECT_GT(green_bottom, 100);
   EXPECT_EQ(green_top, 0);
   // RGBA read-back agrees with RGB.
-  const Image rgba = t.read_rgba();
+  const core::Image rgba = t.read_rgba();
   EXPECT_EQ(rgba.at(kW / 2, kH / 4, 0), img.at(kW / 2, kH / 4, 0));
   EXPECT_EQ(rgba.at(kW / 2, kH / 4, 3), 255);
 }
@@ -96,7 +96,7 @@ TEST_F(GlBasicsTest, ReadBackIsInImageOrderWithTheTopRowFirst) {
 TEST_F(GlBasicsTest, FramesAndReadBackKeepEveryPixelAtOddWidths) {
   // 37 x 23: the 4-pixel packing loops have a tail; every pixel goes up and comes back.
   constexpr int w = 37, h = 23;
-  Image frame(w, h, 3);
+  core::Image frame(w, h, 3);
   for (std::size_t i = 0; i < frame.pixels.size(); ++i) {
     frame.pixels[i] = static_cast<std::uint8_t>((i * 37) % 251);
   }
@@ -107,8 +107,8 @@ TEST_F(GlBasicsTest, FramesAndReadBackKeepEveryPixelAtOddWidths) {
     t->clear();
     bg->upload(frame.pixels.data(), order);
     bg->draw();
-    const Image rgb = t->read_rgb();
-    const Image rgba = t->read_rgba();
+    const core::Image rgb = t->read_rgb();
+    const core::Image rgba = t->read_rgba();
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
         for (int c = 0; c < 3; ++c) {
@@ -134,7 +134,7 @@ TEST_F(GlBasicsTest, ANearObjectHidesAFarOneWhateverTheDrawOrder) {
     t.clear();
     a->draw(projection(), identity(), flat());
     b->draw(projection(), identity(), flat());
-    const Image img = t.read_rgb();
+    const core::Image img = t.read_rgb();
     SCOPED_TRACE(near_first ? "near drawn first" : "far drawn first");
     // Centre: the near red cube; a corner of the far cube's silhouette: blue.
     EXPECT_EQ(img.at(kW / 2, kH / 2, 0), 255);
@@ -149,7 +149,7 @@ TEST_F(GlBasicsTest, ANearObjectHidesAFarOneWhateverTheDrawOrder) {
 TEST_F(GlBasicsTest, VideoBackgroundIsUprightAndSwapsBgr) {
   // Top half red, bottom half blue, in the given byte order.
   constexpr int w = 64, h = 48;
-  Image frame(w, h, 3);
+  core::Image frame(w, h, 3);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) frame.at(x, y, y < h / 2 ? 0 : 2) = 255;
   }
@@ -160,7 +160,7 @@ TEST_F(GlBasicsTest, VideoBackgroundIsUprightAndSwapsBgr) {
     t.clear();
     bg->upload(frame.pixels.data(), order);
     bg->draw();
-    const Image img = t.read_rgb();
+    const core::Image img = t.read_rgb();
     const int top_channel = order == ChannelOrder::kRgb ? 0 : 2;
     EXPECT_EQ(img.at(kW / 2, 5, top_channel), 255);
     EXPECT_EQ(img.at(kW / 2, 5, 2 - top_channel), 0);
@@ -170,7 +170,7 @@ TEST_F(GlBasicsTest, VideoBackgroundIsUprightAndSwapsBgr) {
 }
 
 TEST_F(GlBasicsTest, ObjectsDrawnAfterTheBackgroundLandOnTop) {
-  Image frame(32, 32, 3);
+  core::Image frame(32, 32, 3);
   std::fill(frame.pixels.begin(), frame.pixels.end(), 100);
   auto bg = VideoBackground::create(32, 32);
   auto scene = create_scene_renderer({make_cube(0.5f, {0, 0, 2}, {1, 0, 0})});
@@ -180,13 +180,13 @@ TEST_F(GlBasicsTest, ObjectsDrawnAfterTheBackgroundLandOnTop) {
   bg->upload(frame.pixels.data(), ChannelOrder::kRgb);
   bg->draw();
   scene->draw(projection(), identity(), flat());
-  const Image img = t.read_rgb();
+  const core::Image img = t.read_rgb();
   EXPECT_EQ(img.at(kW / 2, kH / 2, 0), 255);
   EXPECT_EQ(img.at(2, 2, 0), 100);
 }
 
 TEST_F(GlBasicsTest, PngRoundTrip) {
-  Image img(7, 5, 3);
+  core::Image img(7, 5, 3);
   for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = static_cast<uint8_t>(i * 7);
   const std::string path =
       (std::filesystem::temp_directory_path() / "telear_render_png_test.png").string();
@@ -199,7 +199,7 @@ TEST_F(GlBasicsTest, PngRoundTrip) {
   ASSERT_FALSE(missing);
   EXPECT_THAT(missing.error().message, HasSubstr("cannot read image '/nonexistent/frame.png'"));
   EXPECT_FALSE(write_png("/nonexistent/dir/out.png", img));
-  EXPECT_THAT(write_png(path, Image()).error().message, HasSubstr("not a valid"));
+  EXPECT_THAT(write_png(path, core::Image()).error().message, HasSubstr("not a valid"));
 }
 
 TEST_F(GlBasicsTest, AShaderErrorCarriesTheDriverLog) {

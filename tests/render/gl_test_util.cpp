@@ -40,14 +40,15 @@ GlContext* GlTest::context() {
   return shared_context().get();
 }
 
-bool differs(const Image& image, int x, int y, const Eigen::Vector3i& background, int tolerance) {
+bool differs(const core::Image& image, int x, int y, const Eigen::Vector3i& background,
+             int tolerance) {
   for (int c = 0; c < 3; ++c) {
     if (std::abs(static_cast<int>(image.at(x, y, c)) - background[c]) > tolerance) return true;
   }
   return false;
 }
 
-long count_covered(const Image& image, const Eigen::Vector3i& background) {
+long count_covered(const core::Image& image, const Eigen::Vector3i& background) {
   long n = 0;
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) n += differs(image, x, y, background);
@@ -55,7 +56,7 @@ long count_covered(const Image& image, const Eigen::Vector3i& background) {
   return n;
 }
 
-Box covered_box(const Image& image, const Eigen::Vector3i& background) {
+Box covered_box(const core::Image& image, const Eigen::Vector3i& background) {
   Box b{image.width, image.height, -1, -1};
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
@@ -69,7 +70,8 @@ Box covered_box(const Image& image, const Eigen::Vector3i& background) {
   return b;
 }
 
-std::pair<int, int> covered_span(const Image& image, int y, const Eigen::Vector3i& background) {
+std::pair<int, int> covered_span(const core::Image& image, int y,
+                                 const Eigen::Vector3i& background) {
   int lo = image.width, hi = -1;
   for (int x = 0; x < image.width; ++x) {
     if (!differs(image, x, y, background)) continue;

@@ -11,8 +11,8 @@
 #include <string>
 #include <utility>
 
-#include "render/egl_context.hpp"
-#include "render/image.hpp"
+#include "telear/core/image.hpp"
+#include "telear/render/egl_context.hpp"
 
 namespace telear::render::test {
 
@@ -24,18 +24,19 @@ class GlTest : public ::testing::Test {
 };
 
 // Pixels whose RGB differs from `background` by more than `tolerance` in any channel.
-bool differs(const Image& image, int x, int y, const Eigen::Vector3i& background,
+bool differs(const core::Image& image, int x, int y, const Eigen::Vector3i& background,
              int tolerance = 8);
-long count_covered(const Image& image, const Eigen::Vector3i& background);
+long count_covered(const core::Image& image, const Eigen::Vector3i& background);
 
 // Bounding box of the covered pixels: {min_x, min_y, max_x, max_y}; min > max when none.
 struct Box {
   int min_x, min_y, max_x, max_y;
   bool empty() const { return min_x > max_x; }
 };
-Box covered_box(const Image& image, const Eigen::Vector3i& background);
+Box covered_box(const core::Image& image, const Eigen::Vector3i& background);
 
 // Leftmost and rightmost covered columns in row y ({1, 0} when none).
-std::pair<int, int> covered_span(const Image& image, int y, const Eigen::Vector3i& background);
+std::pair<int, int> covered_span(const core::Image& image, int y,
+                                 const Eigen::Vector3i& background);
 
 }  // namespace telear::render::test

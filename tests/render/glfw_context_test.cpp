@@ -1,7 +1,7 @@
 // The GLFW window context. It needs a display: under CI's headless run it is skipped (the
 // EGL tests cover the renderer); run it with `xvfb-run -a ctest -R render_glfw`.
 
-#include "render/glfw_context.hpp"
+#include "telear/render/glfw_context.hpp"
 
 #include <gtest/gtest.h>
 

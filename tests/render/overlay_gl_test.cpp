@@ -1,14 +1,14 @@
 // The overlay on a headless EGL context: the rendered joint origins of the PUMA 560 land
 // where cv::projectPoints puts them, without and with lens distortion, in both modes.
 //
-// Markers (render/point_markers.hpp) are drawn at the joint origins through the overlay's
+// Markers (telear/render/point_markers.hpp) are drawn at the joint origins through the overlay's
 // scene callback, one marker per render, and located in the read-back image by their
 // intensity-weighted centroid. Expected pixels come from cv::projectPoints (not from telear's
 // camera model): with the distortion in raw mode, without it in undistorted mode (the
 // undistorted image is an ideal pinhole image with the same K); a second test shows the
 // remapped video puts the distorted projection of the same point on that very pixel.
 
-#include "render/overlay.hpp"
+#include "telear/render/overlay.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,13 +17,13 @@
 #include <opencv2/calib3d.hpp>
 #include <random>
 
-#include "core/kinematics.hpp"
-#include "core/pose.hpp"
 #include "gl_test_util.hpp"
-#include "render/arm_renderer.hpp"
-#include "render/point_markers.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/pose.hpp"
+#include "telear/render/arm_renderer.hpp"
+#include "telear/render/point_markers.hpp"
+#include "telear/vision/camera_file.hpp"
 #include "test_util/test_util.hpp"
-#include "vision/camera_file.hpp"
 
 namespace telear::render {
 namespace {
@@ -45,12 +45,12 @@ struct Stats {
 };
 
 // cv::projectPoints of base-frame points through `camera` (its distortion or none).
-std::vector<Eigen::Vector2d> opencv_project(const CameraModel& camera,
+std::vector<Eigen::Vector2d> opencv_project(const vision::CameraModel& camera,
                                             const std::vector<Eigen::Vector3d>& points,
                                             bool with_distortion) {
   std::vector<cv::Point3d> object;
   for (const Eigen::Vector3d& p : points) object.emplace_back(p.x(), p.y(), p.z());
-  const Eigen::Vector3d r = rotation_vector(camera.T_cam_base.linear());
+  const Eigen::Vector3d r = core::rotation_vector(camera.T_cam_base.linear());
   const Eigen::Vector3d t = camera.T_cam_base.translation();
   const std::array<double, 5> kc = camera.kc.as_array();
   std::vector<cv::Point2d> image;
@@ -65,7 +65,7 @@ std::vector<Eigen::Vector2d> opencv_project(const CameraModel& camera,
 
 // Joint origins (frames 0..n and the tool) of the PUMA at several configurations, without
 // coincident ones (the wrist frames share an origin).
-std::vector<Eigen::Vector3d> joint_origins(const RobotModel& model) {
+std::vector<Eigen::Vector3d> joint_origins(const core::RobotModel& model) {
   std::vector<Eigen::VectorXd> configurations;
   for (const char* name : {"qz", "qr", "qn"})
     configurations.push_back(*model.named_configuration(name));
@@ -73,9 +73,9 @@ std::vector<Eigen::Vector3d> joint_origins(const RobotModel& model) {
   for (int i = 0; i < 2; ++i)
     configurations.push_back(telear::test::random_configuration(model, rng));
   std::vector<Eigen::Vector3d> points;
-  KinematicsData data(model);
+  core::KinematicsData data(model);
   for (const Eigen::VectorXd& q : configurations) {
-    forward_kinematics(model, data, q);
+    core::forward_kinematics(model, data, q);
     std::vector<Eigen::Vector3d> frame_points;
     for (const Eigen::Isometry3d& T : data.T_base_link) frame_points.push_back(T.translation());
     frame_points.push_back(data.T_base_tool.translation() +
@@ -90,7 +90,7 @@ std::vector<Eigen::Vector3d> joint_origins(const RobotModel& model) {
 }
 
 // Intensity-weighted centroid (red channel) of the pixels within `radius` of `around`.
-std::optional<Eigen::Vector2d> centroid(const Image& image, const Eigen::Vector2d& around,
+std::optional<Eigen::Vector2d> centroid(const core::Image& image, const Eigen::Vector2d& around,
                                         int radius) {
   double sum = 0, su = 0, sv = 0;
   const int u0 = static_cast<int>(std::lround(around.x())),
@@ -115,7 +115,7 @@ class OverlayTest : public GlTest {
     if (HasFatalFailure()) return;
     model = telear::test::puma560();
     ASSERT_TRUE(model);
-    auto rig = load_camera_file(telear::test::data_path("cameras/puma560_stereo.yaml"));
+    auto rig = vision::load_camera_file(telear::test::data_path("cameras/puma560_stereo.yaml"));
     ASSERT_TRUE(rig) << rig.error().message;
     shipped = rig->left;
     auto m = PointMarkers::create();
@@ -127,17 +127,17 @@ class OverlayTest : public GlTest {
   }
 
   // The cameras of the test: an ideal lens, k1 = -0.3 alone, the shipped rig's lens.
-  std::vector<std::pair<std::string, CameraModel>> cameras() const {
-    CameraModel pinhole = shipped;
+  std::vector<std::pair<std::string, vision::CameraModel>> cameras() const {
+    vision::CameraModel pinhole = shipped;
     pinhole.kc = {};
-    CameraModel barrel = shipped;
+    vision::CameraModel barrel = shipped;
     barrel.kc = {-0.3, 0, 0, 0, 0};
     return {{"no distortion", pinhole}, {"k1 = -0.3", barrel}, {"shipped rig", shipped}};
   }
 
   // Renders each point alone as a marker and compares its centroid with cv::projectPoints
   // (or, for a camera with skew, which OpenCV cannot express, with telear's camera model).
-  Stats measure(const CameraModel& camera, OverlayMode mode, const std::string& label) {
+  Stats measure(const vision::CameraModel& camera, OverlayMode mode, const std::string& label) {
     auto overlay = Overlay::create(camera, {.mode = mode});
     EXPECT_TRUE(overlay) << overlay.error().message;
     if (!overlay) return {};
@@ -178,8 +178,8 @@ class OverlayTest : public GlTest {
     return stats;
   }
 
-  RobotModelPtr model;
-  CameraModel shipped;
+  core::RobotModelPtr model;
+  vision::CameraModel shipped;
   PointMarkers markers;
   OffscreenTarget target;
 };
@@ -199,7 +199,7 @@ TEST_F(OverlayTest, JointOriginsLandWhereOpenCvProjectsThemInUndistortedMode) {
 // Skew (Bouguet's alpha_c) goes through the projection, the undistort maps (telear's own,
 // since OpenCV ignores K(0,1)) and the raw look-up table alike.
 TEST_F(OverlayTest, SkewedCameraInBothModes) {
-  CameraModel camera = shipped;
+  vision::CameraModel camera = shipped;
   camera.alpha_c = 0.01;
   measure(camera, OverlayMode::kRaw, "raw, shipped rig + skew");
   measure(camera, OverlayMode::kUndistorted, "undistorted, shipped rig + skew");
@@ -208,7 +208,7 @@ TEST_F(OverlayTest, SkewedCameraInBothModes) {
 // The undistorted mode's two halves agree: a feature of the raw video at the distorted
 // projection of a point is remapped onto the pixel where the arm's point is drawn.
 TEST_F(OverlayTest, UndistortedVideoPutsTheRawFeatureUnderTheRenderedPoint) {
-  CameraModel camera = shipped;
+  vision::CameraModel camera = shipped;
   camera.kc = {-0.3, 0, 0, 0, 0};
   auto overlay = Overlay::create(camera, {.mode = OverlayMode::kUndistorted});
   ASSERT_TRUE(overlay) << overlay.error().message;
@@ -254,7 +254,7 @@ TEST_F(OverlayTest, RawModeShowsTheFrameUnchangedAndSwapsBgr) {
   EXPECT_EQ(target.read_rgb().pixels, frame);
   overlay->upload_frame(frame.data(), ChannelOrder::kBgr);
   overlay->render(target, nullptr);
-  const Image bgr = target.read_rgb();
+  const core::Image bgr = target.read_rgb();
   EXPECT_EQ(bgr.at(10, 20, 0), frame[(20 * shipped.width + 10) * 3 + 2]);
   EXPECT_EQ(bgr.at(10, 20, 2), frame[(20 * shipped.width + 10) * 3 + 0]);
 }
@@ -262,15 +262,15 @@ TEST_F(OverlayTest, RawModeShowsTheFrameUnchangedAndSwapsBgr) {
 // Without distortion the two modes are the same picture: the raw mode's warp is then the
 // identity at texel centres. The arm is D1's ArmRenderer, as `telear render` draws it.
 TEST_F(OverlayTest, WithoutDistortionBothModesDrawTheSameArm) {
-  CameraModel camera = shipped;
+  vision::CameraModel camera = shipped;
   camera.kc = {};
-  const ArmBody body = build_arm_body(*body_description_for(*model));
-  ArmBodyPose pose(*model, body);
+  const core::ArmBody body = core::build_arm_body(*core::body_description_for(*model));
+  core::ArmBodyPose pose(*model, body);
   pose.set_configuration(*model->named_configuration("qn"));
   auto arm = ArmRenderer::create(body);
   ASSERT_TRUE(arm) << arm.error().message;
   arm->update(pose);
-  std::vector<Image> pictures;
+  std::vector<core::Image> pictures;
   for (OverlayMode mode : {OverlayMode::kUndistorted, OverlayMode::kRaw}) {
     for (float alpha : {1.0f, 0.6f}) {
       auto overlay = Overlay::create(camera, {.mode = mode, .clear_colour = {0.2f, 0.3f, 0.4f}});
@@ -285,8 +285,8 @@ TEST_F(OverlayTest, WithoutDistortionBothModesDrawTheSameArm) {
   }
   ASSERT_GT(test::count_covered(pictures[0], {51, 77, 102}), 5000);  // the arm is in view
   for (int k = 0; k < 2; ++k) {
-    const Image& a = pictures[static_cast<size_t>(k)];
-    const Image& b = pictures[static_cast<size_t>(k + 2)];
+    const core::Image& a = pictures[static_cast<size_t>(k)];
+    const core::Image& b = pictures[static_cast<size_t>(k + 2)];
     int max_diff = 0;
     for (size_t i = 0; i < a.pixels.size(); ++i) {
       max_diff = std::max(max_diff, std::abs(int(a.pixels[i]) - int(b.pixels[i])));
@@ -296,7 +296,7 @@ TEST_F(OverlayTest, WithoutDistortionBothModesDrawTheSameArm) {
 }
 
 TEST_F(OverlayTest, InvalidCameraIsAnError) {
-  CameraModel camera = shipped;
+  vision::CameraModel camera = shipped;
   camera.fx = 0.0;
   auto overlay = Overlay::create(camera);
   ASSERT_FALSE(overlay);

@@ -3,7 +3,7 @@
 // top-left quarter, the right eye dark blue with a white square in its bottom-right quarter,
 // so a swapped, flipped or mirrored eye is caught.
 
-#include "render/stereo_composer.hpp"
+#include "telear/render/stereo_composer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,7 @@ void paint_eye(const OffscreenTarget& eye, const Eigen::Vector3f& colour, bool t
   glDisable(GL_SCISSOR_TEST);
 }
 
-Eigen::Vector3i rgb(const Image& image, int x, int y) {
+Eigen::Vector3i rgb(const core::Image& image, int x, int y) {
   return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
 }
 
@@ -53,7 +53,7 @@ class StereoComposerTest : public GlTest {
     paint_eye(right, {0.0f, 0.0f, 0.5f}, false);
   }
 
-  Image compose(StereoLayout layout) {
+  core::Image compose(StereoLayout layout) {
     const ComposedSize size = composed_size(layout, kW, kH);
     auto out = OffscreenTarget::create(size.width, size.height);
     EXPECT_TRUE(out);
@@ -63,7 +63,7 @@ class StereoComposerTest : public GlTest {
   }
 
   // The eye pictures as read back, for comparison with the composed regions.
-  void expect_region_is_eye(const Image& out, int x0, int y0, const Image& eye,
+  void expect_region_is_eye(const core::Image& out, int x0, int y0, const core::Image& eye,
                             const std::string& what) {
     int mismatches = 0;
     for (int y = 0; y < kH; ++y) {
@@ -79,16 +79,16 @@ class StereoComposerTest : public GlTest {
 };
 
 TEST_F(StereoComposerTest, EyesReadBackAsPainted) {
-  const Image l = left.read_rgb();
+  const core::Image l = left.read_rgb();
   EXPECT_EQ(rgb(l, 5, 5), Eigen::Vector3i(255, 255, 255));  // top-left square
   EXPECT_EQ(rgb(l, kW - 6, kH - 6), Eigen::Vector3i(128, 0, 0));
-  const Image r = right.read_rgb();
+  const core::Image r = right.read_rgb();
   EXPECT_EQ(rgb(r, kW - 6, kH - 6), Eigen::Vector3i(255, 255, 255));  // bottom-right square
   EXPECT_EQ(rgb(r, 5, 5), Eigen::Vector3i(0, 0, 128));
 }
 
 TEST_F(StereoComposerTest, SideBySidePutsTheLeftEyeOnTheLeft) {
-  const Image out = compose(StereoLayout::kSideBySide);
+  const core::Image out = compose(StereoLayout::kSideBySide);
   ASSERT_EQ(out.width, 2 * kW);
   ASSERT_EQ(out.height, kH);
   expect_region_is_eye(out, 0, 0, left.read_rgb(), "left half = left eye");
@@ -96,7 +96,7 @@ TEST_F(StereoComposerTest, SideBySidePutsTheLeftEyeOnTheLeft) {
 }
 
 TEST_F(StereoComposerTest, TopBottomPutsTheLeftEyeOnTop) {
-  const Image out = compose(StereoLayout::kTopBottom);
+  const core::Image out = compose(StereoLayout::kTopBottom);
   ASSERT_EQ(out.width, kW);
   ASSERT_EQ(out.height, 2 * kH);
   expect_region_is_eye(out, 0, 0, left.read_rgb(), "top half = left eye");
@@ -104,7 +104,7 @@ TEST_F(StereoComposerTest, TopBottomPutsTheLeftEyeOnTop) {
 }
 
 TEST_F(StereoComposerTest, AnaglyphIsLeftInRedAndRightInCyan) {
-  const Image out = compose(StereoLayout::kAnaglyph);
+  const core::Image out = compose(StereoLayout::kAnaglyph);
   ASSERT_EQ(out.width, kW);
   // Left eye's white square: red = 255; right eye there is dark blue: green 0, blue 128.
   EXPECT_EQ(rgb(out, 8, 8), Eigen::Vector3i(255, 0, 128));

@@ -1,14 +1,14 @@
 // Camera conventions of render/ (view_math.hpp) and GL wrappers without a context.
 
-#include "render/view_math.hpp"
+#include "telear/render/view_math.hpp"
 
 #include <gtest/gtest.h>
 
 #include <numbers>
 
-#include "render/gl_objects.hpp"
-#include "render/image.hpp"
-#include "render/offscreen_target.hpp"
+#include "telear/core/image.hpp"
+#include "telear/render/gl_objects.hpp"
+#include "telear/render/offscreen_target.hpp"
 
 namespace telear::render {
 namespace {
@@ -61,7 +61,7 @@ TEST(GlObjectsTest, WrappersAreBuiltAndMovedWithoutAContext) {
 }
 
 TEST(ImageTest, RowsAreTopFirstAndTightlyPacked) {
-  Image img(4, 3, 3);
+  core::Image img(4, 3, 3);
   EXPECT_EQ(img.pixels.size(), 36u);
   img.at(1, 2, 0) = 7;
   EXPECT_EQ(img.pixels[2 * 12 + 3], 7);

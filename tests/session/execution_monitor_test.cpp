@@ -1,4 +1,4 @@
-#include "session/execution_monitor.hpp"
+#include "telear/session/execution_monitor.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,12 +16,12 @@ class ExecutionMonitorTest : public ::testing::Test {
     Eigen::VectorXd a = Eigen::VectorXd::Zero(6), b = Eigen::VectorXd::Zero(6);
     b[1] = 0.6;
     b[2] = -0.4;
-    auto t = Trajectory::Create(*model_, {{a}, {b, 2.0}});
+    auto t = core::Trajectory::create(*model_, {{a}, {b, 2.0}});
     ASSERT_TRUE(t.ok());
-    trajectory_ = std::make_unique<Trajectory>(*t);
+    trajectory_ = std::make_unique<core::Trajectory>(*t);
   }
-  RobotModelPtr model_;
-  std::unique_ptr<Trajectory> trajectory_;
+  core::RobotModelPtr model_;
+  std::unique_ptr<core::Trajectory> trajectory_;
 };
 
 TEST_F(ExecutionMonitorTest, PerfectTrackingCompletes) {

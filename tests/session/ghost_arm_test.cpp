@@ -1,10 +1,10 @@
-#include "session/ghost_arm.hpp"
+#include "telear/session/ghost_arm.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/kinematics.hpp"
+#include "telear/core/kinematics.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::session {
@@ -14,32 +14,32 @@ TEST(GhostArm, StartsWithinTheLimitsWithTheGripperOpen) {
   GhostArm ghost(test::puma560());
   EXPECT_EQ(ghost.q(), Eigen::VectorXd::Zero(6));
   EXPECT_EQ(ghost.gripper(), 1.0);
-  EXPECT_TRUE(ghost.T_base_tool().isApprox(tool_pose(ghost.model(), ghost.q())));
+  EXPECT_TRUE(ghost.T_base_tool().isApprox(core::tool_pose(ghost.model(), ghost.q())));
 }
 
 TEST(GhostArm, AppliesMotionCommandsAndKeepsStateOnRejection) {
   GhostArm ghost(test::puma560());
-  MotionOutcome ok = ghost.apply(JointIncrement{1, 0.2});
+  core::MotionOutcome ok = ghost.apply(core::JointIncrement{1, 0.2});
   ASSERT_TRUE(ok.accepted) << ok.rejection.message;
   EXPECT_DOUBLE_EQ(ghost.q()[1], 0.2);
   // Cartesian increment in the tool frame: the tool moves 1 cm along its own z.
   const Eigen::Isometry3d before = ghost.T_base_tool();
   Eigen::VectorXd bent(6);
   bent << 0.0, 0.5, -1.2, 0.0, 0.7, 0.0;
-  ASSERT_TRUE(ghost.apply(JointTarget{bent}).accepted);
+  ASSERT_TRUE(ghost.apply(core::JointTarget{bent}).accepted);
   const Eigen::Isometry3d start = ghost.T_base_tool();
-  CartesianIncrement up;
-  up.frame = MotionFrame::kTool;
+  core::CartesianIncrement up;
+  up.frame = core::MotionFrame::kTool;
   up.dX = Eigen::Vector3d(0, 0, 0.01);
-  MotionOutcome moved = ghost.apply(up);
+  core::MotionOutcome moved = ghost.apply(up);
   ASSERT_TRUE(moved.accepted) << moved.rejection.message;
   EXPECT_LT((ghost.T_base_tool().translation() - start * Eigen::Vector3d(0, 0, 0.01)).norm(), 1e-6);
   EXPECT_FALSE(before.isApprox(start));
 
   const Eigen::VectorXd q = ghost.q();
-  MotionOutcome rejected = ghost.apply(JointIncrement{2, 10.0});
+  core::MotionOutcome rejected = ghost.apply(core::JointIncrement{2, 10.0});
   EXPECT_FALSE(rejected.accepted);
-  EXPECT_EQ(rejected.rejection.kind, RejectionKind::kJointLimit);
+  EXPECT_EQ(rejected.rejection.kind, core::RejectionKind::kJointLimit);
   EXPECT_NE(rejected.rejection.message.find("joint 3 (elbow)"), std::string::npos)
       << rejected.rejection.message;
   EXPECT_EQ(ghost.q(), q);
@@ -47,17 +47,17 @@ TEST(GhostArm, AppliesMotionCommandsAndKeepsStateOnRejection) {
 
 TEST(GhostArm, GoesToNamedConfigurations) {
   GhostArm ghost(test::puma560());
-  MotionOutcome qr = ghost.go_to("qr");
+  core::MotionOutcome qr = ghost.go_to("qr");
   ASSERT_TRUE(qr.accepted) << qr.rejection.message;
   EXPECT_TRUE(ghost.q().isApprox(*ghost.model().named_configuration("qr")));
   const Eigen::VectorXd q = ghost.q();
-  MotionOutcome unknown = ghost.go_to("home");
+  core::MotionOutcome unknown = ghost.go_to("home");
   EXPECT_FALSE(unknown.accepted);
-  EXPECT_EQ(unknown.rejection.kind, RejectionKind::kInvalidInput);
+  EXPECT_EQ(unknown.rejection.kind, core::RejectionKind::kInvalidInput);
   EXPECT_EQ(unknown.rejection.message,
             "unknown named configuration 'home' of puma560; known: qz, qr, qs, qn");
   // qn has the elbow at 180 deg, beyond the modern 135 deg limit.
-  MotionOutcome qn = ghost.go_to("qn");
+  core::MotionOutcome qn = ghost.go_to("qn");
   EXPECT_FALSE(qn.accepted);
   EXPECT_EQ(qn.rejection.message.rfind("named configuration 'qn': ", 0), 0u)
       << qn.rejection.message;
@@ -102,7 +102,7 @@ TEST(GhostArm, ResetToTheRealRobot) {
   EXPECT_FALSE(gripper.ok());
   EXPECT_EQ(ghost.q()[2], real[2]);  // unchanged by the failed resets
 
-  auto created = GhostArm::Create(test::puma560(), beyond);
+  auto created = GhostArm::create(test::puma560(), beyond);
   ASSERT_FALSE(created.ok());
   EXPECT_NE(created.error().message.find("beyond its upper limit"), std::string::npos);
 }

@@ -1,17 +1,17 @@
-#include "session/plan_preview.hpp"
+#include "telear/session/plan_preview.hpp"
 
 #include <gtest/gtest.h>
 
-#include "session/plan.hpp"
+#include "telear/session/plan.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::session {
 namespace {
 
-Trajectory two_point_trajectory() {
+core::Trajectory two_point_trajectory() {
   Eigen::VectorXd a = Eigen::VectorXd::Zero(6), b = Eigen::VectorXd::Zero(6);
   b[0] = 0.5;
-  auto t = Trajectory::Create(*test::puma560(), {{a, 0.0, 1.0}, {b, 2.0, 0.0}});
+  auto t = core::Trajectory::create(*test::puma560(), {{a, 0.0, 1.0}, {b, 2.0, 0.0}});
   EXPECT_TRUE(t.ok());
   return *t;
 }

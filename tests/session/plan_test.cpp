@@ -1,4 +1,4 @@
-#include "session/plan.hpp"
+#include "telear/session/plan.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "session/ghost_arm.hpp"
+#include "telear/session/ghost_arm.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::session {
@@ -30,7 +30,7 @@ TEST(Plan, RecordsGhostPosesAndEdits) {
   GhostArm ghost(test::puma560());
   Plan plan(test::puma560());
   ASSERT_TRUE(plan.add_from(ghost, 0.0, "start").ok());
-  ghost.apply(JointIncrement{0, 0.3});
+  ghost.apply(core::JointIncrement{0, 0.3});
   ASSERT_TRUE(ghost.set_gripper(0.0).ok());
   ASSERT_TRUE(plan.add_from(ghost, 2.0, "close").ok());
   ASSERT_EQ(plan.size(), 2u);
@@ -95,7 +95,7 @@ TEST(Plan, TimesAndSamplesLikeTheCoreTrajectory) {
   auto trajectory = plan.trajectory();
   ASSERT_TRUE(trajectory.ok()) << trajectory.error().message;
   auto reference =
-      Trajectory::Create(plan.model(), plan.joint_waypoints(), plan.trajectory_options());
+      core::Trajectory::create(plan.model(), plan.joint_waypoints(), plan.trajectory_options());
   ASSERT_TRUE(reference.ok());
   EXPECT_DOUBLE_EQ(trajectory->duration(), reference->duration());
   EXPECT_EQ(trajectory->waypoint_times().size(), 3u);
@@ -108,7 +108,7 @@ TEST(Plan, TimesAndSamplesLikeTheCoreTrajectory) {
 
   auto sampled = plan.timed_waypoints(100.0);
   ASSERT_TRUE(sampled.ok()) << sampled.error().message;
-  EXPECT_TRUE(validate_timed_waypoints(plan.model(), *sampled).ok());
+  EXPECT_TRUE(core::validate_timed_waypoints(plan.model(), *sampled).ok());
   EXPECT_DOUBLE_EQ(sampled->times.back(), trajectory->duration());
 
   Plan empty(test::puma560());

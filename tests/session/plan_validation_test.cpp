@@ -1,4 +1,4 @@
-#include "session/plan_validation.hpp"
+#include "telear/session/plan_validation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
-#include "session/registration_check.hpp"
+#include "telear/session/registration_check.hpp"
 
 #include <gtest/gtest.h>
 
 #include <iostream>
 
-#include "core/angles.hpp"
-#include "core/kinematics.hpp"
 #include "synthetic_marker.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/kinematics.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::session {
@@ -20,13 +20,13 @@ class RegistrationCheckTest : public ::testing::Test {
     model_ = test::puma560();
     q_ = Eigen::VectorXd(6);
     q_ << 0.2, 0.4, -0.9, 0.1, 0.6, 0.3;
-    KinematicsData data(*model_);
-    forward_kinematics(*model_, data, q_);
+    core::KinematicsData data(*model_);
+    core::forward_kinematics(*model_, data, q_);
     const Eigen::Isometry3d T_base_flange = data.T_base_link.back();
     const Eigen::Vector3d centre = T_base_flange.translation();
-    camera_ =
-        look_at_camera(640, 480, radians_from_degrees(50.0),
-                       centre + Eigen::Vector3d(1.4, 0.5, 0.6), centre, Eigen::Vector3d::UnitZ());
+    camera_ = vision::look_at_camera(640, 480, core::radians_from_degrees(50.0),
+                                     centre + Eigen::Vector3d(1.4, 0.5, 0.6), centre,
+                                     Eigen::Vector3d::UnitZ());
     const Eigen::Matrix3d R_base_cam = camera_.T_cam_base.linear().transpose();
     const double h = 0.05;
     const std::array<Eigen::Vector2d, 4> xy = {Eigen::Vector2d(-h, -h), Eigen::Vector2d(h, -h),
@@ -42,9 +42,9 @@ class RegistrationCheckTest : public ::testing::Test {
     options.noise_sigma = 1.0;
     image_ = test::synthetic_marker_image(640, 480, truth_, options);
   }
-  RobotModelPtr model_;
+  core::RobotModelPtr model_;
   Eigen::VectorXd q_;
-  CameraModel camera_;
+  vision::CameraModel camera_;
   GripperMarker marker_;
   std::array<Eigen::Vector2d, 4> truth_;
   cv::Mat image_;
@@ -64,9 +64,9 @@ TEST_F(RegistrationCheckTest, ResidualIsSubPixelWhenTheCalibrationHolds) {
 
 TEST_F(RegistrationCheckTest, ABumpedCameraOrWrongJointsShowInThePixels) {
   // The camera turned by 0.3 deg since registration: the model's prediction moves ~2.7 px.
-  CameraModel bumped = camera_;
+  vision::CameraModel bumped = camera_;
   bumped.T_cam_base.prerotate(
-      Eigen::AngleAxisd(radians_from_degrees(0.3), Eigen::Vector3d::UnitY()));
+      Eigen::AngleAxisd(core::radians_from_degrees(0.3), Eigen::Vector3d::UnitY()));
   const RegistrationCheck check(model_, {bumped, bumped}, marker_);
   const EyeResidual r = check.check_eye(image_, bumped, q_);
   ASSERT_TRUE(r.valid()) << r.message;
@@ -95,7 +95,7 @@ TEST_F(RegistrationCheckTest, SaysWhyThereIsNoResidual) {
   EXPECT_TRUE(both.right.predicted);
   EXPECT_EQ(both.right.message, "marker 2 not detected in the image");
   // A camera looking the other way: the model puts the marker behind it.
-  CameraModel away = camera_;
+  vision::CameraModel away = camera_;
   away.T_cam_base.prerotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
   const EyeResidual behind = check.check_eye(image_, away, q_);
   EXPECT_FALSE(behind.valid());

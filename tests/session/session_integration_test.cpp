@@ -6,10 +6,10 @@
 #include <functional>
 #include <thread>
 
-#include "core/robot_loader.hpp"
-#include "session/embedded_servers.hpp"
-#include "session/session.hpp"
-#include "sim/stereo_rig.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/session/embedded_servers.hpp"
+#include "telear/session/session.hpp"
+#include "telear/sim/stereo_rig.hpp"
 
 namespace telear::session {
 namespace {
@@ -19,12 +19,12 @@ using namespace std::chrono_literals;
 class SessionIntegrationTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto m = load_robot("puma560");
+    auto m = core::load_robot("puma560");
     ASSERT_TRUE(m) << m.error().message;
     model = *m;
     EmbeddedServersOptions options;
     options.fps = 15.0;
-    auto s = EmbeddedServers::Start(model, options);
+    auto s = EmbeddedServers::create(model, options);
     ASSERT_TRUE(s) << s.error().message;
     servers = std::move(*s);
     SessionOptions session_options;
@@ -38,7 +38,7 @@ class SessionIntegrationTest : public ::testing::Test {
     // cameras, so a "fresh" frame may be a few hundred ms old under load.
     session_options.display.late_threshold_s = 1.0;
     session_options.display.stream_timeout_s = 2.0;
-    auto created = Session::Create(model, session_options);
+    auto created = Session::create(model, session_options);
     ASSERT_TRUE(created) << created.error().message;
     session = std::move(*created);
     session->connect();
@@ -69,14 +69,14 @@ class SessionIntegrationTest : public ::testing::Test {
   void build_plan(double joint1_delta) {
     ASSERT_TRUE(session->ghost_to_real().ok());
     ASSERT_TRUE(session->add_ghost_waypoint(0.0, "start").ok());
-    ASSERT_TRUE(session->move_ghost(JointIncrement{0, joint1_delta}).accepted);
-    ASSERT_TRUE(session->move_ghost(JointIncrement{2, -0.2}).accepted);
+    ASSERT_TRUE(session->move_ghost(core::JointIncrement{0, joint1_delta}).accepted);
+    ASSERT_TRUE(session->move_ghost(core::JointIncrement{2, -0.2}).accepted);
     ASSERT_TRUE(session->add_ghost_waypoint(0.0, "out").ok());
-    ASSERT_TRUE(session->move_ghost(JointIncrement{0, -joint1_delta / 2}).accepted);
+    ASSERT_TRUE(session->move_ghost(core::JointIncrement{0, -joint1_delta / 2}).accepted);
     ASSERT_TRUE(session->add_ghost_waypoint(0.0, "back").ok());
   }
 
-  RobotModelPtr model;
+  core::RobotModelPtr model;
   std::unique_ptr<EmbeddedServers> servers;
   std::unique_ptr<Session> session;
 };
@@ -105,9 +105,9 @@ TEST_F(SessionIntegrationTest, ValidationRejectsAPlanThatStartsFarFromTheRealRob
   ASSERT_TRUE(session->take_control().ok());
   const Eigen::VectorXd before = real_q();
   ASSERT_TRUE(session->ghost_to_real().ok());
-  ASSERT_TRUE(session->move_ghost(JointIncrement{1, 0.12}).accepted);
+  ASSERT_TRUE(session->move_ghost(core::JointIncrement{1, 0.12}).accepted);
   ASSERT_TRUE(session->add_ghost_waypoint(0.0, "elsewhere").ok());
-  ASSERT_TRUE(session->move_ghost(JointIncrement{0, 0.2}).accepted);
+  ASSERT_TRUE(session->move_ghost(core::JointIncrement{0, 0.2}).accepted);
   ASSERT_TRUE(session->add_ghost_waypoint(0.0, "further").ok());
   const ValidationReport report = session->validate_plan();
   EXPECT_FALSE(report.ok());
@@ -130,8 +130,10 @@ TEST_F(SessionIntegrationTest, TheMonitorCancelsWhenTheRobotDeviatesFromThePlan)
   auto ack = session->execute_plan();
   ASSERT_TRUE(ack) << ack.error().message;
   // Joint 1 sticks: the robot reports it where it was while the plan moves on.
-  ASSERT_TRUE(
-      servers->driver().robot().inject_fault({.joint = 0, .kind = JointFaultKind::kStuck}).ok());
+  ASSERT_TRUE(servers->driver()
+                  .robot()
+                  .inject_fault({.joint = 0, .kind = sim::JointFaultKind::kStuck})
+                  .ok());
   ASSERT_TRUE(run_until([&] { return !session->executing(); }, ack->duration_s + 15.0));
   const std::string& result = session->last_execution_result();
   EXPECT_EQ(result.rfind("cancelled: ", 0), 0u) << result;

@@ -1,5 +1,5 @@
-// The pick-and-place box of the simulated scene (sim/grasp_model.hpp).
-#include "sim/grasp_model.hpp"
+// The pick-and-place box of the simulated scene (telear/sim/grasp_model.hpp).
+#include "telear/sim/grasp_model.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "sim/joint_motion.hpp"
+#include "telear/sim/joint_motion.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <limits>
 #include <random>
 
-#include "sim/sim_clock.hpp"
+#include "telear/sim/sim_clock.hpp"
 
-namespace telear {
+namespace telear::sim {
 namespace {
 
 constexpr double kDt = 0.001;
@@ -118,4 +118,4 @@ TEST(SteadyClock, NeverGoesBack) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::sim

@@ -1,4 +1,4 @@
-#include "sim/simulated_robot.hpp"
+#include "telear/sim/simulated_robot.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,12 +12,12 @@
 #include <thread>
 #include <vector>
 
-#include "core/angles.hpp"
-#include "core/kinematics.hpp"
-#include "sim/servo_thread.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/sim/servo_thread.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::sim {
 namespace {
 
 using ::testing::HasSubstr;
@@ -28,15 +28,15 @@ constexpr double kDt = 0.001;  // the default servo period
 Eigen::VectorXd deg(std::initializer_list<double> values) {
   Eigen::VectorXd q(static_cast<Eigen::Index>(values.size()));
   Eigen::Index i = 0;
-  for (double v : values) q[i++] = radians_from_degrees(v);
+  for (double v : values) q[i++] = core::radians_from_degrees(v);
   return q;
 }
 
 // Watches every period's state: speeds against the max velocities, the change of velocity
 // over one period against the max accelerations, positions against the limits.
 struct MotionWatch {
-  explicit MotionWatch(const RobotModel& model) : model(model) {}
-  void operator()(const RobotState& s) {
+  explicit MotionWatch(const core::RobotModel& model) : model(model) {}
+  void operator()(const core::RobotState& s) {
     for (int j = 0; j < model.dof(); ++j) {
       velocity_ratio = std::max(velocity_ratio, std::abs(s.qd[j]) / model.max_velocities()[j]);
       if (previous_qd.size() != 0) {
@@ -48,7 +48,7 @@ struct MotionWatch {
     }
     previous_qd = s.qd;
   }
-  const RobotModel& model;
+  const core::RobotModel& model;
   Eigen::VectorXd previous_qd;
   double velocity_ratio = 0.0;
   double acceleration_ratio = 0.0;
@@ -61,7 +61,7 @@ class SimulatedRobotTest : public ::testing::Test {
   static constexpr double kEpoch = 100.0;
 
   std::unique_ptr<SimulatedRobot> make(SimulatedRobotOptions options = {}) {
-    auto robot = SimulatedRobot::Create(model, clock, std::move(options));
+    auto robot = SimulatedRobot::create(model, clock, std::move(options));
     EXPECT_TRUE(robot.ok()) << (robot.ok() ? "" : robot.error().message);
     return robot.ok() ? std::move(robot).value() : nullptr;
   }
@@ -74,7 +74,7 @@ class SimulatedRobotTest : public ::testing::Test {
   // Advances simulated time period by period, updating the robot and handing each state to
   // `each`. The clock is set from a count, not summed, so no rounding accumulates.
   void run_for(SimulatedRobot& robot, double seconds,
-               const std::function<void(const RobotState&)>& each = nullptr) {
+               const std::function<void(const core::RobotState&)>& each = nullptr) {
     const double start = clock->now();
     const long periods = std::lround(seconds / kDt);
     for (long k = 1; k <= periods; ++k) {
@@ -84,7 +84,7 @@ class SimulatedRobotTest : public ::testing::Test {
     }
   }
 
-  RobotModelPtr model = test::puma560();
+  core::RobotModelPtr model = test::puma560();
   std::shared_ptr<ManualClock> clock = std::make_shared<ManualClock>(kEpoch);
   const Eigen::VectorXd q_start = deg({0, 45, -60, 0, 30, 0});  // away from singularities
 };
@@ -93,8 +93,8 @@ class SimulatedRobotTest : public ::testing::Test {
 
 TEST_F(SimulatedRobotTest, StartsIdleAndAtRest) {
   auto robot = make();
-  const RobotState s = robot->state();
-  EXPECT_EQ(s.mode, RobotMode::kIdle);
+  const core::RobotState s = robot->state();
+  EXPECT_EQ(s.mode, core::RobotMode::kIdle);
   EXPECT_EQ(s.time, kEpoch);
   EXPECT_TRUE(s.q.isZero());
   EXPECT_TRUE(s.qd.isZero());
@@ -106,7 +106,7 @@ TEST_F(SimulatedRobotTest, StartsIdleAndAtRest) {
 
 TEST_F(SimulatedRobotTest, RejectsInvalidOptionsSayingWhich) {
   auto message = [&](SimulatedRobotOptions o) {
-    auto robot = SimulatedRobot::Create(model, clock, o);
+    auto robot = SimulatedRobot::create(model, clock, o);
     return robot.ok() ? std::string("accepted") : robot.error().message;
   };
   SimulatedRobotOptions o;
@@ -139,10 +139,10 @@ TEST_F(SimulatedRobotTest, VelocityJogMovesWithinTheLimitsAndStopsAtItsExpiry) {
   MotionWatch watch(*model);
   Eigen::VectorXd qd_before_expiry;
   double at_rest_since = -1.0;
-  run_for(*robot, 1.0, [&](const RobotState& s) {
+  run_for(*robot, 1.0, [&](const core::RobotState& s) {
     watch(s);
     if (std::abs(s.time - (expires_at - 0.01)) < kDt / 2) qd_before_expiry = s.qd;
-    if (s.mode == RobotMode::kIdle && at_rest_since < 0.0) at_rest_since = s.time;
+    if (s.mode == core::RobotMode::kIdle && at_rest_since < 0.0) at_rest_since = s.time;
   });
   // Up to speed before the expiry, then a controlled stop that starts at the expiry.
   ASSERT_EQ(qd_before_expiry.size(), 6);
@@ -152,7 +152,7 @@ TEST_F(SimulatedRobotTest, VelocityJogMovesWithinTheLimitsAndStopsAtItsExpiry) {
   EXPECT_LE(watch.velocity_ratio, 1.0 + 1e-12);
   EXPECT_LE(watch.acceleration_ratio, 1.0 + 1e-9);
   EXPECT_TRUE(watch.within_limits);
-  const RobotState end = robot->state();
+  const core::RobotState end = robot->state();
   EXPECT_TRUE(end.qd.isZero());
   run_for(*robot, 0.5);
   EXPECT_EQ(robot->state().q, end.q);
@@ -166,15 +166,15 @@ TEST_F(SimulatedRobotTest, AJogPastItsExpiryIsIgnored) {
   EXPECT_THAT(s.error().message,
               HasSubstr("jog ignored: it expired at t = 99.95 s, 0.05 s before it arrived at "
                         "t = 100 s"));
-  auto increment = robot->jog(JointIncrement{0, 0.1}, now);
+  auto increment = robot->jog(core::JointIncrement{0, 0.1}, now);
   ASSERT_FALSE(increment.ok());
   EXPECT_THAT(increment.error().message, HasSubstr("jog ignored: it expired"));
-  auto far = robot->jog(JointIncrement{0, 0.1}, now + 60.0);
+  auto far = robot->jog(core::JointIncrement{0, 0.1}, now + 60.0);
   ASSERT_FALSE(far.ok());
   EXPECT_THAT(far.error().message, HasSubstr("later than the maximum of 10 s"));
   run_for(*robot, 0.5);
   EXPECT_EQ(robot->state().q, q_start);
-  EXPECT_EQ(robot->state().mode, RobotMode::kIdle);
+  EXPECT_EQ(robot->state().mode, core::RobotMode::kIdle);
 }
 
 TEST_F(SimulatedRobotTest, VelocityJogIsValidated) {
@@ -200,7 +200,7 @@ TEST_F(SimulatedRobotTest, VelocityJogIsValidated) {
 
 TEST_F(SimulatedRobotTest, VelocityJogBrakesOntoAJointLimitWithoutAFault) {
   Eigen::VectorXd q0 = q_start;
-  q0[0] = radians_from_degrees(150.0);
+  q0[0] = core::radians_from_degrees(150.0);
   auto robot = make_at(q0);
   Eigen::VectorXd qd = Eigen::VectorXd::Zero(6);
   qd[0] = model->max_velocities()[0];
@@ -209,7 +209,7 @@ TEST_F(SimulatedRobotTest, VelocityJogBrakesOntoAJointLimitWithoutAFault) {
   run_for(*robot, 1.0, std::ref(watch));
   EXPECT_TRUE(watch.within_limits);
   EXPECT_LE(watch.acceleration_ratio, 1.0 + 1e-9);
-  const RobotState s = robot->state();
+  const core::RobotState s = robot->state();
   EXPECT_NEAR(s.q[0], model->upper_limits()[0], 1e-9);
   EXPECT_EQ(s.qd[0], 0.0);
   EXPECT_FALSE(s.fault);
@@ -217,20 +217,20 @@ TEST_F(SimulatedRobotTest, VelocityJogBrakesOntoAJointLimitWithoutAFault) {
 
 TEST_F(SimulatedRobotTest, JointIncrementsArriveExactlyAndAccumulate) {
   auto robot = make_at(q_start);
-  auto outcome = robot->jog(JointIncrement{1, 0.1}, robot->time() + 2.0);
+  auto outcome = robot->jog(core::JointIncrement{1, 0.1}, robot->time() + 2.0);
   ASSERT_TRUE(outcome.ok()) << outcome.error().message;
   MotionWatch watch(*model);
   run_for(*robot, 1.0, std::ref(watch));
-  EXPECT_EQ(robot->state().mode, RobotMode::kIdle);
+  EXPECT_EQ(robot->state().mode, core::RobotMode::kIdle);
   EXPECT_EQ(robot->state().q[1], q_start[1] + 0.1);
   // A stream of small increments, each sent before the last one arrived, adds up exactly.
   for (int i = 0; i < 10; ++i) {
-    ASSERT_TRUE(robot->jog(JointIncrement{2, 0.01}, robot->time() + 0.5).ok());
+    ASSERT_TRUE(robot->jog(core::JointIncrement{2, 0.01}, robot->time() + 0.5).ok());
     run_for(*robot, 0.005, std::ref(watch));
   }
-  EXPECT_EQ(robot->state().mode, RobotMode::kJogging);
+  EXPECT_EQ(robot->state().mode, core::RobotMode::kJogging);
   run_for(*robot, 1.0, std::ref(watch));
-  EXPECT_EQ(robot->state().mode, RobotMode::kIdle);
+  EXPECT_EQ(robot->state().mode, core::RobotMode::kIdle);
   EXPECT_NEAR(robot->state().q[2], q_start[2] + 0.1, 1e-12);
   EXPECT_LE(watch.velocity_ratio, 1.0 + 1e-12);
   EXPECT_LE(watch.acceleration_ratio, 1.0 + 1e-9);
@@ -239,12 +239,13 @@ TEST_F(SimulatedRobotTest, JointIncrementsArriveExactlyAndAccumulate) {
 TEST_F(SimulatedRobotTest, CartesianJogMovesTheToolByTheIncrement) {
   const Eigen::VectorXd q0 = deg({10, 45, -60, 20, 40, 10});
   auto robot = make_at(q0);
-  const Eigen::Isometry3d T0 = tool_pose(*model, q0);
-  auto outcome = robot->jog(CartesianIncrement{MotionFrame::kBase, {0, 0, 0.01}, {0, 0, 0}},
-                            robot->time() + 2.0);
+  const Eigen::Isometry3d T0 = core::tool_pose(*model, q0);
+  auto outcome =
+      robot->jog(core::CartesianIncrement{core::MotionFrame::kBase, {0, 0, 0.01}, {0, 0, 0}},
+                 robot->time() + 2.0);
   ASSERT_TRUE(outcome.ok()) << outcome.error().message;
   run_for(*robot, 1.0);
-  const Eigen::Isometry3d T1 = tool_pose(*model, robot->state().q);
+  const Eigen::Isometry3d T1 = core::tool_pose(*model, robot->state().q);
   EXPECT_LT((T1.translation() - T0.translation() - Eigen::Vector3d(0, 0, 0.01)).norm(), 1e-6);
   EXPECT_LT((T1.linear() - T0.linear()).cwiseAbs().maxCoeff(), 1e-6);
 }
@@ -252,23 +253,24 @@ TEST_F(SimulatedRobotTest, CartesianJogMovesTheToolByTheIncrement) {
 TEST_F(SimulatedRobotTest, ARejectedJogNeverMovesTheArm) {
   const Eigen::VectorXd q0 = deg({0, 100, -60, 0, 30, 0});
   auto robot = make_at(q0);
-  auto outcome = robot->jog(JointIncrement{1, radians_from_degrees(20)}, robot->time() + 2.0);
+  auto outcome =
+      robot->jog(core::JointIncrement{1, core::radians_from_degrees(20)}, robot->time() + 2.0);
   ASSERT_FALSE(outcome.ok());
   EXPECT_THAT(outcome.error().message,
               HasSubstr("jog rejected: joint 2 (shoulder) would be at 120.00 deg, beyond its "
                         "upper limit of 110.00 deg"));
   run_for(*robot, 0.5);
   EXPECT_EQ(robot->state().q, q0);
-  EXPECT_EQ(robot->state().mode, RobotMode::kIdle);
+  EXPECT_EQ(robot->state().mode, core::RobotMode::kIdle);
 }
 
 TEST_F(SimulatedRobotTest, AJogThatExpiresBeforeArrivingStopsShortOfItsTarget) {
   auto robot = make_at(q_start);
-  ASSERT_TRUE(robot->jog(JointIncrement{0, 1.0}, robot->time() + 0.3).ok());
+  ASSERT_TRUE(robot->jog(core::JointIncrement{0, 1.0}, robot->time() + 0.3).ok());
   MotionWatch watch(*model);
   run_for(*robot, 2.0, std::ref(watch));
-  const RobotState s = robot->state();
-  EXPECT_EQ(s.mode, RobotMode::kIdle);
+  const core::RobotState s = robot->state();
+  EXPECT_EQ(s.mode, core::RobotMode::kIdle);
   EXPECT_GT(s.q[0], q_start[0] + 0.05);
   EXPECT_LT(s.q[0], q_start[0] + 0.5);
   EXPECT_LE(watch.acceleration_ratio, 1.0 + 1e-9);
@@ -278,8 +280,8 @@ TEST_F(SimulatedRobotTest, AJogThatExpiresBeforeArrivingStopsShortOfItsTarget) {
 
 class SimulatedRobotTrajectoryTest : public SimulatedRobotTest {
  protected:
-  Trajectory make_trajectory(const Eigen::VectorXd& from) {
-    auto trajectory = Trajectory::Create(
+  core::Trajectory make_trajectory(const Eigen::VectorXd& from) {
+    auto trajectory = core::Trajectory::create(
         *model,
         {{from}, {deg({30, 20, -30, 40, 60, 90})}, {deg({-20, 50, -90, -30, 10, 0}), 0.0, 0.0}});
     EXPECT_TRUE(trajectory.ok());
@@ -289,20 +291,20 @@ class SimulatedRobotTrajectoryTest : public SimulatedRobotTest {
 
 TEST_F(SimulatedRobotTrajectoryTest, FollowsATrajectoryWithSmallTrackingError) {
   auto robot = make_at(q_start);
-  const Trajectory trajectory = make_trajectory(q_start);
+  const core::Trajectory trajectory = make_trajectory(q_start);
   auto ack = robot->execute("pick-1", trajectory);
   ASSERT_TRUE(ack.ok()) << ack.error().message;
   EXPECT_FALSE(ack->duplicate);
-  EXPECT_EQ(ack->record.status, TrajectoryStatus::kRunning);
+  EXPECT_EQ(ack->record.status, core::TrajectoryStatus::kRunning);
   const double t_start = robot->time();
   double max_error = 0.0, last_progress = 0.0;
   bool progress_in_order = true;
   MotionWatch watch(*model);
-  run_for(*robot, trajectory.duration() + 0.2, [&](const RobotState& s) {
+  run_for(*robot, trajectory.duration() + 0.2, [&](const core::RobotState& s) {
     watch(s);
-    if (s.mode != RobotMode::kTrajectory) return;
+    if (s.mode != core::RobotMode::kTrajectory) return;
     EXPECT_EQ(s.trajectory_id, "pick-1");
-    const TrajectoryPoint reference = trajectory.sample(s.time - t_start);
+    const core::TrajectoryPoint reference = trajectory.sample(s.time - t_start);
     max_error = std::max(max_error, (s.q - reference.q).cwiseAbs().maxCoeff());
     progress_in_order = progress_in_order && s.trajectory_progress >= last_progress;
     last_progress = s.trajectory_progress;
@@ -313,13 +315,13 @@ TEST_F(SimulatedRobotTrajectoryTest, FollowsATrajectoryWithSmallTrackingError) {
   EXPECT_GT(last_progress, 0.99);
   EXPECT_LE(watch.velocity_ratio, 1.0 + 1e-6);
   EXPECT_LE(watch.acceleration_ratio, 1.0 + 1e-6);
-  const RobotState end = robot->state();
-  EXPECT_EQ(end.mode, RobotMode::kIdle);
+  const core::RobotState end = robot->state();
+  EXPECT_EQ(end.mode, core::RobotMode::kIdle);
   EXPECT_TRUE(end.trajectory_id.empty());
   EXPECT_EQ(end.q, trajectory.waypoints().back().q);
   const auto record = robot->trajectory_record("pick-1");
   ASSERT_TRUE(record);
-  EXPECT_EQ(record->status, TrajectoryStatus::kCompleted);
+  EXPECT_EQ(record->status, core::TrajectoryStatus::kCompleted);
   EXPECT_NEAR(record->finished_at, t_start + trajectory.duration(), 2 * kDt);
   // The last waypoint closes the gripper, which then closes at its own speed.
   EXPECT_EQ(end.gripper_target, 0.0);
@@ -330,7 +332,7 @@ TEST_F(SimulatedRobotTrajectoryTest, FollowsATrajectoryWithSmallTrackingError) {
 
 TEST_F(SimulatedRobotTrajectoryTest, FollowsTimedWaypointsByInterpolatingTheSamples) {
   auto robot = make_at(q_start);
-  const Trajectory trajectory = make_trajectory(q_start);
+  const core::Trajectory trajectory = make_trajectory(q_start);
   const double h = 0.01;  // 100 Hz
   auto samples = trajectory.sampled(1.0 / h);
   ASSERT_TRUE(samples.ok());
@@ -338,22 +340,22 @@ TEST_F(SimulatedRobotTrajectoryTest, FollowsTimedWaypointsByInterpolatingTheSamp
   ASSERT_TRUE(robot->execute("timed-1", *samples).ok());
   const double t_start = robot->time();
   double max_error = 0.0;
-  run_for(*robot, trajectory.duration() + 0.2, [&](const RobotState& s) {
-    if (s.mode != RobotMode::kTrajectory) return;
+  run_for(*robot, trajectory.duration() + 0.2, [&](const core::RobotState& s) {
+    if (s.mode != core::RobotMode::kTrajectory) return;
     max_error =
         std::max(max_error, (s.q - trajectory.sample(s.time - t_start).q).cwiseAbs().maxCoeff());
   });
   // Linear interpolation of a motion with acceleration a misses it by at most a h^2 / 8.
   EXPECT_LT(max_error, model->max_accelerations().maxCoeff() * h * h / 8.0 + 1e-9);
   EXPECT_EQ(robot->state().q, q_end);
-  EXPECT_EQ(robot->trajectory_record("timed-1")->status, TrajectoryStatus::kCompleted);
+  EXPECT_EQ(robot->trajectory_record("timed-1")->status, core::TrajectoryStatus::kCompleted);
 }
 
 TEST_F(SimulatedRobotTrajectoryTest, MovesTheLastBitToAStartWithinTheTolerance) {
   Eigen::VectorXd q0 = q_start;
   q0[1] += 0.005;  // within the default tolerance of 0.01 rad
   auto robot = make_at(q0);
-  const Trajectory trajectory = make_trajectory(q_start);
+  const core::Trajectory trajectory = make_trajectory(q_start);
   ASSERT_TRUE(robot->execute("near", trajectory).ok());
   MotionWatch watch(*model);
   run_for(*robot, trajectory.duration() + 0.5, std::ref(watch));
@@ -363,58 +365,59 @@ TEST_F(SimulatedRobotTrajectoryTest, MovesTheLastBitToAStartWithinTheTolerance) 
 
 TEST_F(SimulatedRobotTrajectoryTest, RejectedTrajectoriesNeverMoveTheArm) {
   auto robot = make_at(q_start);
-  const Trajectory trajectory = make_trajectory(q_start);
-  const TimedWaypoints samples = trajectory.sampled(100.0).value();
+  const core::Trajectory trajectory = make_trajectory(q_start);
+  const core::TimedWaypoints samples = trajectory.sampled(100.0).value();
   auto expect_rejected = [&](const std::string& id, const auto& input, const std::string& text) {
     SCOPED_TRACE(id);
     auto ack = robot->execute(id, input);
     ASSERT_FALSE(ack.ok());
     EXPECT_THAT(ack.error().message, HasSubstr(text));
     run_for(*robot, 0.2);
-    const RobotState s = robot->state();
-    EXPECT_EQ(s.mode, RobotMode::kIdle);
+    const core::RobotState s = robot->state();
+    EXPECT_EQ(s.mode, core::RobotMode::kIdle);
     EXPECT_EQ(s.q, q_start);
     EXPECT_TRUE(s.qd.isZero());
     EXPECT_FALSE(robot->trajectory_record(id));
   };
 
   Eigen::VectorXd far = q_start;
-  far[1] += radians_from_degrees(10.0);
+  far[1] += core::radians_from_degrees(10.0);
   expect_rejected("far", make_trajectory(far),
                   "trajectory 'far' rejected: it starts 10.00 deg away from the arm: joint 2 "
                   "(shoulder) is at 45.00 deg, the trajectory starts at 55.00 deg (tolerance "
                   "0.57 deg)");
 
-  TimedWaypoints nan = samples;
+  core::TimedWaypoints nan = samples;
   nan.q[3][1] = kNaN;
   expect_rejected("nan", nan,
                   "trajectory 'nan' rejected: sample[3]: joint 2 (shoulder) value is not a "
                   "finite number");
 
-  TimedWaypoints beyond = samples;
-  beyond.q[20][2] = radians_from_degrees(150.0);
+  core::TimedWaypoints beyond = samples;
+  beyond.q[20][2] = core::radians_from_degrees(150.0);
   expect_rejected("beyond", beyond,
                   "sample[20]: joint 3 (elbow) would be at 150.00 deg, beyond its upper limit "
                   "of 135.00 deg");
 
-  TimedWaypoints fast = samples;
+  core::TimedWaypoints fast = samples;
   for (double& t : fast.times) t *= 0.5;
   expect_rejected("fast", fast, "beyond its max velocity of");
 
-  TimedWaypoints gripper = samples;
+  core::TimedWaypoints gripper = samples;
   gripper.gripper = {{0.0, 2.0}};
   expect_rejected("gripper", gripper, "gripper event[0]: opening 2 is outside [0, 1]");
 
   // A Trajectory planned for a faster arm is too fast for this one.
-  RobotModel::Description d;
+  core::RobotModel::Description d;
   d.name = model->name();
   d.joints = model->joints();
-  for (Joint& joint : d.joints) {
+  for (core::Joint& joint : d.joints) {
     joint.limits.max_velocity *= 2.0;
     joint.limits.max_acceleration *= 2.0;
   }
-  const RobotModel fast_model = RobotModel::Create(d).value();
-  const Trajectory fast_trajectory = Trajectory::Create(fast_model, trajectory.waypoints()).value();
+  const core::RobotModel fast_model = core::RobotModel::create(d).value();
+  const core::Trajectory fast_trajectory =
+      core::Trajectory::create(fast_model, trajectory.waypoints()).value();
   expect_rejected("fast-model", fast_trajectory,
                   "trajectory 'fast-model' rejected: segment waypoint[0] to waypoint[1]");
 
@@ -425,7 +428,7 @@ TEST_F(SimulatedRobotTrajectoryTest, RejectedTrajectoriesNeverMoveTheArm) {
 
 TEST_F(SimulatedRobotTrajectoryTest, ABusyArmRejectsAnotherTrajectoryOrAJog) {
   auto robot = make_at(q_start);
-  const Trajectory trajectory = make_trajectory(q_start);
+  const core::Trajectory trajectory = make_trajectory(q_start);
   ASSERT_TRUE(robot->execute("a", trajectory).ok());
   run_for(*robot, 0.1);
   auto second = robot->execute("b", trajectory);
@@ -448,14 +451,14 @@ TEST_F(SimulatedRobotTrajectoryTest, ABusyArmRejectsAnotherTrajectoryOrAJog) {
 
 TEST_F(SimulatedRobotTrajectoryTest, ATrajectoryIdIsExecutedOnlyOnce) {
   auto robot = make_at(q_start);
-  const Trajectory trajectory = make_trajectory(q_start);
+  const core::Trajectory trajectory = make_trajectory(q_start);
   ASSERT_TRUE(robot->execute("move", trajectory).ok());
   run_for(*robot, 0.2);
   // A retry while it runs: acknowledged as a duplicate, the running one is not restarted.
   auto retry = robot->execute("move", trajectory);
   ASSERT_TRUE(retry.ok());
   EXPECT_TRUE(retry->duplicate);
-  EXPECT_EQ(retry->record.status, TrajectoryStatus::kRunning);
+  EXPECT_EQ(retry->record.status, core::TrajectoryStatus::kRunning);
   EXPECT_NEAR(robot->state().trajectory_time, 0.2, 1e-9);
   run_for(*robot, trajectory.duration());
   const Eigen::VectorXd q_end = trajectory.waypoints().back().q;
@@ -464,9 +467,9 @@ TEST_F(SimulatedRobotTrajectoryTest, ATrajectoryIdIsExecutedOnlyOnce) {
   auto late_retry = robot->execute("move", trajectory);
   ASSERT_TRUE(late_retry.ok());
   EXPECT_TRUE(late_retry->duplicate);
-  EXPECT_EQ(late_retry->record.status, TrajectoryStatus::kCompleted);
-  run_for(*robot, trajectory.duration(), [&](const RobotState& s) {
-    ASSERT_EQ(s.mode, RobotMode::kIdle);
+  EXPECT_EQ(late_retry->record.status, core::TrajectoryStatus::kCompleted);
+  run_for(*robot, trajectory.duration(), [&](const core::RobotState& s) {
+    ASSERT_EQ(s.mode, core::RobotMode::kIdle);
     ASSERT_EQ(s.q, q_end);
   });
 }
@@ -476,29 +479,30 @@ TEST_F(SimulatedRobotTrajectoryTest, ATrajectoryIdIsExecutedOnlyOnce) {
 TEST_F(SimulatedRobotTrajectoryTest, CancelStopsOnThePathWithinTheStoppingTime) {
   const Eigen::VectorXd q_goal = deg({90, 0, 0, 90, 60, 90});
   auto robot = make_at(q_start);
-  const Trajectory trajectory = Trajectory::Create(*model, {{q_start}, {q_goal}}).value();
+  const core::Trajectory trajectory =
+      core::Trajectory::create(*model, {{q_start}, {q_goal}}).value();
   ASSERT_TRUE(robot->execute("long", trajectory).ok());
   run_for(*robot, trajectory.duration() / 2);  // cruising
   const Eigen::VectorXd qd = robot->state().qd;
   const double T = stopping_time(qd, model->max_accelerations());
   const double cancelled_at = robot->time();
   robot->cancel("operator cancel");
-  EXPECT_EQ(robot->state().mode, RobotMode::kStopping);
+  EXPECT_EQ(robot->state().mode, core::RobotMode::kStopping);
   EXPECT_EQ(robot->state().stop_reason, "operator cancel");
   const Eigen::VectorXd direction = (q_goal - q_start).normalized();
   double off_path = 0.0, at_rest_since = -1.0;
   MotionWatch watch(*model);
-  run_for(*robot, T + 0.2, [&](const RobotState& s) {
+  run_for(*robot, T + 0.2, [&](const core::RobotState& s) {
     watch(s);
     const Eigen::VectorXd dq = s.q - q_start;
     off_path = std::max(off_path, (dq - direction * direction.dot(dq)).norm());
-    if (s.mode == RobotMode::kIdle && at_rest_since < 0.0) at_rest_since = s.time;
+    if (s.mode == core::RobotMode::kIdle && at_rest_since < 0.0) at_rest_since = s.time;
   });
   EXPECT_NEAR(at_rest_since - cancelled_at, T, 2 * kDt);
   EXPECT_LT(off_path, 1e-9);
   EXPECT_LE(watch.acceleration_ratio, 1.0 + 1e-9);
   const auto record = robot->trajectory_record("long");
-  EXPECT_EQ(record->status, TrajectoryStatus::kCancelled);
+  EXPECT_EQ(record->status, core::TrajectoryStatus::kCancelled);
   EXPECT_EQ(record->message, "operator cancel");
   EXPECT_LT(robot->state().q[0], q_goal[0]);
 }
@@ -512,8 +516,8 @@ TEST_F(SimulatedRobotTest, TheWorstCaseStopFromMaxVelocityTakesMaxVelocityOverAc
   const double cancelled_at = robot->time();
   robot->cancel("lease lapsed");
   double at_rest_since = -1.0;
-  run_for(*robot, 0.5, [&](const RobotState& s) {
-    if (s.mode == RobotMode::kIdle && at_rest_since < 0.0) at_rest_since = s.time;
+  run_for(*robot, 0.5, [&](const core::RobotState& s) {
+    if (s.mode == core::RobotMode::kIdle && at_rest_since < 0.0) at_rest_since = s.time;
   });
   const double worst =
       worst_case_stopping_time(model->max_velocities(), model->max_accelerations());
@@ -523,18 +527,18 @@ TEST_F(SimulatedRobotTest, TheWorstCaseStopFromMaxVelocityTakesMaxVelocityOverAc
 
 TEST_F(SimulatedRobotTrajectoryTest, EStopHaltsAtOnceLatchesAndRejectsCommands) {
   auto robot = make_at(q_start);
-  const Trajectory trajectory = make_trajectory(q_start);
+  const core::Trajectory trajectory = make_trajectory(q_start);
   ASSERT_TRUE(robot->execute("run", trajectory).ok());
   run_for(*robot, 0.5);
   const Eigen::VectorXd q_halt = robot->state().q;
   ASSERT_FALSE(robot->state().qd.isZero());
   robot->estop("operator pressed the e-stop");
-  RobotState s = robot->state();
-  EXPECT_EQ(s.mode, RobotMode::kEStopped);
+  core::RobotState s = robot->state();
+  EXPECT_EQ(s.mode, core::RobotMode::kEStopped);
   EXPECT_TRUE(s.estop);
   EXPECT_TRUE(s.qd.isZero());
   EXPECT_EQ(s.q, q_halt);
-  EXPECT_EQ(robot->trajectory_record("run")->status, TrajectoryStatus::kAborted);
+  EXPECT_EQ(robot->trajectory_record("run")->status, core::TrajectoryStatus::kAborted);
   EXPECT_EQ(robot->trajectory_record("run")->message, "e-stop: operator pressed the e-stop");
   run_for(*robot, 1.0);
   EXPECT_EQ(robot->state().q, q_halt);
@@ -545,7 +549,7 @@ TEST_F(SimulatedRobotTrajectoryTest, EStopHaltsAtOnceLatchesAndRejectsCommands) 
   const Status jog = robot->jog_velocity(Eigen::VectorXd::Zero(6), robot->time() + 1.0);
   ASSERT_FALSE(jog.ok());
   EXPECT_THAT(jog.error().message, HasSubstr("jog rejected: " + latched));
-  auto increment = robot->jog(JointIncrement{0, 0.1}, robot->time() + 1.0);
+  auto increment = robot->jog(core::JointIncrement{0, 0.1}, robot->time() + 1.0);
   ASSERT_FALSE(increment.ok());
   EXPECT_THAT(increment.error().message, HasSubstr(latched));
   auto again = robot->execute("after", make_trajectory(q_halt));
@@ -561,10 +565,10 @@ TEST_F(SimulatedRobotTrajectoryTest, EStopHaltsAtOnceLatchesAndRejectsCommands) 
 
   ASSERT_TRUE(robot->reset_estop().ok());
   s = robot->state();
-  EXPECT_EQ(s.mode, RobotMode::kIdle);
+  EXPECT_EQ(s.mode, core::RobotMode::kIdle);
   EXPECT_FALSE(s.estop);
   EXPECT_EQ(s.q, q_halt);
-  EXPECT_TRUE(robot->jog(JointIncrement{0, 0.1}, robot->time() + 1.0).ok());
+  EXPECT_TRUE(robot->jog(core::JointIncrement{0, 0.1}, robot->time() + 1.0).ok());
 }
 
 TEST_F(SimulatedRobotTest, EStopResetIsRefusedWhileAJointStillMoves) {
@@ -578,13 +582,13 @@ TEST_F(SimulatedRobotTest, EStopResetIsRefusedWhileAJointStillMoves) {
   EXPECT_THAT(refused.error().message,
               HasSubstr("cannot reset the e-stop while the arm moves: joint 2 (shoulder) moves "
                         "at 0.57 deg/s; wait until it is at rest"));
-  EXPECT_EQ(robot->state().mode, RobotMode::kEStopped);
+  EXPECT_EQ(robot->state().mode, core::RobotMode::kEStopped);
   ASSERT_TRUE(robot->clear_injected_faults().ok());
   ASSERT_TRUE(robot->reset_estop().ok());
   const Eigen::VectorXd q_held = robot->state().q;
   run_for(*robot, 0.2);
   EXPECT_EQ(robot->state().q, q_held);
-  EXPECT_EQ(robot->state().mode, RobotMode::kIdle);
+  EXPECT_EQ(robot->state().mode, core::RobotMode::kIdle);
 }
 
 // [SECTION] Gripper
@@ -629,14 +633,14 @@ TEST_F(SimulatedRobotTest, TheTrueModelIsOffsetWhileTheReadingsStayNominal) {
   std::mt19937_64 rng(42);
   for (int i = 0; i < 20; ++i) {
     const Eigen::VectorXd q = test::random_configuration(*model, rng);
-    const Eigen::Matrix4d T_true = tool_pose(*robot->true_model(), q).matrix();
+    const Eigen::Matrix4d T_true = core::tool_pose(*robot->true_model(), q).matrix();
     const Eigen::Matrix4d T_nominal_offset =
-        tool_pose(*model, q + options.true_joint_offsets).matrix();
+        core::tool_pose(*model, q + options.true_joint_offsets).matrix();
     EXPECT_LT(test::max_abs_diff(T_true, T_nominal_offset), 1e-12);
   }
   // The real tool is measurably elsewhere than where the nominal model puts it.
-  const double miss = (tool_pose(*robot->true_model(), q_start).translation() -
-                       tool_pose(*model, q_start).translation())
+  const double miss = (core::tool_pose(*robot->true_model(), q_start).translation() -
+                       core::tool_pose(*model, q_start).translation())
                           .norm();
   EXPECT_GT(miss, 0.003);  // 5.6 mm
   EXPECT_EQ(robot->state().q, q_start);
@@ -649,15 +653,15 @@ TEST_F(SimulatedRobotTrajectoryTest, InjectedFaultsShowAsTrackingError) {
   auto robot = make_at(q_start);
   ASSERT_TRUE(robot->inject_fault({0, JointFaultKind::kStuck}).ok());
   ASSERT_TRUE(robot->inject_fault({1, JointFaultKind::kLag, 0.1}).ok());
-  const Trajectory trajectory = make_trajectory(q_start);
+  const core::Trajectory trajectory = make_trajectory(q_start);
   ASSERT_TRUE(robot->execute("faulty", trajectory).ok());
   double lag_error = 0.0;
-  run_for(*robot, trajectory.duration() + 0.01, [&](const RobotState& s) {
+  run_for(*robot, trajectory.duration() + 0.01, [&](const core::RobotState& s) {
     EXPECT_EQ(s.q[0], q_start[0]);  // stuck
     lag_error = std::max(lag_error, std::abs(s.q_commanded[1] - s.q[1]));
     EXPECT_EQ(s.q[2], s.q_commanded[2]);  // healthy joints track exactly
   });
-  const RobotState end = robot->state();
+  const core::RobotState end = robot->state();
   EXPECT_NEAR(end.q_commanded[0] - end.q[0], trajectory.waypoints().back().q[0] - q_start[0],
               1e-12);
   EXPECT_GT(lag_error, 0.01);
@@ -673,7 +677,7 @@ TEST_F(SimulatedRobotTrajectoryTest, InjectedFaultsShowAsTrackingError) {
 
 TEST_F(SimulatedRobotTest, ADriftIntoAJointLimitIsClampedAndLatchesAFault) {
   Eigen::VectorXd q0 = q_start;
-  q0[1] = radians_from_degrees(109.0);
+  q0[1] = core::radians_from_degrees(109.0);
   auto robot = make_at(q0);
   ASSERT_TRUE(robot->inject_fault({1, JointFaultKind::kDrift, 0.2, 0.1}).ok());
   Eigen::VectorXd qd = Eigen::VectorXd::Zero(6);
@@ -682,14 +686,14 @@ TEST_F(SimulatedRobotTest, ADriftIntoAJointLimitIsClampedAndLatchesAFault) {
   MotionWatch watch(*model);
   run_for(*robot, 1.0, std::ref(watch));
   EXPECT_TRUE(watch.within_limits);
-  const RobotState s = robot->state();
+  const core::RobotState s = robot->state();
   EXPECT_EQ(s.q[1], model->upper_limits()[1]);
   ASSERT_TRUE(s.fault);
   EXPECT_THAT(*s.fault, HasSubstr("joint 2 (shoulder) measured at 110.0"));
   EXPECT_THAT(*s.fault,
               HasSubstr("beyond its upper limit of 110.00 deg: hard-clamped to the limit"));
   // The fault stopped the jog long before its expiry.
-  EXPECT_EQ(s.mode, RobotMode::kIdle);
+  EXPECT_EQ(s.mode, core::RobotMode::kIdle);
   EXPECT_TRUE(s.qd.isZero());
   robot->clear_fault();
   EXPECT_FALSE(robot->state().fault);
@@ -698,8 +702,8 @@ TEST_F(SimulatedRobotTest, ADriftIntoAJointLimitIsClampedAndLatchesAFault) {
 // [SECTION] Threads
 
 TEST(SimulatedRobotThreads, CommandsFromSeveralThreadsWhileAServoThreadSteps) {
-  const RobotModelPtr model = test::puma560();
-  auto created = SimulatedRobot::Create(model, std::make_shared<SteadyClock>());
+  const core::RobotModelPtr model = test::puma560();
+  auto created = SimulatedRobot::create(model, std::make_shared<SteadyClock>());
   ASSERT_TRUE(created.ok());
   SimulatedRobot& robot = **created;
   ServoThread servo(robot, 0.001);
@@ -720,7 +724,7 @@ TEST(SimulatedRobotThreads, CommandsFromSeveralThreadsWhileAServoThreadSteps) {
             break;
           }
           case 1:
-            (void)robot.jog(JointIncrement{c, 0.02 * unit(rng)}, expires);
+            (void)robot.jog(core::JointIncrement{c, 0.02 * unit(rng)}, expires);
             break;
           case 2:
             robot.cancel("client " + std::to_string(c));
@@ -731,7 +735,7 @@ TEST(SimulatedRobotThreads, CommandsFromSeveralThreadsWhileAServoThreadSteps) {
           default:
             break;
         }
-        const RobotState s = robot.state();
+        const core::RobotState s = robot.state();
         for (int j = 0; j < 6; ++j) {
           if (s.q[j] < model->lower_limits()[j] || s.q[j] > model->upper_limits()[j]) {
             all_within_limits = false;
@@ -744,12 +748,12 @@ TEST(SimulatedRobotThreads, CommandsFromSeveralThreadsWhileAServoThreadSteps) {
   for (auto& client : clients) client.join();
   robot.estop("end of test");
   servo.stop();
-  const RobotState end = robot.state();
+  const core::RobotState end = robot.state();
   EXPECT_TRUE(all_within_limits);
-  EXPECT_EQ(end.mode, RobotMode::kEStopped);
+  EXPECT_EQ(end.mode, core::RobotMode::kEStopped);
   EXPECT_FALSE(end.fault);
   EXPECT_GT(end.time, 0.0);
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::sim

@@ -2,7 +2,7 @@
 // camera model (chessboard corners, ArUco marker corners), determinism, and a calibration
 // that recovers the true cameras from a simulated capture.
 
-#include "sim/stereo_rig.hpp"
+#include "telear/sim/stereo_rig.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,15 +11,15 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/arm_body.hpp"
-#include "core/kinematics.hpp"
 #include "gl_test_util.hpp"
-#include "sim/calibration_targets.hpp"
-#include "sim/scene_renderer.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/sim/calibration_targets.hpp"
+#include "telear/sim/scene_renderer.hpp"
+#include "telear/vision/calibration_pattern.hpp"
+#include "telear/vision/camera_file.hpp"
+#include "telear/vision/stereo_calibration.hpp"
 #include "test_util/test_util.hpp"
-#include "vision/calibration_pattern.hpp"
-#include "vision/camera_file.hpp"
-#include "vision/stereo_calibration.hpp"
 
 namespace telear::sim {
 namespace {
@@ -32,7 +32,7 @@ StereoRig shipped_rig() {
 
 TEST(StereoRigFile, MatchesTheShippedCameraFile) {
   const StereoRig rig = shipped_rig();
-  auto file = load_camera_file(test::data_path("cameras/puma560_stereo.yaml"));
+  auto file = vision::load_camera_file(test::data_path("cameras/puma560_stereo.yaml"));
   ASSERT_TRUE(file.ok());
   for (const auto& [mine, theirs] :
        {std::pair{rig.cameras.left, file->left}, std::pair{rig.cameras.right, *file->right}}) {
@@ -89,7 +89,7 @@ TEST(StereoRigFile, ErrorsNameTheField) {
 }
 
 TEST(Supersampling, ScaledCameraRefinesThePixelGrid) {
-  CameraModel camera;
+  vision::CameraModel camera;
   camera.width = 640;
   camera.height = 480;
   camera.fx = 500;
@@ -97,7 +97,7 @@ TEST(Supersampling, ScaledCameraRefinesThePixelGrid) {
   camera.cx = 320.3;
   camera.cy = 239.1;
   camera.kc = {-0.28, 0.07, 0.001, -0.0004, 0.0};
-  const CameraModel scaled = supersampled_camera(camera, 4);
+  const vision::CameraModel scaled = supersampled_camera(camera, 4);
   const Eigen::Vector3d p(0.13, -0.08, 1.1);
   const Eigen::Vector2d uv = *camera.project(p);
   const Eigen::Vector2d uv4 = *scaled.project(p);
@@ -107,7 +107,7 @@ TEST(Supersampling, ScaledCameraRefinesThePixelGrid) {
 }
 
 TEST(SensorNoise, DeterministicForASeed) {
-  render::Image a(64, 48, 3), b(64, 48, 3);
+  core::Image a(64, 48, 3), b(64, 48, 3);
   std::fill(a.pixels.begin(), a.pixels.end(), 128);
   b.pixels = a.pixels;
   add_sensor_noise(a, 2.0, 7);
@@ -131,9 +131,9 @@ class StereoRigSceneTest : public render::test::GlTest {
     GlTest::SetUpTestSuite();
     rig_ = new StereoRig(shipped_rig());
     model_ = test::puma560();
-    auto body = load_body_yaml_file(rig_->body_file, *model_);
+    auto body = core::load_body_yaml_file(rig_->body_file, *model_);
     ASSERT_TRUE(body.ok()) << body.error().message;
-    body_ = new BodyDescription(*body);
+    body_ = new core::BodyDescription(*body);
   }
   static void TearDownTestSuite() {
     delete rig_;
@@ -145,13 +145,13 @@ class StereoRigSceneTest : public render::test::GlTest {
     EXPECT_TRUE(scene.ok()) << (scene ? "" : scene.error().message);
     return std::move(*scene);
   }
-  static cv::Mat grey(const render::Image& image) {
+  static cv::Mat grey(const core::Image& image) {
     cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.pixels.data()));
     cv::Mat out;
     cv::cvtColor(rgb, out, cv::COLOR_RGB2GRAY);
     return out;
   }
-  static std::vector<cv::Point2d> project(const CameraModel& camera,
+  static std::vector<cv::Point2d> project(const vision::CameraModel& camera,
                                           const std::vector<Eigen::Vector3d>& p_base) {
     std::vector<cv::Point3d> points;
     for (const auto& p : p_base) {
@@ -166,12 +166,12 @@ class StereoRigSceneTest : public render::test::GlTest {
     return uv;
   }
   static StereoRig* rig_;
-  static RobotModelPtr model_;
-  static BodyDescription* body_;
+  static core::RobotModelPtr model_;
+  static core::BodyDescription* body_;
 };
 StereoRig* StereoRigSceneTest::rig_ = nullptr;
-RobotModelPtr StereoRigSceneTest::model_;
-BodyDescription* StereoRigSceneTest::body_ = nullptr;
+core::RobotModelPtr StereoRigSceneTest::model_;
+core::BodyDescription* StereoRigSceneTest::body_ = nullptr;
 
 // Corners found by findChessboardCorners + cornerSubPix in the noisy images lie where
 // cv::projectPoints puts the true corners through the true camera.
@@ -180,7 +180,7 @@ TEST_F(StereoRigSceneTest, ChessboardCornersMatchTheTrueProjection) {
   options.noise_sigma = 1.0;
   SceneRenderer scene = make_scene(options);
   scene.set_configuration(*model_->named_configuration("qn"));
-  auto pattern = parse_calibration_pattern("chessboard:9x6:0.03");
+  auto pattern = vision::parse_calibration_pattern("chessboard:9x6:0.03");
   ASSERT_TRUE(pattern.ok());
   const CalibrationTarget target = make_calibration_target(*pattern);
   auto poses = calibration_target_poses(rig_->cameras, rig_->T_base_rig, target, 4, 11);
@@ -227,15 +227,15 @@ TEST_F(StereoRigSceneTest, DeterministicForASeedAndBothEyesSeeTheBoard) {
   options.seed = 5;
   options.supersample = 2;
   SceneRenderer scene = make_scene(options);
-  auto pattern = parse_calibration_pattern("circles:4x11:0.02");
+  auto pattern = vision::parse_calibration_pattern("circles:4x11:0.02");
   ASSERT_TRUE(pattern.ok());
   const CalibrationTarget target = make_calibration_target(*pattern);
   auto poses = calibration_target_poses(rig_->cameras, rig_->T_base_rig, target, 1, 3);
   ASSERT_TRUE(poses.ok()) << poses.error().message;
   ASSERT_TRUE(scene.set_target(target, poses->front()).ok());
-  const render::Image a = scene.render(Eye::kLeft, 0);
-  const render::Image b = scene.render(Eye::kLeft, 0);
-  const render::Image c = scene.render(Eye::kLeft, 1);
+  const core::Image a = scene.render(Eye::kLeft, 0);
+  const core::Image b = scene.render(Eye::kLeft, 0);
+  const core::Image c = scene.render(Eye::kLeft, 1);
   EXPECT_EQ(a.pixels, b.pixels);
   EXPECT_NE(a.pixels, c.pixels);
   for (Eye eye : {Eye::kLeft, Eye::kRight}) {
@@ -253,10 +253,10 @@ TEST_F(StereoRigSceneTest, FastNoiseHasTheExactSpreadAndChangesPerFrame) {
   options.noise_sigma = 2.0;
   options.fast_noise = true;
   SceneRenderer scene = make_scene(options);
-  const render::Image clean = scene.render_clean(Eye::kLeft);
-  const render::Image a = scene.render(Eye::kLeft, 3);
-  const render::Image b = scene.render(Eye::kLeft, 3);
-  const render::Image c = scene.render(Eye::kLeft, 4);
+  const core::Image clean = scene.render_clean(Eye::kLeft);
+  const core::Image a = scene.render(Eye::kLeft, 3);
+  const core::Image b = scene.render(Eye::kLeft, 3);
+  const core::Image c = scene.render(Eye::kLeft, 4);
   EXPECT_EQ(a.pixels, b.pixels);
   EXPECT_NE(a.pixels, c.pixels);
   double sum = 0, sum_sq = 0;
@@ -343,26 +343,26 @@ TEST_F(StereoRigSceneTest, DISABLED_StereoCalibrationRecoversTheTrueRig) {
   options.show_robot = false;  // the board alone: faster, same geometry
   options.show_environment = false;
   SceneRenderer scene = make_scene(options);
-  auto pattern = parse_calibration_pattern("chessboard:9x6:0.03");
+  auto pattern = vision::parse_calibration_pattern("chessboard:9x6:0.03");
   ASSERT_TRUE(pattern.ok());
   const CalibrationTarget target = make_calibration_target(*pattern);
   auto poses = calibration_target_poses(rig_->cameras, rig_->T_base_rig, target, 14, 1);
   ASSERT_TRUE(poses.ok()) << poses.error().message;
-  std::vector<StereoPatternView> views;
+  std::vector<vision::StereoPatternView> views;
   for (std::size_t view = 0; view < poses->size(); ++view) {
     ASSERT_TRUE(scene.set_target(target, (*poses)[view]).ok());
-    StereoPatternView pair;
+    vision::StereoPatternView pair;
     pair.left_name = "left_" + std::to_string(view);
     pair.right_name = "right_" + std::to_string(view);
-    auto left = detect_pattern(grey(scene.render(Eye::kLeft, view)), *pattern);
-    auto right = detect_pattern(grey(scene.render(Eye::kRight, view)), *pattern);
+    auto left = vision::detect_pattern(grey(scene.render(Eye::kLeft, view)), *pattern);
+    auto right = vision::detect_pattern(grey(scene.render(Eye::kRight, view)), *pattern);
     ASSERT_TRUE(left.ok()) << "view " << view << ": " << left.error().message;
     ASSERT_TRUE(right.ok()) << "view " << view << ": " << right.error().message;
     pair.left_points = *left;
     pair.right_points = *right;
     views.push_back(std::move(pair));
   }
-  auto calibration = calibrate_stereo(*pattern, views, cv::Size(640, 480));
+  auto calibration = vision::calibrate_stereo(*pattern, views, cv::Size(640, 480));
   ASSERT_TRUE(calibration.ok()) << calibration.error().message;
   for (const auto& [estimate, truth] :
        {std::pair{calibration->cameras.left, rig_->cameras.left},

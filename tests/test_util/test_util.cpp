@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/random_configuration.hpp"
-#include "core/robot_loader.hpp"
+#include "telear/core/random_configuration.hpp"
+#include "telear/core/robot_loader.hpp"
 
 namespace telear::test {
 
@@ -14,8 +14,8 @@ std::string data_path(const std::string& relative) {
   return std::string(TELEAR_TEST_DATA_DIR) + "/" + relative;
 }
 
-RobotModelPtr puma560() {
-  auto model = load_robot(data_path("robots/puma560.yaml"));
+core::RobotModelPtr puma560() {
+  auto model = core::load_robot(data_path("robots/puma560.yaml"));
   if (!model) {
     ADD_FAILURE() << model.error().message;
     return nullptr;
@@ -23,11 +23,11 @@ RobotModelPtr puma560() {
   return *model;
 }
 
-Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& rng) {
-  return telear::random_configuration(model, rng);
+Eigen::VectorXd random_configuration(const core::RobotModel& model, std::mt19937_64& rng) {
+  return core::random_configuration(model, rng);
 }
 
-Eigen::Matrix4d dh_product(const std::vector<DhRow>& rows, const Eigen::VectorXd& q) {
+Eigen::Matrix4d dh_product(const std::vector<core::DhRow>& rows, const Eigen::VectorXd& q) {
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
   for (size_t i = 0; i < rows.size(); ++i) {
     const double theta = q[static_cast<Eigen::Index>(i)] + rows[i].offset;

@@ -6,7 +6,7 @@
 #include <random>
 #include <string>
 
-#include "core/robot_model.hpp"
+#include "telear/core/robot_model.hpp"
 
 namespace telear::test {
 
@@ -14,13 +14,13 @@ namespace telear::test {
 std::string data_path(const std::string& relative);
 
 // The shipped PUMA 560 (DH YAML); fails the test on error.
-RobotModelPtr puma560();
+core::RobotModelPtr puma560();
 
 // Uniform random joint vector within the model's limits (infinite limits: [-pi, pi]).
-Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& rng);
+Eigen::VectorXd random_configuration(const core::RobotModel& model, std::mt19937_64& rng);
 
 // Naive 4x4 product of standard DH matrices, written independently of core/kinematics.
-Eigen::Matrix4d dh_product(const std::vector<DhRow>& rows, const Eigen::VectorXd& q);
+Eigen::Matrix4d dh_product(const std::vector<core::DhRow>& rows, const Eigen::VectorXd& q);
 
 // Maximum absolute entry difference of two 4x4 matrices.
 double max_abs_diff(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b);

@@ -13,12 +13,12 @@
 
 #include "rendered_pattern.hpp"
 #include "synthetic_views.hpp"
-#include "vision/calibration_file.hpp"
-#include "vision/calibration_images.hpp"
-#include "vision/calibration_report.hpp"
-#include "vision/camera_file.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/calibration_images.hpp"
+#include "telear/vision/calibration_report.hpp"
+#include "telear/vision/camera_file.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 namespace fs = std::filesystem;
@@ -326,4 +326,4 @@ TEST(CalibrationReport, MonoReportListsPosesAndOutliers) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,6 +1,6 @@
 // Pattern specs, object points, and detection accuracy on rendered images with known points.
 
-#include "vision/calibration_pattern.hpp"
+#include "telear/vision/calibration_pattern.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 
 #include "rendered_pattern.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 using ::testing::HasSubstr;
@@ -181,4 +181,4 @@ TEST(CalibrationPattern, ABoardLargerThanThePatternIsRecognised) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

@@ -13,10 +13,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "vision/calibration_images.hpp"
-#include "vision/stereo_calibration.hpp"
+#include "telear/vision/calibration_images.hpp"
+#include "telear/vision/stereo_calibration.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 std::string samples_dir() {
@@ -171,4 +171,4 @@ TEST_F(RealStereoSet, OnTheSameCornersTelearsSolverFitsAtLeastAsWell) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

@@ -10,10 +10,10 @@
 #include <opencv2/calib3d.hpp>
 
 #include "synthetic_views.hpp"
-#include "vision/mono_calibration.hpp"
-#include "vision/stereo_calibration.hpp"
+#include "telear/vision/mono_calibration.hpp"
+#include "telear/vision/stereo_calibration.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 using ::testing::HasSubstr;
@@ -346,4 +346,4 @@ TEST(StereoCalibration, BadInputIsAnErrorThatSaysWhatToDo) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,4 +1,4 @@
-#include "vision/camera_file.hpp"
+#include "telear/vision/camera_file.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,10 +6,10 @@
 #include <fstream>
 #include <opencv2/core.hpp>
 
-#include "core/pose.hpp"
+#include "telear/core/pose.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 CameraModel camera(double x) {
@@ -22,7 +22,7 @@ CameraModel camera(double x) {
   c.cy = 236.2;
   c.alpha_c = 0.001;
   c.kc = {-0.29, 0.11, 0.0011, -0.0007, -0.02};
-  c.T_cam_base = pose_from_xyz_rpy({x, -0.2, 1.5}, {2.1, 0.1, -0.3});
+  c.T_cam_base = core::pose_from_xyz_rpy({x, -0.2, 1.5}, {2.1, 0.1, -0.3});
   return c;
 }
 
@@ -230,4 +230,4 @@ TEST(CameraFile, ShippedPumaStereoRigLoads) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,4 +1,4 @@
-#include "vision/camera_model.hpp"
+#include "telear/vision/camera_model.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <opencv2/calib3d.hpp>
 #include <random>
 
-#include "core/pose.hpp"
+#include "telear/core/pose.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 CameraModel test_camera() {
@@ -20,7 +20,7 @@ CameraModel test_camera() {
   c.cx = 331.7;
   c.cy = 236.2;
   c.kc = {-0.3, 0.12, 0.0011, -0.0007, -0.02};
-  c.T_cam_base = pose_from_xyz_rpy({0.1, -0.2, 1.5}, {2.1, 0.1, -0.3});
+  c.T_cam_base = core::pose_from_xyz_rpy({0.1, -0.2, 1.5}, {2.1, 0.1, -0.3});
   return c;
 }
 
@@ -28,7 +28,7 @@ std::vector<cv::Point2d> opencv_project(const CameraModel& c,
                                         const std::vector<Eigen::Vector3d>& p) {
   std::vector<cv::Point3d> object;
   for (const Eigen::Vector3d& x : p) object.emplace_back(x.x(), x.y(), x.z());
-  const Eigen::Vector3d rvec = rotation_vector(c.T_cam_base.linear());
+  const Eigen::Vector3d rvec = core::rotation_vector(c.T_cam_base.linear());
   const Eigen::Vector3d tvec = c.T_cam_base.translation();
   const Eigen::Matrix3d K = c.K();
   cv::Matx33d cvK;
@@ -182,4 +182,4 @@ TEST(CameraModel, AResizedCameraSeesEveryPointWhereTheScaledImageHasIt) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

@@ -1,11 +1,11 @@
-#include "vision/distortion_maps.hpp"
+#include "telear/vision/distortion_maps.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 CameraModel camera(double alpha_c = 0.0) {
@@ -118,4 +118,4 @@ TEST(DistortionMaps, LutMarksPixelsWithNoRay) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

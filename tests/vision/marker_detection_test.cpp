@@ -1,7 +1,7 @@
-// ArUco marker detection with edge refinement (vision/marker_detection.hpp) on synthetic
+// ArUco marker detection with edge refinement (telear/vision/marker_detection.hpp) on synthetic
 // images whose true corners are known exactly (synthetic_marker.hpp).
 
-#include "vision/marker_detection.hpp"
+#include "telear/vision/marker_detection.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 
 #include "synthetic_marker.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 using Corners = std::array<Eigen::Vector2d, 4>;
@@ -130,4 +130,4 @@ TEST(MarkerRefinement, KeepsTheCornersWhenEdgesCannotBeMeasured) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

@@ -2,30 +2,30 @@
 // point gives that shift; a registration from noisy synthetic observations stays under the
 // issue's targets (<= 0.5 px RMS, <= 1.5 px max per eye).
 
-#include "vision/overlay_accuracy.hpp"
+#include "telear/vision/overlay_accuracy.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "core/kinematics.hpp"
 #include "synthetic_observations.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/vision/camera_file.hpp"
+#include "telear/vision/registration.hpp"
 #include "test_util/test_util.hpp"
-#include "vision/camera_file.hpp"
-#include "vision/registration.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
-ArmBody puma_body(const RobotModel& model) {
-  Result<BodyDescription> description = body_description_for(model);
+core::ArmBody puma_body(const core::RobotModel& model) {
+  Result<core::BodyDescription> description = core::body_description_for(model);
   EXPECT_TRUE(description.ok()) << (description.ok() ? "" : description.error().message);
-  return build_arm_body(*description);
+  return core::build_arm_body(*description);
 }
 
 TEST(OverlayAccuracy, SamplesCoverEveryLinkDensely) {
-  const RobotModelPtr model = test::puma560();
-  const ArmBody body = puma_body(*model);
+  const core::RobotModelPtr model = test::puma560();
+  const core::ArmBody body = puma_body(*model);
   const std::vector<LinkSamples> samples = sample_arm_body(body, 0.01);
   std::vector<bool> seen(static_cast<std::size_t>(model->dof() + 1), false);
   for (const LinkSamples& s : samples) seen[static_cast<std::size_t>(s.link)] = !s.p_link.empty();
@@ -40,9 +40,9 @@ TEST(OverlayAccuracy, SamplesCoverEveryLinkDensely) {
 }
 
 TEST(OverlayAccuracy, IdenticalCamerasAndAKnownShift) {
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
-  const ArmBody body = puma_body(*model);
+  const core::ArmBody body = puma_body(*model);
   AccuracyOptions options;
   options.configurations = 10;
   const AccuracyReport same = evaluate_accuracy(*model, body, truth, truth, options);
@@ -76,7 +76,7 @@ TEST(OverlayAccuracy, IdenticalCamerasAndAKnownShift) {
 }
 
 TEST(OverlayAccuracy, RegisteredRigStaysUnderTarget) {
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
   // Marker corners at 20 random configurations where both eyes see them, 0.1 px noise.
   const RegistrationObservations observations =
@@ -104,4 +104,4 @@ TEST(OverlayAccuracy, RegisteredRigStaysUnderTarget) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

@@ -2,20 +2,20 @@
 // moves an ArUco-sized marker on its flange through random in-limit configurations, and the
 // true cameras project the corners (with distortion) plus 0.1 px Gaussian noise.
 
-#include "vision/registration.hpp"
+#include "telear/vision/registration.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "core/kinematics.hpp"
 #include "synthetic_observations.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/vision/camera_file.hpp"
+#include "telear/vision/observations_file.hpp"
+#include "telear/vision/overlay_accuracy.hpp"
 #include "test_util/test_util.hpp"
-#include "vision/camera_file.hpp"
-#include "vision/observations_file.hpp"
-#include "vision/overlay_accuracy.hpp"
 
-namespace telear {
+namespace telear::vision {
 namespace {
 
 Eigen::Isometry3d T_right_left_of(const StereoCameraModel& rig) {
@@ -30,7 +30,7 @@ StereoCameraModel unregistered(StereoCameraModel rig) {
 }
 
 TEST(Registration, RecoversTheTrueBasePoseFromMarkerCorners) {
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
   const RegistrationObservations observations =
       test::synthetic_observations(*model, truth, test::flange_marker_corners(), 15, 0.1, 7);
@@ -60,7 +60,7 @@ TEST(Registration, RecoversTheTrueBasePoseFromMarkerCorners) {
 
 TEST(Registration, EstimatedIntrinsicsStillMeetTheTargets) {
   // Intrinsics off by what a good calibration leaves (fx, fy 0.1 %, cc 0.5 px, k1 0.5 %).
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
   const RegistrationObservations observations =
       test::synthetic_observations(*model, truth, test::flange_marker_corners(), 20, 0.1, 11);
@@ -88,7 +88,7 @@ TEST(Registration, EstimatedIntrinsicsStillMeetTheTargets) {
 }
 
 TEST(Registration, OperatorClickedToolTipsGiveTheSamePose) {
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
   // One point per configuration: the tool centre point (here the flange origin offset).
   const RegistrationObservations marker = test::synthetic_observations(
@@ -114,7 +114,7 @@ TEST(Registration, OperatorClickedToolTipsGiveTheSamePose) {
 }
 
 TEST(Registration, TooFewConfigurationsSaysWhich) {
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
   RegistrationObservations observations =
       test::synthetic_observations(*model, truth, test::flange_marker_corners(), 3, 0.1, 3);
@@ -137,14 +137,14 @@ TEST(Registration, TooFewConfigurationsSaysWhich) {
 }
 
 TEST(Registration, CollinearToolTipsAreDegenerate) {
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
   // One point fixed to the flange but lying on joint 1's axis (at q = 0), and only joint 1
   // moving: the flange origins are distinct, the observed point never moves.
   RegistrationObservations observations;
-  KinematicsData data(*model);
+  core::KinematicsData data(*model);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model->dof());
-  forward_kinematics(*model, data, q);
+  core::forward_kinematics(*model, data, q);
   const Eigen::Vector3d on_axis = data.T_base_link.back().inverse() * Eigen::Vector3d(0, 0, 0.3);
   observations.point_in_flange = {on_axis};
   for (double q1 : {-0.5, 0.0, 0.5, 1.0}) {
@@ -163,7 +163,7 @@ TEST(Registration, CollinearToolTipsAreDegenerate) {
 }
 
 TEST(Registration, BadInputNamesTheProblem) {
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
   const RegistrationObservations good =
       test::synthetic_observations(*model, truth, test::flange_marker_corners(), 4, 0.1, 9);
@@ -195,7 +195,7 @@ TEST(Registration, BadInputNamesTheProblem) {
 }
 
 TEST(ObservationsFile, RoundTripsAndReportsMalformedInput) {
-  const RobotModelPtr model = test::puma560();
+  const core::RobotModelPtr model = test::puma560();
   const StereoCameraModel truth = test::shipped_stereo_cameras();
   RegistrationObservations observations =
       test::synthetic_observations(*model, truth, test::flange_marker_corners(), 3, 0.1, 13);
@@ -242,4 +242,4 @@ TEST(ObservationsFile, RoundTripsAndReportsMalformedInput) {
 }
 
 }  // namespace
-}  // namespace telear
+}  // namespace telear::vision

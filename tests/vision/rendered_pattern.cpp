@@ -8,9 +8,9 @@ namespace {
 constexpr int kSamples = 6;  // per pixel side
 
 // Ideal reflectance of the target at (x, y) metres: 0 black, 1 white, -1 off the target.
-double target_value(const CalibrationPattern& p, double x, double y) {
+double target_value(const vision::CalibrationPattern& p, double x, double y) {
   const double s = p.spacing;
-  if (p.kind == PatternKind::kChessboard) {
+  if (p.kind == vision::PatternKind::kChessboard) {
     if (x < -2 * s || y < -2 * s || x > (p.cols + 1) * s || y > (p.rows + 1) * s) return -1.0;
     if (x < -s || y < -s || x > p.cols * s || y > p.rows * s) return 1.0;  // white margin
     const auto i = static_cast<long>(std::floor(x / s));
@@ -35,7 +35,7 @@ double target_value(const CalibrationPattern& p, double x, double y) {
 
 }  // namespace
 
-cv::Mat render_pattern(const CalibrationPattern& pattern, const cv::Matx33d& H_pixel_target,
+cv::Mat render_pattern(const vision::CalibrationPattern& pattern, const cv::Matx33d& H_pixel_target,
                        cv::Size size) {
   const cv::Matx33d H_target_pixel = H_pixel_target.inv();
   cv::Mat image(size, CV_8UC1);
@@ -58,21 +58,21 @@ cv::Mat render_pattern(const CalibrationPattern& pattern, const cv::Matx33d& H_p
   return image;
 }
 
-std::vector<cv::Point2d> true_image_points(const CalibrationPattern& pattern,
+std::vector<cv::Point2d> true_image_points(const vision::CalibrationPattern& pattern,
                                            const cv::Matx33d& H_pixel_target) {
   std::vector<cv::Point2d> points;
-  for (const cv::Point3f& p : pattern_object_points(pattern)) {
+  for (const cv::Point3f& p : vision::pattern_object_points(pattern)) {
     const cv::Vec3d q = H_pixel_target * cv::Vec3d(p.x, p.y, 1.0);
     points.emplace_back(q[0] / q[2], q[1] / q[2]);
   }
   return points;
 }
 
-cv::Matx33d view_homography(const CalibrationPattern& pattern, cv::Size size, double width_px,
-                            double tilt_deg, double roll_deg) {
+cv::Matx33d view_homography(const vision::CalibrationPattern& pattern, cv::Size size,
+                            double width_px, double tilt_deg, double roll_deg) {
   const double f = 800.0;
   const cv::Matx33d K(f, 0, (size.width - 1) / 2.0, 0, f, (size.height - 1) / 2.0, 0, 0, 1);
-  const double extent_x = pattern.kind == PatternKind::kChessboard
+  const double extent_x = pattern.kind == vision::PatternKind::kChessboard
                               ? (pattern.cols - 1) * pattern.spacing
                               : (2 * pattern.cols - 1) * pattern.spacing;
   const double extent_y = (pattern.rows - 1) * pattern.spacing;

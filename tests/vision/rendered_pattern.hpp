@@ -5,22 +5,22 @@
 
 #include <opencv2/core.hpp>
 
-#include "vision/calibration_pattern.hpp"
+#include "telear/vision/calibration_pattern.hpp"
 
 namespace telear::test {
 
 // 8-bit grey image of `pattern` (with a one-square white margin) seen through
 // `H_pixel_target` (3x3, target metres -> pixels) on a mid-grey background.
-cv::Mat render_pattern(const CalibrationPattern& pattern, const cv::Matx33d& H_pixel_target,
+cv::Mat render_pattern(const vision::CalibrationPattern& pattern, const cv::Matx33d& H_pixel_target,
                        cv::Size size);
 
 // Where H puts the pattern's object points.
-std::vector<cv::Point2d> true_image_points(const CalibrationPattern& pattern,
+std::vector<cv::Point2d> true_image_points(const vision::CalibrationPattern& pattern,
                                            const cv::Matx33d& H_pixel_target);
 
 // A homography that shows the pattern centred, about `width_px` wide, seen from a tilt of
 // `tilt_deg` about the vertical axis (perspective).
-cv::Matx33d view_homography(const CalibrationPattern& pattern, cv::Size size, double width_px,
-                            double tilt_deg, double roll_deg = 0.0);
+cv::Matx33d view_homography(const vision::CalibrationPattern& pattern, cv::Size size,
+                            double width_px, double tilt_deg, double roll_deg = 0.0);
 
 }  // namespace telear::test

@@ -5,8 +5,8 @@
 // The marker (6 x 6 cells, a one-cell white quiet zone around it) is drawn large, mapped by the
 // homography that takes its outer corners to corners_px (cv::aruco order: top-left, top-right,
 // bottom-right, bottom-left as printed) on a grid refined `supersample` times (high-res pixel
-// u' = S (u + 0.5) - 0.5, as sim/scene_renderer.hpp), then averaged back over S x S blocks, so
-// every pixel holds its area coverage: edges sit where a camera would put them. A homography is
+// u' = S (u + 0.5) - 0.5, as telear/sim/scene_renderer.hpp), then averaged back over S x S blocks,
+// so every pixel holds its area coverage: edges sit where a camera would put them. A homography is
 // exactly what a pinhole camera without distortion makes of a planar square.
 
 #include <Eigen/Core>

@@ -5,22 +5,24 @@
 #include <optional>
 #include <random>
 
-#include "core/kinematics.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/random_configuration.hpp"
+#include "telear/vision/camera_file.hpp"
 #include "test_util/test_util.hpp"
-#include "vision/camera_file.hpp"
 
 namespace telear::test {
 namespace {
 
-bool inside(const CameraModel& camera, const std::optional<Eigen::Vector2d>& uv) {
+bool inside(const vision::CameraModel& camera, const std::optional<Eigen::Vector2d>& uv) {
   return uv && uv->x() > 10 && uv->y() > 10 && uv->x() < camera.width - 10 &&
          uv->y() < camera.height - 10;
 }
 
 }  // namespace
 
-StereoCameraModel shipped_stereo_cameras() {
-  Result<CameraFile> file = load_camera_file(data_path("cameras/puma560_stereo.yaml"));
+vision::StereoCameraModel shipped_stereo_cameras() {
+  Result<vision::CameraFile> file =
+      vision::load_camera_file(data_path("cameras/puma560_stereo.yaml"));
   EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().message);
   return {file->left, *file->right};
 }
@@ -30,20 +32,20 @@ std::vector<Eigen::Vector3d> flange_marker_corners() {
       {-0.025, -0.025, 0.05}, {0.025, -0.025, 0.05}, {0.025, 0.025, 0.05}, {-0.025, 0.025, 0.05}};
 }
 
-RegistrationObservations synthetic_observations(const RobotModel& model,
-                                                const StereoCameraModel& rig,
-                                                const std::vector<Eigen::Vector3d>& points,
-                                                int count, double noise_px, unsigned seed) {
+vision::RegistrationObservations synthetic_observations(const core::RobotModel& model,
+                                                        const vision::StereoCameraModel& rig,
+                                                        const std::vector<Eigen::Vector3d>& points,
+                                                        int count, double noise_px, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, noise_px);
-  RegistrationObservations observations;
+  vision::RegistrationObservations observations;
   observations.robot = model.name();
   observations.point_in_flange = points;
-  KinematicsData data(model);
+  core::KinematicsData data(model);
   while (static_cast<int>(observations.configurations.size()) < count) {
-    ObservedConfiguration configuration;
-    configuration.q = random_configuration(model, rng);
-    forward_kinematics(model, data, configuration.q);
+    vision::ObservedConfiguration configuration;
+    configuration.q = core::random_configuration(model, rng);
+    core::forward_kinematics(model, data, configuration.q);
     bool visible = true;
     for (const Eigen::Vector3d& p : points) {
       const Eigen::Vector3d p_base = data.T_base_link.back() * p;

@@ -6,23 +6,23 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/robot_model.hpp"
-#include "vision/camera_model.hpp"
-#include "vision/observations_file.hpp"
+#include "telear/core/robot_model.hpp"
+#include "telear/vision/camera_model.hpp"
+#include "telear/vision/observations_file.hpp"
 
 namespace telear::test {
 
 // data/cameras/puma560_stereo.yaml, both eyes with their T_cam_base (fails the test on error).
-StereoCameraModel shipped_stereo_cameras();
+vision::StereoCameraModel shipped_stereo_cameras();
 
 // A 5 cm marker 5 cm out along the flange's z axis, corners in cv::aruco's order.
 std::vector<Eigen::Vector3d> flange_marker_corners();
 
 // `count` configurations (random within the limits, seeded) at which every point lies at
 // least 10 px inside both images, projected by `rig` with N(0, noise_px) noise per axis.
-RegistrationObservations synthetic_observations(const RobotModel& model,
-                                                const StereoCameraModel& rig,
-                                                const std::vector<Eigen::Vector3d>& points,
-                                                int count, double noise_px, unsigned seed);
+vision::RegistrationObservations synthetic_observations(const core::RobotModel& model,
+                                                        const vision::StereoCameraModel& rig,
+                                                        const std::vector<Eigen::Vector3d>& points,
+                                                        int count, double noise_px, unsigned seed);
 
 }  // namespace telear::test

@@ -3,20 +3,20 @@
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
-#include "core/pose.hpp"
+#include "telear/core/pose.hpp"
 
 namespace telear::test {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-cv::Mat camera_matrix(const CameraModel& c) {
+cv::Mat camera_matrix(const vision::CameraModel& c) {
   return (cv::Mat_<double>(3, 3) << c.fx, 0.0, c.cx, 0.0, c.fy, c.cy, 0.0, 0.0, 1.0);
 }
 
-std::vector<cv::Point2d> project_exact(const CameraModel& camera,
+std::vector<cv::Point2d> project_exact(const vision::CameraModel& camera,
                                        const Eigen::Isometry3d& T_cam_target,
-                                       const CalibrationPattern& pattern) {
+                                       const vision::CalibrationPattern& pattern) {
   cv::Mat R(3, 3, CV_64F), rvec, tvec(3, 1, CV_64F);
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) R.at<double>(r, c) = T_cam_target.linear()(r, c);
@@ -24,7 +24,7 @@ std::vector<cv::Point2d> project_exact(const CameraModel& camera,
   }
   cv::Rodrigues(R, rvec);
   const std::array<double, 5> kc = camera.kc.as_array();
-  const std::vector<cv::Point3f> object = pattern_object_points(pattern);
+  const std::vector<cv::Point3f> object = vision::pattern_object_points(pattern);
   std::vector<cv::Point3d> object_d(object.begin(), object.end());
   std::vector<cv::Point2d> image;
   cv::projectPoints(object_d, rvec, tvec, camera_matrix(camera),
@@ -32,9 +32,9 @@ std::vector<cv::Point2d> project_exact(const CameraModel& camera,
   return image;
 }
 
-bool inside(const CameraModel& camera, const Eigen::Isometry3d& T_cam_target,
-            const CalibrationPattern& pattern, double margin) {
-  for (const cv::Point3f& p : pattern_object_points(pattern)) {
+bool inside(const vision::CameraModel& camera, const Eigen::Isometry3d& T_cam_target,
+            const vision::CalibrationPattern& pattern, double margin) {
+  for (const cv::Point3f& p : vision::pattern_object_points(pattern)) {
     const Eigen::Vector3d q = T_cam_target * Eigen::Vector3d(p.x, p.y, p.z);
     if (q.z() < 0.1) return false;
     // Stay well inside the distortion model's monotonic range.
@@ -53,7 +53,7 @@ bool inside(const CameraModel& camera, const Eigen::Isometry3d& T_cam_target,
 
 SyntheticRig default_rig() {
   SyntheticRig rig;
-  CameraModel& left = rig.left;
+  vision::CameraModel& left = rig.left;
   left.width = 640;
   left.height = 480;
   left.fx = 800.0;
@@ -61,7 +61,7 @@ SyntheticRig default_rig() {
   left.cx = 321.7;
   left.cy = 238.4;
   left.kc = {-0.3, 0.1, 0.0012, -0.0008, 0.0};
-  CameraModel& right = rig.right;
+  vision::CameraModel& right = rig.right;
   right.width = 640;
   right.height = 480;
   right.fx = 806.0;
@@ -84,8 +84,9 @@ SyntheticRig default_rig() {
 }
 
 std::vector<Eigen::Isometry3d> random_pattern_poses(const SyntheticRig& rig,
-                                                    const CalibrationPattern& pattern, int count,
-                                                    std::mt19937_64& rng, double margin_px) {
+                                                    const vision::CalibrationPattern& pattern,
+                                                    int count, std::mt19937_64& rng,
+                                                    double margin_px) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::Vector3d centre_target((pattern.cols - 1) * pattern.spacing / 2.0,
                                       (pattern.rows - 1) * pattern.spacing / 2.0, 0.0);
@@ -115,9 +116,9 @@ std::vector<Eigen::Isometry3d> random_pattern_poses(const SyntheticRig& rig,
   return poses;
 }
 
-std::vector<cv::Point2f> project_pattern(const CameraModel& camera,
+std::vector<cv::Point2f> project_pattern(const vision::CameraModel& camera,
                                          const Eigen::Isometry3d& T_cam_target,
-                                         const CalibrationPattern& pattern, double noise_px,
+                                         const vision::CalibrationPattern& pattern, double noise_px,
                                          std::mt19937_64& rng) {
   std::normal_distribution<double> noise(0.0, noise_px);
   std::vector<cv::Point2f> points;
@@ -129,11 +130,11 @@ std::vector<cv::Point2f> project_pattern(const CameraModel& camera,
   return points;
 }
 
-std::vector<StereoPatternView> stereo_views(const SyntheticRig& rig,
-                                            const CalibrationPattern& pattern,
-                                            const std::vector<Eigen::Isometry3d>& poses,
-                                            double noise_px, std::mt19937_64& rng) {
-  std::vector<StereoPatternView> views;
+std::vector<vision::StereoPatternView> stereo_views(const SyntheticRig& rig,
+                                                    const vision::CalibrationPattern& pattern,
+                                                    const std::vector<Eigen::Isometry3d>& poses,
+                                                    double noise_px, std::mt19937_64& rng) {
+  std::vector<vision::StereoPatternView> views;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "view%02zu", i);

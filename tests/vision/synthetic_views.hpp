@@ -9,15 +9,15 @@
 #include <random>
 #include <vector>
 
-#include "vision/calibration_pattern.hpp"
-#include "vision/camera_model.hpp"
-#include "vision/stereo_calibration.hpp"
+#include "telear/vision/calibration_pattern.hpp"
+#include "telear/vision/camera_model.hpp"
+#include "telear/vision/stereo_calibration.hpp"
 
 namespace telear::test {
 
 struct SyntheticRig {
-  CameraModel left;
-  CameraModel right;
+  vision::CameraModel left;
+  vision::CameraModel right;
   Eigen::Isometry3d T_right_left;  // X_R = T_right_left * X_L (OpenCV's R, T)
 };
 
@@ -29,20 +29,21 @@ SyntheticRig default_rig();
 // away and in the middle 60 % of the image, tilted 30 .. 50 degrees about a random axis,
 // with every point at least `margin_px` inside both images.
 std::vector<Eigen::Isometry3d> random_pattern_poses(const SyntheticRig& rig,
-                                                    const CalibrationPattern& pattern, int count,
-                                                    std::mt19937_64& rng, double margin_px = 10.0);
+                                                    const vision::CalibrationPattern& pattern,
+                                                    int count, std::mt19937_64& rng,
+                                                    double margin_px = 10.0);
 
 // Image points of the pattern seen at T_cam_target by `camera` (cv::projectPoints with K and
 // kc), plus N(0, noise_px^2) on each coordinate.
-std::vector<cv::Point2f> project_pattern(const CameraModel& camera,
+std::vector<cv::Point2f> project_pattern(const vision::CameraModel& camera,
                                          const Eigen::Isometry3d& T_cam_target,
-                                         const CalibrationPattern& pattern, double noise_px,
+                                         const vision::CalibrationPattern& pattern, double noise_px,
                                          std::mt19937_64& rng);
 
 // Stereo views of the poses with the given noise; view names "view00", "view01", ...
-std::vector<StereoPatternView> stereo_views(const SyntheticRig& rig,
-                                            const CalibrationPattern& pattern,
-                                            const std::vector<Eigen::Isometry3d>& poses,
-                                            double noise_px, std::mt19937_64& rng);
+std::vector<vision::StereoPatternView> stereo_views(const SyntheticRig& rig,
+                                                    const vision::CalibrationPattern& pattern,
+                                                    const std::vector<Eigen::Isometry3d>& poses,
+                                                    double noise_px, std::mt19937_64& rng);
 
 }  // namespace telear::test

@@ -1,0 +1,43 @@
+#pragma once
+// Plays a parsed UI script (ui_script.hpp) against the console, one display frame at a time:
+// each frame it applies actions until it reaches a wait (which lasts display time, during
+// which the session keeps running) or a screenshot (taken at the end of this frame). A failed
+// action or a wait-until that times out is reported with its line and counted; the script
+// goes on, so that one run shows every problem.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "telear/console/ui_script.hpp"
+#include "telear/console/ui_state.hpp"
+#include "telear/session/session.hpp"
+
+namespace telear::console {
+
+class ScriptRunner {
+ public:
+  ScriptRunner() = default;
+  explicit ScriptRunner(std::vector<ScriptLine> lines) : lines_(std::move(lines)) {}
+
+  // One display frame at session time `now` (s). `report` receives failures.
+  void step(session::Session& session, UiState& ui, double now,
+            const std::function<void(const std::string&)>& report);
+
+  bool finished() const { return next_ >= lines_.size() && !waiting_; }
+  bool empty() const { return lines_.empty(); }
+  int failures() const { return failures_; }
+  std::size_t position() const { return next_; }
+
+ private:
+  bool condition_met(session::Session& session, Condition condition) const;
+
+  std::vector<ScriptLine> lines_;
+  std::size_t next_ = 0;
+  bool waiting_ = false;
+  double wait_until_ = 0.0;     // WaitFor: session time it ends
+  double wait_deadline_ = 0.0;  // WaitUntil: timeout
+  int failures_ = 0;
+};
+
+}  // namespace telear::console

@@ -1,0 +1,74 @@
+#pragma once
+// The console's own state: only how things are shown and the operator's step sizes. Everything
+// about the robot, the ghost and the plan lives in the Session; the console reads it each frame.
+
+#include <optional>
+#include <string>
+
+#include "telear/core/motion_command.hpp"
+
+namespace telear::console {
+
+// How the stereo pair is shown in the view panel.
+enum class ViewLayout {
+  kSideBySide,
+  kTopBottom,
+  kAnaglyph,
+  kLeftEye,
+  kRightEye,
+  kSeparate,  // both eyes as two images
+  kPageFlip,  // quad-buffer stereo where the window has it (else side by side)
+};
+
+// "sbs", "tb", "anaglyph", "left", "right", "separate", "page-flip".
+const char* layout_name(ViewLayout layout);
+std::optional<ViewLayout> parse_layout(const std::string& name);
+
+enum class InputTarget { kGhost, kReal };
+
+struct UiState {
+  // [SECTION] view
+  ViewLayout layout = ViewLayout::kSideBySide;
+  bool wireframe = false;
+  int segments = 0;  // 0: the body file's own
+  float ghost_opacity = 0.55f;
+  bool show_reported = true;
+  bool undistorted = false;
+  bool body_dirty = false;  // segments changed: the view's arm body must be rebuilt
+  bool page_flip_granted = false;
+  std::string page_flip_message;
+
+  // [SECTION] motion steps (UI units)
+  float joint_step_deg = 2.0f;
+  float cartesian_step_mm = 10.0f;
+  float rotation_step_deg = 5.0f;
+  core::MotionFrame frame = core::MotionFrame::kBase;
+  InputTarget input_target = InputTarget::kGhost;
+
+  // [SECTION] plan editing
+  float waypoint_duration_s = 1.0f;
+  int selected_waypoint = -1;
+  char waypoint_label[64] = "";
+
+  // [SECTION] real robot
+  int named_index = 0;
+  char typed_configuration[128] = "";  // degrees, comma separated
+
+  // [SECTION] connection (editable; "Connect" rebuilds the session with them)
+  char robot_address[128] = "";
+  char vision_address[128] = "";
+  char token[128] = "";
+  bool reconnect_requested = false;
+  bool embedded = false;  // the session runs against the embedded simulated servers
+
+  // [SECTION] feedback and automation
+  std::string validation_text;  // the last validation's summary
+  std::string last_message;     // the result of the last action, shown in the status bar
+  bool last_failed = false;
+  std::string calibration_note;  // where the drawn calibration came from
+  std::optional<std::string> screenshot_request;
+  bool quit = false;
+  double fps = 0.0;  // console frames per second
+};
+
+}  // namespace telear::console

@@ -1,0 +1,29 @@
+#pragma once
+// Inverse kinematics as motion commands use it: the solution nearest the current
+// configuration that respects the joint limits.
+//
+// Arms with PUMA geometry (ik_analytic.hpp) use the closed form: all 8 solutions, and for each
+// joint the 2*pi-equivalent value within the limits nearest q_current; the solution nearest
+// q_current (Euclidean joint distance) wins. At an exact wrist singularity only q4 +- q6 is
+// determined, so q4 stays at its current value. Other arms use NumericIkSolver seeded at
+// q_current, then random restarts, asking for 1e-9 m / 1e-9 rad and settling for the solver's
+// default 1e-6 where that fails (slow convergence next to a singular target); revolute joints
+// are then moved to their 2*pi-equivalent nearest q_current within the limits, and `singular`
+// is set when the smallest singular value of the Jacobian there is below 1e-6.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "telear/core/ik_analytic.hpp"
+#include "telear/core/result.hpp"
+#include "telear/core/robot_model.hpp"
+
+namespace telear::core {
+
+// The nearest in-limit solution (config "lun" ... or "numeric"; `singular` set near a
+// singularity), or an error saying the target is unreachable or every solution leaves the
+// joint limits, and why. q_current must pass check_joint_vector.
+Result<IkSolution> solve_ik_nearest(const RobotModel& model, const Eigen::Isometry3d& T_base_tool,
+                                    const Eigen::VectorXd& q_current);
+
+}  // namespace telear::core

@@ -1,0 +1,30 @@
+#pragma once
+// Loading robot models from files: a standard-DH YAML table (telear's own small format,
+// docs/robot-files.md) or a URDF (urdfdom). Untrusted input: every failure is a Result
+// error naming the file and what is wrong with it.
+
+#include <string>
+
+#include "telear/core/result.hpp"
+#include "telear/core/robot_model.hpp"
+
+namespace telear::core {
+
+// `name_or_path` is a robot shipped in data/robots (e.g. "puma560"), or a path to a
+// .yaml/.yml DH table or a .urdf file.
+Result<RobotModelPtr> load_robot(const std::string& name_or_path);
+
+Result<RobotModel> load_dh_yaml_file(const std::string& path);
+Result<RobotModel> parse_dh_yaml(const std::string& text, const std::string& source);
+
+// Loads the chain from the URDF's root link to `tip_link` (empty: the single leaf link;
+// an error when the tree branches). Fixed joints are folded into their neighbours.
+Result<RobotModel> load_urdf_file(const std::string& path, const std::string& tip_link = "");
+Result<RobotModel> parse_urdf(const std::string& text, const std::string& source,
+                              const std::string& tip_link = "");
+
+// The directory holding robots/, rigs/ ...: $TELEAR_DATA_DIR if set, else the source tree's
+// data/ directory recorded at build time.
+std::string data_directory();
+
+}  // namespace telear::core

@@ -1,0 +1,47 @@
+#pragma once
+// Bearer-token authentication of gRPC calls: the client sends the metadata
+//   authorization: Bearer <token>
+// and the server compares the token with its own in constant time (the comparison takes as
+// long whatever prefix matches, so timing reveals nothing about the token).
+//
+// Two kinds of access:
+//   command  needs the right token;
+//   read     (info, state, ping) needs the right token, or none at all when observers are
+//            allowed. A wrong token is refused even where none would do: a client that sends
+//            one means to be an operator, and should learn at once that it is not.
+// Refusals are UNAUTHENTICATED statuses whose message says what was missing or wrong.
+
+#include <grpcpp/grpcpp.h>
+
+#include <string>
+
+#include "telear/core/result.hpp"
+
+namespace telear::net {
+
+// The token from a token file: its first line, surrounding white space trimmed. Fails when
+// the file cannot be read or the token is empty.
+Result<std::string> load_token_file(const std::string& path);
+
+// true when a and b are equal; the time taken depends on the lengths only.
+bool constant_time_equal(const std::string& a, const std::string& b);
+
+class BearerAuth {
+ public:
+  // `token` must not be empty (asserts).
+  BearerAuth(std::string token, bool allow_observers);
+
+  bool allow_observers() const { return allow_observers_; }
+
+  grpc::Status authorize_command(const grpc::ServerContext& context) const;
+  grpc::Status authorize_read(const grpc::ServerContext& context) const;
+
+ private:
+  enum class Presented { kNone, kValid, kWrong, kMalformed };
+  Presented check(const grpc::ServerContext& context) const;
+
+  std::string token_;
+  bool allow_observers_;
+};
+
+}  // namespace telear::net

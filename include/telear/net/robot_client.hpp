@@ -1,0 +1,140 @@
+#pragma once
+// RobotClient: the operator's (or an observer's) side of RobotService (proto/telear/v1/
+// robot.proto), in plain C++ types.
+//
+// Threads. start() opens a state stream on a background thread at options.state_rate_hz; each
+// message is converted and published into a latest-wins slot (telear/net/latest_slot.hpp), so
+// latest_state() is a lock-light read of the newest state and a slow reader never queues.
+// When the stream breaks (server gone, network down) the thread reconnects with exponential
+// back-off; connected() and the reconnect count tell the UI. A second background thread
+// pings the server (1 Hz) to estimate the clock offset (telear/net/clock_offset.hpp), so the
+// state's age and the jog expiry are computed across machines.
+//
+// Lease. acquire_lease() takes the lease and starts a heartbeat thread that renews it at a
+// third of its period; release_lease() (or destruction) gives it back. If renewal fails the
+// lease is reported lost (lease_held() false, lease_error() says why); the server meanwhile
+// stops the arm (the dead-man).
+//
+// Commands are unary calls with options.rpc_timeout_s deadlines; each returns a Result whose
+// error message is the server's (it says what and why) prefixed by the command name, or the
+// transport's ("robot server at HOST:PORT unreachable: ...").
+//
+// Every member function may be called from any thread.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "telear/core/motion_command.hpp"
+#include "telear/core/result.hpp"
+#include "telear/core/robot_state.hpp"
+#include "telear/core/trajectory.hpp"
+#include "telear/net/client_options.hpp"
+#include "telear/net/clock_offset.hpp"
+
+namespace telear::net {
+
+struct RobotClientOptions : ClientOptions {
+  double state_rate_hz = 100.0;  // 1..250
+  double ping_period_s = 1.0;
+};
+
+struct JointInfo {
+  std::string name;
+  bool prismatic = false;
+  double min_position = 0, max_position = 0, max_velocity = 0, max_acceleration = 0;
+};
+
+struct RobotInfo {
+  std::string model_name;
+  std::string urdf;
+  std::vector<JointInfo> joints;
+  std::vector<std::pair<std::string, Eigen::VectorXd>> named_configurations;
+  std::string driver;
+  double heartbeat_period_s = 0.25;
+  double start_tolerance = 0.0;
+  int max_waypoints = 0;
+};
+
+// One state message, as the client received it.
+struct RobotStateSample {
+  core::RobotState
+      state;  // telear/core/robot_state.hpp; `time` = capture time in seconds (server clock)
+  std::uint64_t sequence = 0;   // this client's count of states received, from 1, across reconnects
+  std::int64_t capture_ns = 0;  // server clock
+  std::int64_t server_send_ns = 0;  // server clock
+  std::int64_t receive_ns = 0;      // client clock
+  std::string lease_holder;
+  std::string last_trajectory_id;
+  core::TrajectoryStatus last_trajectory_status = core::TrajectoryStatus::kRunning;
+  std::string last_trajectory_message;
+  std::int64_t clock_offset_ns = 0;  // server minus client, the estimate when received
+  // Client clock: capture time converted with the offset estimate (loopback: equal).
+  std::int64_t capture_client_ns() const;
+};
+
+struct TrajectoryAck {
+  std::string trajectory_id;
+  bool duplicate = false;
+  core::TrajectoryStatus status = core::TrajectoryStatus::kRunning;
+  double duration_s = 0.0;
+};
+
+struct JogAck {
+  Eigen::VectorXd target_q;  // empty for a velocity jog
+  std::string singularity_warning;
+  std::string ik_config;
+};
+
+class RobotClient {
+ public:
+  explicit RobotClient(RobotClientOptions options);
+  ~RobotClient();  // releases the lease, stops the threads
+  RobotClient(const RobotClient&) = delete;
+  RobotClient& operator=(const RobotClient&) = delete;
+
+  const RobotClientOptions& options() const;
+
+  // Starts the state stream and ping threads; returns at once (connection is lazy).
+  void start();
+  void stop();
+  bool connected() const;  // the state stream delivered a message within the last second
+  int reconnects() const;
+
+  Result<RobotInfo> get_info();
+  std::optional<RobotStateSample> latest_state() const;
+  // Waits up to timeout_s for a state newer than `after_sequence` (0: any).
+  std::optional<RobotStateSample> wait_state(std::uint64_t after_sequence, double timeout_s) const;
+  std::optional<ClockOffset> clock_offset() const;
+  // One ping now (also feeds the estimator); returns the round trip in seconds.
+  Result<double> ping();
+
+  Status acquire_lease(double heartbeat_period_s = 0.0);  // 0: the server's default
+  Status release_lease();
+  bool lease_held() const;
+  std::string lease_error() const;  // why the lease was lost, empty when held or never taken
+
+  // Jogs with an expiry `valid_for_s` from now (converted to the server's clock).
+  Result<JogAck> jog(const core::MotionCommand& command, double valid_for_s = 0.5);
+  Result<JogAck> jog_velocity(const Eigen::VectorXd& qd, double valid_for_s = 0.5);
+  Result<TrajectoryAck> execute(const std::string& trajectory_id,
+                                const core::TimedWaypoints& waypoints);
+  Status cancel(const std::string& reason = "cancelled by the operator");
+  Status set_gripper(double opening);
+  Status estop(const std::string& reason = "e-stop from the operator");
+  Status reset_estop();
+
+  // Bytes of request messages this client serialized (commands only, not the state stream),
+  // for the plan-then-send vs streaming comparison.
+  std::uint64_t command_bytes_sent() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace telear::net

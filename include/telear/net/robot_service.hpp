@@ -1,0 +1,116 @@
+#pragma once
+// The RobotService implementation (proto/telear/v1/robot.proto): the safety authority in
+// front of a RobotDriver. Each command passes, in this order,
+//
+//   authentication (telear/net/bearer_auth.hpp)          -> UNAUTHENTICATED
+//   the lease (telear/net/lease_manager.hpp; not EStop)  -> PERMISSION_DENIED
+//   validation (telear/net/robot_command_validation.hpp) -> INVALID_ARGUMENT
+//   the arm's state (e-stop, busy)                -> FAILED_PRECONDITION
+//
+// and only then reaches the driver, so a rejected command never moves the arm. Every command
+// is logged once (spdlog, info when accepted, warn when not):
+//
+//   robot command from alice (ipv4:127.0.0.1:40112): execute trajectory 'p1' (12 waypoints,
+//   1.5 s): accepted
+//   robot command from bob (ipv4:127.0.0.1:40120): acquire lease: rejected (PERMISSION_DENIED):
+//   the lease is held by 'alice'; ...
+//
+// "Who" is the client's name (metadata `telear-client`, which RobotClient sends) and its peer
+// address. A lapsed lease is logged by the watchdog, with how late the stop began.
+//
+// Trajectory ids: the first acceptance of each id is kept, and a repeated id is answered with
+// it (duplicate = true, the current status) before any other check but authentication and
+// the lease: a retry after a lost reply is safe even when the arm has moved on since.
+//
+// Threads: the sync gRPC server calls these handlers from its pool; each state stream holds a
+// thread while it lasts. begin_shutdown() wakes and ends every stream (UNAVAILABLE, so clients
+// reconnect), which lets grpc::Server::Shutdown finish at once.
+
+#include <grpcpp/grpcpp.h>
+
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+
+#include "telear/core/robot_driver.hpp"
+#include "telear/net/bearer_auth.hpp"
+#include "telear/net/lease_manager.hpp"
+#include "telear/net/robot_command_validation.hpp"
+#include "telear/v1/robot.grpc.pb.h"
+
+namespace telear::net {
+
+class RobotService final : public v1::RobotService::Service {
+ public:
+  // `driver` must outlive the service.
+  RobotService(core::RobotDriver& driver, BearerAuth auth, LeaseOptions lease_options,
+               CommandLimits limits);
+  ~RobotService() override;
+
+  // Ends every state stream and refuses new ones; stops the lease watchdog.
+  void begin_shutdown();
+
+  const LeaseManager& lease() const { return lease_; }
+
+  grpc::Status GetInfo(grpc::ServerContext* context, const v1::GetInfoRequest* request,
+                       v1::RobotInfo* response) override;
+  grpc::Status StreamState(grpc::ServerContext* context, const v1::StreamStateRequest* request,
+                           grpc::ServerWriter<v1::RobotState>* writer) override;
+  grpc::Status AcquireLease(grpc::ServerContext* context, const v1::AcquireLeaseRequest* request,
+                            v1::Lease* response) override;
+  grpc::Status RenewLease(grpc::ServerContext* context, const v1::RenewLeaseRequest* request,
+                          v1::Lease* response) override;
+  grpc::Status ReleaseLease(grpc::ServerContext* context, const v1::ReleaseLeaseRequest* request,
+                            v1::ReleaseLeaseResponse* response) override;
+  grpc::Status Jog(grpc::ServerContext* context, const v1::JogRequest* request,
+                   v1::JogResponse* response) override;
+  grpc::Status ExecuteTrajectory(grpc::ServerContext* context,
+                                 const v1::ExecuteTrajectoryRequest* request,
+                                 v1::ExecuteTrajectoryResponse* response) override;
+  grpc::Status Cancel(grpc::ServerContext* context, const v1::CancelRequest* request,
+                      v1::CancelResponse* response) override;
+  grpc::Status SetGripper(grpc::ServerContext* context, const v1::SetGripperRequest* request,
+                          v1::SetGripperResponse* response) override;
+  grpc::Status EStop(grpc::ServerContext* context, const v1::EStopRequest* request,
+                     v1::EStopResponse* response) override;
+  grpc::Status ResetEStop(grpc::ServerContext* context, const v1::ResetEStopRequest* request,
+                          v1::ResetEStopResponse* response) override;
+  grpc::Status Ping(grpc::ServerContext* context, const v1::PingRequest* request,
+                    v1::PingResponse* response) override;
+
+ private:
+  struct FirstAcceptance {
+    std::int64_t accepted_ns = 0;
+    double duration_s = 0.0;
+  };
+
+  // Authentication, then the lease; logs and returns the refusal, if any.
+  grpc::Status admit(grpc::ServerContext* context, const std::string& what,
+                     const std::string& lease_id);
+  // The status for a driver rejection: FAILED_PRECONDITION when the arm is busy or
+  // e-stopped now, INVALID_ARGUMENT otherwise.
+  grpc::StatusCode driver_rejection_code() const;
+  grpc::Status finish(grpc::ServerContext* context, const std::string& what, grpc::Status status);
+  void on_lease_lapse(const LeaseLapse& lapse);
+
+  core::RobotDriver& driver_;
+  const BearerAuth auth_;
+  const CommandLimits limits_;
+  LeaseManager lease_;
+
+  std::mutex execute_mutex_;  // one trajectory acceptance at a time
+  std::map<std::string, FirstAcceptance> accepted_;
+  mutable std::mutex last_mutex_;
+  std::string last_trajectory_id_;  // the latest accepted (for the state's last_trajectory_*)
+
+  std::mutex shutdown_mutex_;
+  std::condition_variable shutdown_cv_;
+  bool shutting_down_ = false;
+};
+
+// "alice (ipv4:127.0.0.1:40112)": the `telear-client` metadata and the peer.
+std::string describe_caller(const grpc::ServerContext& context);
+
+}  // namespace telear::net

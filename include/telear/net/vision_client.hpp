@@ -1,0 +1,99 @@
+#pragma once
+// VisionClient: receives the stereo stream of VisionService (proto/telear/v1/vision.proto)
+// and decodes it, never queueing stale frames.
+//
+// Threads. The receive thread reads StereoFrame messages and puts each into a latest-wins
+// slot; the decode thread takes the newest undecoded message, decodes both JPEGs with
+// TurboJPEG into RGB images and publishes a DecodedStereoFrame into a second latest-wins slot
+// that latest_frame() / wait_frame() read. A slow reader skips frames; frames that were
+// received but never decoded (the decoder was busy) are counted. The receive thread
+// reconnects with exponential back-off when the stream breaks; a ping thread estimates the
+// server's clock offset (telear/net/clock_offset.hpp) so per-stage latencies are meaningful across
+// machines.
+//
+// Latency of every stage, per frame, in seconds (client clock after offset conversion):
+//   capture  = (server) when the source delivered the pair  -> encode start
+//   encode   = encode start -> encode end (both eyes)
+//   send     = encode end -> handed to gRPC for this client (the server's send queue)
+//   network  = server send -> received here (needs the clock offset across machines)
+//   decode   = received -> both eyes decoded
+//   total    = capture -> decoded (the age of the image when the client can show it)
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "telear/core/image.hpp"
+#include "telear/core/result.hpp"
+#include "telear/net/client_options.hpp"
+#include "telear/net/clock_offset.hpp"
+#include "telear/vision/camera_model.hpp"
+
+namespace telear::net {
+
+struct VisionClientOptions : ClientOptions {
+  double max_rate_hz = 0.0;   // 0: as fast as the source
+  int jpeg_quality = 0;       // 0: the server's default
+  int width = 0, height = 0;  // 0: the source's size
+  double ping_period_s = 1.0;
+};
+
+struct StageLatency {
+  double capture_to_encode_s = 0, encode_s = 0, send_queue_s = 0, network_s = 0, decode_s = 0;
+  double total_s = 0;  // capture -> decoded
+};
+
+struct DecodedStereoFrame {
+  std::uint64_t frame_id = 0;
+  core::Image left, right;           // RGB8, top row first
+  std::int64_t capture_ns_left = 0;  // client clock (converted)
+  std::int64_t capture_ns_right = 0;
+  std::int64_t decoded_ns = 0;              // client clock
+  std::uint64_t frames_skipped_server = 0;  // the server skipped for this client before sending
+  std::uint64_t frames_skipped_client = 0;  // received here but replaced before decoding
+  std::size_t jpeg_bytes = 0;               // both eyes
+  std::size_t message_bytes = 0;            // the whole StereoFrame message
+  StageLatency latency;
+  Eigen::VectorXd scene_q;          // the simulated rig's configuration, when sent
+  std::int64_t scene_state_ns = 0;  // client clock
+};
+
+struct CameraInfoReply {
+  bool found = false;
+  vision::StereoCameraModel cameras;  // valid when found
+  std::string source;
+  int source_width = 0, source_height = 0;
+  double source_fps = 0;
+};
+
+class VisionClient {
+ public:
+  explicit VisionClient(VisionClientOptions options);
+  ~VisionClient();
+  VisionClient(const VisionClient&) = delete;
+  VisionClient& operator=(const VisionClient&) = delete;
+
+  void start();  // starts the receive, decode and ping threads; returns at once
+  void stop();
+  bool connected() const;  // a frame arrived within the last second
+  int reconnects() const;
+
+  Result<CameraInfoReply> get_camera_info();
+  std::optional<std::shared_ptr<const DecodedStereoFrame>> latest_frame() const;
+  // Waits up to timeout_s for a decoded frame with a frame number newer than `after` (the
+  // slot's count, see LatestSlot); returns it with its slot number.
+  std::optional<std::pair<std::shared_ptr<const DecodedStereoFrame>, std::uint64_t>> wait_frame(
+      std::uint64_t after, double timeout_s) const;
+  std::optional<ClockOffset> clock_offset() const;
+
+  std::uint64_t frames_received() const;
+  std::uint64_t frames_decoded() const;
+  std::uint64_t bytes_received() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace telear::net

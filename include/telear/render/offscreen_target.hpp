@@ -1,0 +1,57 @@
+#pragma once
+// Render-to-texture: a framebuffer object with an RGBA8 colour texture and a 24-bit depth
+// (+ 8-bit stencil) renderbuffer, and read-back to memory in IMAGE order (top row first).
+//
+// The colour texture is GL's usual bottom-up layout (texel row 0 = the image's bottom row,
+// see view_math.hpp); sample it with v = 1 at the image top when composing (stereo layouts,
+// the console), or read it back with read_rgb() / read_rgba(), which flip the rows.
+
+#include <epoxy/gl.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "telear/core/image.hpp"
+#include "telear/core/result.hpp"
+#include "telear/render/gl_objects.hpp"
+
+namespace telear::render {
+
+class OffscreenTarget {
+ public:
+  OffscreenTarget() = default;  // empty; no GL
+  // Needs a current context. Errors: size not positive or above GL_MAX_RENDERBUFFER_SIZE,
+  // or the framebuffer is incomplete.
+  static Result<OffscreenTarget> create(int width, int height);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // Binds the framebuffer for drawing and reading and sets the viewport to all of it.
+  void bind() const;
+  // Sets the viewport to the sub-rectangle (x, y from the bottom-left, GL's convention);
+  // the stereo layouts draw each eye into one half.
+  void bind_viewport(int x, int y, int width, int height) const;
+  // Clears colour (the given RGBA) and depth of the whole target.
+  void clear(float r = 0.f, float g = 0.f, float b = 0.f, float a = 1.f) const;
+  // Clears depth (and stencil) only: for frames whose colour a video background replaces.
+  void clear_depth() const;
+
+  GLuint framebuffer_id() const { return framebuffer_.id(); }
+  const Texture& colour_texture() const { return colour_; }
+
+  // Reads the whole target into `pixels` (width * height * channels bytes, channels 3 = RGB
+  // or 4 = RGBA), top row first. Waits for rendering to finish (glReadPixels).
+  void read_pixels(int channels, std::uint8_t* pixels) const;
+  core::Image read_rgb() const;
+  core::Image read_rgba() const;
+
+ private:
+  Framebuffer framebuffer_;
+  Texture colour_;
+  Renderbuffer depth_;
+  mutable std::vector<std::uint8_t> scratch_;  // RGBA bottom-up read-back
+  int width_ = 0;
+  int height_ = 0;
+};
+
+}  // namespace telear::render

@@ -1,0 +1,67 @@
+#pragma once
+// The embedded default: a simulated robot server and a simulated stereo vision server
+// started in this process, on loopback with ephemeral ports, talking real gRPC. `telear demo`
+// and `telear console` (with no addresses) run on them, so a newcomer sees the whole system
+// without a robot or a camera; the session connects to them exactly as to remote servers.
+//
+// The vision server's simulated rig follows the robot server's state stream through an
+// observer RobotClient (the same path a remote vision server would take), so the "real" arm
+// in the video moves with the robot. The bearer token is generated per start (random) unless
+// given.
+
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "telear/core/result.hpp"
+#include "telear/core/robot_model.hpp"
+#include "telear/net/robot_client.hpp"
+#include "telear/net/robot_server.hpp"
+#include "telear/net/vision_server.hpp"
+#include "telear/sim/sim_robot_driver.hpp"
+
+namespace telear::session {
+
+struct EmbeddedServersOptions {
+  std::string rig;               // empty: data/rigs/puma560_rig.yaml
+  std::string calibration_file;  // served by GetCameraInfo; empty: none
+  std::string token;             // empty: a random one
+  Eigen::VectorXd initial_q;     // empty: the model's "qr" (or zeros)
+  double fps = 30.0;             // the simulated cameras' frame rate
+  int supersample = 1;           // the video's anti-aliasing (1 is fastest)
+  double noise_sigma = 1.0;      // grey levels
+  std::uint64_t seed = 1;
+  std::function<void(const std::string&)> log;  // server log lines; empty: silent
+};
+
+class EmbeddedServers {
+ public:
+  static Result<std::unique_ptr<EmbeddedServers>> create(core::RobotModelPtr model,
+                                                         EmbeddedServersOptions options = {});
+  ~EmbeddedServers();  // stop()
+  EmbeddedServers(const EmbeddedServers&) = delete;
+  EmbeddedServers& operator=(const EmbeddedServers&) = delete;
+
+  std::string robot_address() const { return robot_->address(); }
+  std::string vision_address() const { return vision_->address(); }
+  const std::string& token() const { return token_; }
+  net::RobotServer& robot_server() { return *robot_; }
+  net::VisionServer& vision_server() { return *vision_; }
+  sim::SimRobotDriver& driver() { return *driver_; }  // fault injection in tests
+
+  void stop();
+
+ private:
+  EmbeddedServers() = default;
+  std::string token_;
+  sim::SimRobotDriver* driver_ = nullptr;  // owned by robot_
+  std::unique_ptr<net::RobotServer> robot_;
+  std::unique_ptr<net::RobotClient> follower_;  // the rig's view of the robot's state
+  std::unique_ptr<net::VisionServer> vision_;
+};
+
+// A random 32-hex-digit bearer token.
+std::string random_token();
+
+}  // namespace telear::session

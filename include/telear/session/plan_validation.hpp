@@ -1,0 +1,73 @@
+#pragma once
+// The checks a plan passes before it is executed, each turned into an issue the operator can
+// act on. Errors block execution; warnings are shown and do not.
+//
+// Errors
+//   - the plan is empty;
+//   - a waypoint with the wrong size, a non-finite value, a joint beyond its limits, a
+//     duration or gripper opening out of range (names the waypoint and the joint);
+//   - the plan cannot be timed within the joint velocity / acceleration limits at its scales
+//     (core Trajectory::create), or its sampled form, the message actually sent, fails the
+//     check the robot server applies (core validate_timed_waypoints: velocities, accelerations,
+//     sample count);
+//   - the plan's first waypoint is farther than start_tolerance from the real robot's current
+//     q on some joint: the server would refuse it, and the arm would jump.
+// Warnings
+//   - the real robot's state is unknown (the start was not checked);
+//   - a single waypoint (executing it moves nothing);
+//   - a segment passing near a singularity (smallest singular value of the geometric Jacobian
+//     below singularity_warning_threshold, sampled along the straight joint-space segment): a
+//     joint path is safe there, but the Cartesian frame loses a direction, so the operator
+//     should look at that part of the preview.
+//
+// Reachability needs no IK here: waypoints are joint vectors, checked against the limits.
+// Waypoints are numbered from 0 ("waypoint[2]"), joints from 1 ("joint 2 (shoulder)").
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "telear/session/plan.hpp"
+
+namespace telear::session {
+
+enum class IssueSeverity { kError, kWarning };
+
+struct ValidationIssue {
+  IssueSeverity severity = IssueSeverity::kError;
+  int waypoint = -1;  // 0-based waypoint concerned (first of a segment), -1 for the whole plan
+  int joint = -1;     // 0-based joint concerned, -1 when none
+  std::string message;
+};
+
+struct ValidationReport {
+  std::vector<ValidationIssue> issues;  // errors first, then warnings, each in plan order
+
+  bool ok() const { return error_count() == 0; }  // executable (warnings allowed)
+  int error_count() const;
+  int warning_count() const;
+  // "2 errors, 1 warning:\n  error: ...\n  warning: ..." or "ok" / "ok, 1 warning: ...".
+  std::string summary() const;
+};
+
+struct ValidationOptions {
+  // Largest allowed |q_plan[0] - q_real| per joint (rad or m); the robot server's
+  // start_tolerance (RobotInfo::start_tolerance) when the session knows it.
+  double start_tolerance = 0.01;
+  double singularity_warning_threshold = 0.01;  // as MotionOptions
+  int singularity_samples = 16;                 // per segment, both ends included
+  // The rate the session samples the trajectory at for ExecuteTrajectory (Hz), and the
+  // server's sample limit.
+  double sample_rate_hz = 100.0;
+  int max_samples = core::kMaxTimedSamples;
+};
+
+// `q_real`: the real robot's current joint vector, when known (from its state stream; an
+// invalid one is reported as an error).
+ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::VectorXd>& q_real,
+                               const ValidationOptions& options = {});
+
+const char* to_string(IssueSeverity severity);
+
+}  // namespace telear::session

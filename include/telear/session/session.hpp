@@ -1,0 +1,215 @@
+#pragma once
+// The operator's session: one robot server, one vision server, the ghost, the plan — the
+// seed's workflow (rehearse on the graphical arm over the live video, then send only the
+// finalized trajectory) as a library with no UI code. The console draws a Session; `telear
+// demo` drives one from a script.
+//
+// Two arms. The *real* robot's state comes from the robot server's state stream (RobotClient,
+// latest-wins); the *ghost* is local (GhostArm) and moves only by the operator's commands.
+// The conventional mode — jogging the real robot directly — goes through jog_real().
+//
+// Plan -> preview -> validate -> execute -> monitor.
+//   plan()              waypoints recorded from ghost poses (add_ghost_waypoint)
+//   start_preview()     the ghost animates along the time-parameterized plan (play, pause,
+//                       scrub through preview()); update() advances it
+//   validate_plan()     limits, speeds, sampling, and the plan's start vs the real robot now
+//   execute_plan()      validates again, samples at options.sample_rate_hz, sends the whole
+//                       trajectory as one ExecuteTrajectory; an ExecutionMonitor then compares
+//                       every new robot state with the plan at the robot's own trajectory time
+//                       and cancels the robot beyond the tolerance, saying where and how much
+//
+// Delay-aware display. update() measures the age of the newest decoded frame (now - capture
+// time, on this machine's clock after the clock-offset estimate) and of the robot state, and
+// feeds the DisplayModeSelector: AR while the video is fresh, VR when it is late or stopped,
+// back to AR with hysteresis. options.injected_video_delay_s holds each decoded frame back
+// that long before the session shows it (a stand-in for a slow network, to demonstrate the
+// switch); view().frame is then the newest frame old enough to be "delivered".
+//
+// Registration check. Every options.registration_check_period_s, the newest frame's gripper
+// marker is detected in both eyes and compared with where FK + calibration put it (at the
+// configuration the frame shows: the frame's scene_q when the server sends it, otherwise the
+// robot state nearest the frame's capture time).
+//
+// Threads. A Session is driven from one thread (the UI or demo loop): every member function
+// must be called from it. The network threads live inside the clients, which are thread-safe.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "telear/core/motion_command.hpp"
+#include "telear/core/result.hpp"
+#include "telear/core/robot_model.hpp"
+#include "telear/net/latency_summary.hpp"
+#include "telear/net/robot_client.hpp"
+#include "telear/net/vision_client.hpp"
+#include "telear/session/display_mode.hpp"
+#include "telear/session/execution_monitor.hpp"
+#include "telear/session/ghost_arm.hpp"
+#include "telear/session/plan.hpp"
+#include "telear/session/plan_preview.hpp"
+#include "telear/session/plan_validation.hpp"
+#include "telear/session/registration_check.hpp"
+
+namespace telear::session {
+
+struct SessionOptions {
+  net::RobotClientOptions robot;
+  net::VisionClientOptions vision;
+  // The registered stereo calibration (cameras with T_cam_base in the robot's base frame):
+  // the ghost is drawn through it and the registration check uses it. Unset: none (no check).
+  std::optional<vision::StereoCameraModel> cameras;
+  std::optional<GripperMarker> marker;  // the gripper's marker for the registration check
+  double registration_check_period_s = 0.5;
+  DisplayModeOptions display;
+  MonitorOptions monitor;
+  double sample_rate_hz = 100.0;  // the plan's sampling for ExecuteTrajectory
+  double injected_video_delay_s = 0.0;
+  double jog_validity_s = 0.5;  // a real jog's expiry from now
+  // The lease's heartbeat period asked of the server (0: its default, 250 ms). A machine that
+  // also simulates the robot and renders its cameras may starve the heartbeat thread for
+  // longer than that; the embedded default asks for 1 s (the dead-man then acts within
+  // 1.2 s of a lost operator).
+  double lease_heartbeat_s = 0.0;
+  std::size_t max_events = 200;
+};
+
+struct SessionEvent {
+  double time = 0.0;  // session clock, s
+  enum class Kind { kInfo, kWarning, kError } kind = Kind::kInfo;
+  std::string message;
+};
+
+// What the UI draws this frame.
+struct SessionView {
+  std::shared_ptr<const net::DecodedStereoFrame> frame;  // null: no frame (yet)
+  DisplayDecision display;
+  Eigen::VectorXd ghost_q;     // the ghost (during a preview: the preview's pose; during
+  double ghost_gripper = 1.0;  // execution: the plan at the robot's trajectory time)
+  std::optional<net::RobotStateSample> real;
+  double real_state_age_s = 0.0;
+  bool previewing = false;
+  bool executing = false;
+};
+
+using net::LatencySummary;
+
+struct SessionStats {
+  double video_fps = 0.0;  // decoded frames per second over the last ~2 s
+  LatencySummary capture_to_encode, encode, send_queue, network, decode, total;
+  double robot_state_age_s = 0.0;
+  double robot_round_trip_s = 0.0;  // last ping
+  double video_bytes_per_s = 0.0;
+  std::uint64_t command_bytes_sent = 0;
+  StereoResidual residual;  // last registration check
+  int residual_checks = 0;
+  double frame_age_s = 0.0;
+};
+
+class Session {
+ public:
+  static Result<std::unique_ptr<Session>> create(core::RobotModelPtr model, SessionOptions options);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  const core::RobotModel& model() const { return *model_; }
+  const SessionOptions& options() const { return options_; }
+
+  // [SECTION] connection
+  void connect();     // starts both clients (lazy connection, reconnects by itself)
+  void disconnect();  // releases the lease, stops the clients
+  bool connected() const { return connected_; }
+  bool robot_connected() const;
+  bool vision_connected() const;
+  net::RobotClient& robot() { return *robot_; }
+  net::VisionClient& vision() { return *vision_; }
+  Status take_control();     // acquire the lease
+  Status release_control();  // release it
+  bool in_control() const;
+  Status estop(const std::string& reason = "e-stop from the operator");
+  Status reset_estop();
+
+  // [SECTION] ghost
+  GhostArm& ghost() { return ghost_; }
+  const GhostArm& ghost() const { return ghost_; }
+  core::MotionOutcome move_ghost(
+      const core::MotionCommand& command);  // rejections become events too
+  Status ghost_to_real();                   // "ghost = real"
+
+  // [SECTION] real robot (the conventional mode)
+  Result<net::JogAck> jog_real(const core::MotionCommand& command);
+  Status set_real_gripper(double opening);
+  // Moves the real robot to q along a validated 2-waypoint trajectory (the seed's
+  // "initialize real robot").
+  Result<net::TrajectoryAck> initialize_real(const Eigen::VectorXd& q);
+
+  // [SECTION] plan
+  Plan& plan() { return plan_; }
+  const Plan& plan() const { return plan_; }
+  Status add_ghost_waypoint(double min_duration = 0.0, std::string label = {});
+  Status start_preview(PreviewOptions options = {});
+  void stop_preview();
+  PlanPreview* preview() { return preview_ ? &*preview_ : nullptr; }
+  ValidationReport validate_plan() const;
+  Result<net::TrajectoryAck> execute_plan();
+  Status cancel_execution(const std::string& reason = "cancelled by the operator");
+  const ExecutionMonitor* monitor() const { return monitor_ ? &*monitor_ : nullptr; }
+  bool executing() const { return executing_; }
+  // The outcome of the last execution: "completed", "cancelled: ...", "aborted: ..." or empty.
+  const std::string& last_execution_result() const { return last_result_; }
+
+  // [SECTION] per frame
+  // Advances the preview by dt (s), feeds the monitor, the display mode and the registration
+  // check. Call once per displayed frame.
+  void update(double dt);
+  const SessionView& view() const { return view_; }
+  SessionStats stats() const;
+  DisplayModeSelector& display() { return display_; }
+  void set_injected_video_delay(double seconds) { options_.injected_video_delay_s = seconds; }
+
+  const std::deque<SessionEvent>& events() const { return events_; }
+  double now() const;  // session clock, s (monotonic)
+
+ private:
+  Session(core::RobotModelPtr model, SessionOptions options);
+  void log(SessionEvent::Kind kind, std::string message);
+  void update_frame(double now);
+  void update_monitor();
+  void update_registration(double now);
+  std::optional<Eigen::VectorXd> real_q() const;
+
+  core::RobotModelPtr model_;
+  SessionOptions options_;
+  std::unique_ptr<net::RobotClient> robot_;
+  std::unique_ptr<net::VisionClient> vision_;
+  bool connected_ = false;
+  bool ghost_synced_ = false;  // the ghost starts where the real robot first reports itself
+  std::optional<double> start_tolerance_;  // the server's, once GetInfo answered
+  GhostArm ghost_;
+  Plan plan_;
+  std::optional<PlanPreview> preview_;
+  std::optional<ExecutionMonitor> monitor_;
+  std::string executing_id_;
+  bool executing_ = false;
+  int executions_ = 0;
+  std::string last_result_;
+  DisplayModeSelector display_;
+  std::optional<RegistrationCheck> registration_;
+  double next_registration_check_ = 0.0;
+  StereoResidual residual_;
+  int residual_checks_ = 0;
+  std::uint64_t frame_number_ = 0;
+  std::deque<std::pair<std::uint64_t, std::shared_ptr<const net::DecodedStereoFrame>>> delayed_;
+  std::deque<std::pair<double, std::shared_ptr<const net::DecodedStereoFrame>>> recent_frames_;
+  std::deque<std::pair<double, Eigen::VectorXd>> state_history_;  // capture time (s), q
+  SessionView view_;
+  std::deque<SessionEvent> events_;
+  std::int64_t epoch_ns_ = 0;
+};
+
+}  // namespace telear::session

@@ -1,0 +1,84 @@
+#pragma once
+// Calibration targets placed in the simulated scene, and the ArUco marker on the gripper.
+// Both are flat meshes of exactly-placed coloured quads and polygons (the "texture" is
+// geometry, so its edges and corners are where the math says, to float precision; the scene
+// renderer anti-aliases by supersampling).
+//
+// Target frame: telear/vision/calibration_pattern.hpp's -- the pattern's points at z = 0 in
+// detection order, x along a row, y down the columns; the printed face is seen from -z (z
+// points into the board, away from a camera that sees the pattern the right way round).
+//   chessboard  (cols + 1) x (rows + 1) squares of side s, square (i, j), i = -1..cols - 1,
+//               j = -1..rows - 1, covering [i s, (i + 1) s] x [j s, (j + 1) s], black when
+//               i + j is even, inside a white margin of `margin_squares` squares.
+//   circles     OpenCV's asymmetric grid: dark discs of radius 0.3 s (96-gon, whose centroid
+//               is the centre) at ((2 c + r mod 2) s, r s, 0) on a white plate 0.2 mm behind
+//               (z = +0.0002), so the discs never z-fight with it.
+//
+// ArUco marker (DICT_4X4_50, OpenCV 4.6's cv::aruco): the 6 x 6-cell marker (4 x 4 bits and a
+// black border) inside a white quiet zone of one cell, on a thin backing plate. Marker frame
+// (OpenCV's aruco convention): origin at the marker's centre, x to the right and y up as the
+// marker image is printed, z out of the face towards the viewer; black side L. Corner k, in
+// the order cv::aruco::detectMarkers returns them (top-left, top-right, bottom-right,
+// bottom-left of the printed image):  (-L/2, L/2, 0), (L/2, L/2, 0), (L/2, -L/2, 0),
+// (-L/2, -L/2, 0).
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "telear/core/mesh.hpp"
+#include "telear/core/result.hpp"
+#include "telear/vision/calibration_pattern.hpp"
+#include "telear/vision/camera_model.hpp"
+
+namespace telear::sim {
+
+struct CalibrationTarget {
+  vision::CalibrationPattern pattern;
+  core::Mesh mesh;                                        // target frame
+  std::vector<Eigen::Vector3d> points_target;             // pattern points, detection order
+  Eigen::Vector2d outline_min = Eigen::Vector2d::Zero();  // the board's extent in x, y
+  Eigen::Vector2d outline_max = Eigen::Vector2d::Zero();
+  // Corners of the outline (z = 0), for visibility checks.
+  std::array<Eigen::Vector3d, 4> outline_corners() const;
+  // Centre of the pattern's points.
+  Eigen::Vector3d pattern_centre() const;
+};
+
+// `pattern` must be valid (parse_calibration_pattern). margin_squares: white border width in
+// units of the spacing (chessboard: squares; circles: s).
+CalibrationTarget make_calibration_target(const vision::CalibrationPattern& pattern,
+                                          double margin_squares = 1.0);
+
+struct MarkerSpec {
+  int id = 0;           // DICT_4X4_50: 0..49
+  double side_m = 0.1;  // black square's side (the detector's corners); ~20 px at 2.5 m
+  // Marker frame in the flange (tool) frame, the last link's frame: by default on a plate
+  // beside the gripper's palm, facing +x6 (x_marker = y6, y_marker = z6).
+  Eigen::Isometry3d T_flange_marker = default_T_flange_marker();
+  static Eigen::Isometry3d default_T_flange_marker();
+};
+
+struct ArucoMarker {
+  MarkerSpec spec;
+  core::Mesh mesh;  // flange frame (marker face, quiet zone and backing plate)
+  // The four detector corners in the flange frame (order as above).
+  std::array<Eigen::Vector3d, 4> corners_flange;
+};
+
+// Errors: id outside 0..49, side not positive.
+Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec = {});
+
+// Poses of a target held in front of the rig for a calibration set, drawn from a seeded
+// generator (the same seed gives the same poses). Each pose: the board's outline fills
+// 40-70 % of the image width, its centre lies in the middle 40 % of the image, it is turned
+// by up to 20 degrees in its plane and tilted by 10..40 degrees about a random in-plane
+// axis; it is accepted only when every outline corner and pattern point projects (with the
+// true distortion) at least `margin_px` inside both images and the printed face looks
+// towards both cameras. Errors: no acceptable pose found (board too large for the rig).
+Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(
+    const vision::StereoCameraModel& cameras, const Eigen::Isometry3d& T_base_rig,
+    const CalibrationTarget& target, int count, std::uint64_t seed, double margin_px = 12.0);
+
+}  // namespace telear::sim

@@ -1,0 +1,107 @@
+#include "telear/sim/sim_rig_source.hpp"
+
+#include "telear/core/arm_body.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/render/egl_context.hpp"
+#include "telear/sim/grasp_model.hpp"
+#include "telear/sim/scene_renderer.hpp"
+#include "telear/sim/stereo_rig.hpp"
+
+namespace telear::sim {
+
+struct SimRigSource::Loaded {
+  sim::StereoRig rig;
+  core::RobotModelPtr model;
+  core::BodyDescription body;
+};
+
+// The context is declared first so it is destroyed last, after the renderer's GL objects.
+struct SimRigSource::Gl {
+  std::unique_ptr<render::GlContext> context;
+  sim::SceneRenderer scene;
+  sim::GraspModel grasp;
+};
+
+SimRigSource::~SimRigSource() {
+  release();
+}
+
+void SimRigSource::release() {
+  if (!gl_) return;
+  gl_->scene = sim::SceneRenderer();  // its GL objects, while the context is current
+  gl_.reset();
+}
+
+Result<std::unique_ptr<SimRigSource>> SimRigSource::create(SimRigSourceOptions options) {
+  if (!(options.fps > 0.0 && options.fps <= 1000.0)) {
+    return Error{"sim rig source: fps must be in (0, 1000]"};
+  }
+  if (options.supersample < 1 || options.supersample > 8) {
+    return Error{"sim rig source: supersample must be in 1..8"};
+  }
+  auto rig = sim::load_stereo_rig(options.rig);
+  if (!rig) return rig.error();
+  auto model = core::load_robot(rig->robot);
+  if (!model) return Error{"rig '" + options.rig + "': robot: " + model.error().message};
+  auto body = rig->body_file.empty() ? core::body_description_for(**model)
+                                     : load_body_yaml_file(rig->body_file, **model);
+  if (!body) return body.error();
+
+  std::unique_ptr<SimRigSource> source(new SimRigSource());
+  source->options_ = std::move(options);
+  source->loaded_ = std::make_unique<Loaded>(Loaded{*rig, *model, *body});
+  const core::RobotModel& robot = *source->loaded_->model;
+  source->last_state_.q =
+      robot.named_configuration("qr").value_or(Eigen::VectorXd::Zero(robot.dof()));
+  source->last_state_.gripper = 0.5;
+  source->pacer_ = std::make_unique<vision::FramePacer>(source->options_.fps);
+  return source;
+}
+
+int SimRigSource::width() const {
+  return loaded_->rig.cameras.left.width;
+}
+int SimRigSource::height() const {
+  return loaded_->rig.cameras.left.height;
+}
+
+Status SimRigSource::prepare() {
+  auto context = render::create_headless_context();
+  if (!context) return Error{"sim rig source: " + context.error().message};
+  sim::SceneOptions scene_options;
+  scene_options.supersample = options_.supersample;
+  scene_options.noise_sigma = options_.noise_sigma;
+  scene_options.seed = options_.seed;
+  scene_options.fast_noise = true;  // video: the table noise (telear/sim/scene_renderer.hpp)
+  auto scene =
+      sim::SceneRenderer::create(loaded_->rig, *loaded_->model, loaded_->body, scene_options);
+  if (!scene) return Error{"sim rig source: " + scene.error().message};
+  gl_ = std::make_unique<Gl>(Gl{std::move(*context), std::move(*scene), sim::GraspModel{}});
+  return {};
+}
+
+Result<vision::StereoCapture> SimRigSource::capture() {
+  if (!gl_) return Error{"sim rig source: capture() before prepare()"};
+  pacer_->wait();
+  if (options_.scene_state) {
+    if (auto state = options_.scene_state()) {
+      if (state->q.size() == loaded_->model->dof() && state->q.allFinite()) last_state_ = *state;
+    }
+  }
+  // The box on the table is picked up when the gripper closes on it (telear/sim/grasp_model.hpp).
+  gl_->scene.set_configuration(last_state_.q);
+  const double opening_m = gl_->scene.gripper_opening_m(last_state_.gripper);
+  gl_->grasp.update(gl_->scene.T_base_grip(), opening_m);
+  gl_->scene.set_gripper_opening(static_cast<float>(gl_->grasp.rendered_opening(opening_m)));
+  gl_->scene.set_object_pose(gl_->grasp.T_base_object());
+  vision::StereoCapture out;
+  out.frame_number = ++frame_;
+  out.left = gl_->scene.render(sim::Eye::kLeft, out.frame_number);
+  out.capture_ns_left = core::monotonic_ns();
+  out.right = gl_->scene.render(sim::Eye::kRight, out.frame_number);
+  out.capture_ns_right = core::monotonic_ns();
+  out.scene = last_state_;
+  return out;
+}
+
+}  // namespace telear::sim
