@@ -20,7 +20,9 @@
 #include "telear/core/clock.hpp"
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/kinematics.hpp"
+#include "telear/core/marker_mount.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/net/command_bytes.hpp"
 #include "telear/net/latency_summary.hpp"
 #include "telear/render/ar_view.hpp"
@@ -29,8 +31,6 @@
 #include "telear/session/embedded_servers.hpp"
 #include "telear/session/session.hpp"
 #include "telear/session/view_input.hpp"
-#include "telear/sim/calibration_targets.hpp"
-#include "telear/sim/scene_renderer.hpp"
 #include "telear/vision/camera_file.hpp"
 
 namespace telear::cli {
@@ -411,9 +411,9 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
     cameras.left = vision::resized_camera(camera_file->left, width, height);
     cameras.right = vision::resized_camera(*camera_file->right, width, height);
     session_options.cameras = cameras;
-    auto marker = sim::make_aruco_marker({});
+    auto marker = core::marker_mount_for(*model);
     if (!marker) throw Failure{marker.error().message};
-    session_options.marker = session::GripperMarker{marker->spec.id, marker->corners_flange};
+    session_options.marker = session::GripperMarker{marker->id, marker->corners_flange()};
     auto session_or = session::Session::create(model, session_options);
     if (!session_or) throw Failure{session_or.error().message};
     session::Session& session = **session_or;
@@ -424,10 +424,16 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
     auto body = core::body_description_for(*model);
     if (!body) throw Failure{body.error().message};
     const core::ArmBody arm_body = core::build_arm_body(*body);
-    const Eigen::Vector3d box = sim::SceneRenderer::workspace_object().centre_base;
-    auto view = render::ArView::create(
-        *model, arm_body, cameras,
-        {render::make_floor(3.0f, 12), render::make_cube(0.05f, box.cast<float>())});
+    auto workspace = core::load_workspace_file(core::default_workspace_file(model->name()));
+    if (!workspace) throw Failure{workspace.error().message};
+    const core::WorkspaceObject* graspable = workspace->first_graspable();
+    if (!graspable) throw Failure{"the workspace " + workspace->source + " has nothing to pick"};
+    const Eigen::Vector3d box = graspable->T_base_object.translation();
+    std::vector<render::SceneObject> objects = {render::make_floor(3.0f, 12)};
+    for (render::SceneObject& o : render::workspace_scene_objects(*workspace)) {
+      objects.push_back(std::move(o));
+    }
+    auto view = render::ArView::create(*model, arm_body, cameras, objects);
     if (!view) throw Failure{view.error().message};
     Recorder recorder(session, *view, options, options.out);
     const render::ComposedSize size =

@@ -323,6 +323,8 @@ int main(int argc, char** argv) {
                           "vision server HOST:PORT (none: embedded sim)");
   console_app->add_option("--token-file", console.token_file, "file whose first line is the token");
   console_app->add_option("--calibration", console.calibration, "registered stereo camera file");
+  console_app->add_option("--workspace", console.workspace,
+                          "the scene drawn in the views (default: the robot's shipped workspace)");
   console_app->add_option("--resolution", console.resolution, "video size WxH")
       ->capture_default_str();
   console_app->add_option("--size", console_size, "window size WxH (default 1600x1000)");

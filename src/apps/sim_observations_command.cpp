@@ -32,7 +32,7 @@ int fail(std::ostream& err, const std::string& message, int code = 2) {
 // both images (true cameras, with distortion).
 bool marker_well_seen(const sim::SceneRenderer& scene, double min_cos, double margin_px) {
   const Eigen::Isometry3d T_base_marker =
-      scene.T_base_flange() * scene.marker()->spec.T_flange_marker;
+      scene.T_base_flange() * scene.marker()->mount.T_flange_marker;
   const Eigen::Vector3d normal = T_base_marker.linear().col(2);
   const Eigen::Vector3d centre = T_base_marker.translation();
   const std::array<Eigen::Vector3d, 4> corners = scene.marker_corners_base();
@@ -120,8 +120,8 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
     vision::ObservedConfiguration observed;
     observed.q = q;
     const auto frame = static_cast<std::uint64_t>(c);
-    observed.left_pixels = detect_marker(scene->render(sim::Eye::kLeft, frame), marker.spec.id);
-    observed.right_pixels = detect_marker(scene->render(sim::Eye::kRight, frame), marker.spec.id);
+    observed.left_pixels = detect_marker(scene->render(sim::Eye::kLeft, frame), marker.mount.id);
+    observed.right_pixels = detect_marker(scene->render(sim::Eye::kRight, frame), marker.mount.id);
     out << "configuration " << (c + 1) << "/" << options.configs << ": left "
         << (observed.left_pixels.empty() ? "not found" : "found") << ", right "
         << (observed.right_pixels.empty() ? "not found" : "found");

@@ -24,18 +24,18 @@
 #include "telear/console/mouse_input.hpp"
 #include "telear/console/panels.hpp"
 #include "telear/core/arm_body.hpp"
+#include "telear/core/marker_mount.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
+#include "telear/render/framebuffer_readback.hpp"
 #include "telear/render/glfw_context.hpp"
 #include "telear/render/image_io.hpp"
 #include "telear/render/offscreen_target.hpp"
 #include "telear/render/scene_objects.hpp"
 #include "telear/render/stereo_composer.hpp"
 #include "telear/session/view_input.hpp"
-#include "telear/sim/calibration_targets.hpp"
-#include "telear/sim/scene_renderer.hpp"
-#include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/camera_file.hpp"
 
 namespace telear::console {
@@ -95,6 +95,7 @@ struct ConsoleApp::Impl {
   session::SessionOptions session_options;
   vision::StereoCameraModel cameras;  // at the video's resolution
   core::BodyDescription body;
+  core::Workspace workspace;                   // the operator's copy of the scene
   std::unique_ptr<render::GlContext> context;  // EGL (headless) or GLFW
   render::GlfwContext* window = nullptr;       // the GLFW context, when windowed
   render::OffscreenTarget headless_target;     // the "window" when headless
@@ -125,13 +126,14 @@ struct ConsoleApp::Impl {
     core::ArmBodyOptions body_options;
     body_options.segments_override = ui.segments;
     const core::ArmBody arm_body = core::build_arm_body(body, body_options);
-    const Eigen::Vector3d box = sim::SceneRenderer::workspace_object().centre_base;
     render::ArViewOptions view_options;
     view_options.layout = view_layout(ui);
     view.reset();
-    auto created = render::ArView::create(
-        *model, arm_body, cameras,
-        {render::make_floor(3.0f, 12), render::make_cube(0.05f, box.cast<float>())}, view_options);
+    std::vector<render::SceneObject> objects = {render::make_floor(3.0f, 12)};
+    for (render::SceneObject& o : render::workspace_scene_objects(workspace)) {
+      objects.push_back(std::move(o));
+    }
+    auto created = render::ArView::create(*model, arm_body, cameras, objects, view_options);
     if (!created) return created.error();
     view.emplace(std::move(*created));
     built_layout = view_options.layout;
@@ -178,28 +180,25 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   auto body = core::body_description_for(**model);
   if (!body) return body.error();
   impl->body = *body;
+  const std::string workspace_file = options.workspace.empty()
+                                         ? core::default_workspace_file((*model)->name())
+                                         : options.workspace;
+  if (!options.workspace.empty() || std::filesystem::exists(workspace_file)) {
+    auto workspace = core::load_workspace_file(workspace_file);
+    if (!workspace) return workspace.error();
+    impl->workspace = std::move(*workspace);
+  }
 
   // [SECTION] calibration and servers
   std::unique_ptr<ConsoleApp> app(new ConsoleApp(std::move(impl)));
   Impl& m = *app->impl_;
   std::optional<vision::StereoCameraModel> cameras;
-  std::string calibration_file = options.calibration;
-  if (calibration_file.empty() && embedded &&
-      std::filesystem::exists("out/demo/cache/registered.yaml")) {
-    calibration_file = "out/demo/cache/registered.yaml";
-  }
+  const std::string& calibration_file = options.calibration;
   if (!calibration_file.empty()) {
     auto loaded = load_stereo_file(calibration_file);
     if (!loaded) return loaded.error();
     cameras = *loaded;
     app->ui_.calibration_note = "calibration: " + calibration_file;
-  } else if (embedded) {
-    auto rig = sim::load_stereo_rig(core::data_directory() + "/rigs/puma560_rig.yaml");
-    if (!rig) return rig.error();
-    cameras = rig->cameras;
-    app->ui_.calibration_note =
-        "calibration: the simulator's TRUE cameras (no registered calibration; `telear demo` makes "
-        "one)";
   }
   net::RobotClientOptions& robot = m.session_options.robot;
   net::VisionClientOptions& vision = m.session_options.vision;
@@ -211,6 +210,12 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     auto servers = session::EmbeddedServers::create(m.model, server_options);
     if (!servers) return servers.error();
     app->servers_ = std::move(*servers);
+    if (!cameras) {
+      cameras = app->servers_->rig_cameras();
+      app->ui_.calibration_note =
+          "calibration: the simulator's TRUE cameras (no --calibration; `telear demo` writes a "
+          "registered one to out/demo/cache/registered.yaml)";
+    }
     robot.address = app->servers_->robot_address();
     vision.address = app->servers_->vision_address();
     robot.token = app->servers_->token();
@@ -246,9 +251,10 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   m.cameras.left = vision::resized_camera(cameras->left, width, height);
   m.cameras.right = vision::resized_camera(cameras->right, width, height);
   m.session_options.cameras = m.cameras;
-  auto marker = sim::make_aruco_marker({});
-  if (marker)
-    m.session_options.marker = session::GripperMarker{marker->spec.id, marker->corners_flange};
+  // The registration marker, when the robot has one (the live overlay check needs it).
+  if (auto marker = core::marker_mount_for(*m.model)) {
+    m.session_options.marker = session::GripperMarker{marker->id, marker->corners_flange()};
+  }
   std::snprintf(app->ui_.robot_address, sizeof app->ui_.robot_address, "%s", robot.address.c_str());
   std::snprintf(app->ui_.vision_address, sizeof app->ui_.vision_address, "%s",
                 vision.address.c_str());
@@ -514,21 +520,8 @@ bool ConsoleApp::frame() {
   const bool want_screenshot =
       ui_.screenshot_request || (final_frame && !m.options.screenshot.empty());
   if (want_screenshot || capture_every_frame_) {
-    core::Image image(fb_w, fb_h, 3);
-    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(fb_w) * fb_h * 4);
     if (m.window) glReadBuffer(page_flip ? GL_BACK_LEFT : GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, fb_w, fb_h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    for (int y = 0; y < fb_h; ++y) {
-      const std::uint8_t* src = rgba.data() + static_cast<std::size_t>(fb_h - 1 - y) * fb_w * 4;
-      std::uint8_t* dst = image.row(y);
-      for (int x = 0; x < fb_w; ++x) {
-        dst[3 * x] = src[4 * x];
-        dst[3 * x + 1] = src[4 * x + 1];
-        dst[3 * x + 2] = src[4 * x + 2];
-      }
-    }
-    last_image_ = std::move(image);
+    last_image_ = render::read_bound_framebuffer_rgb(fb_w, fb_h);
   }
   if (ui_.screenshot_request) {
     const std::string path = *ui_.screenshot_request;

@@ -1,5 +1,7 @@
 #include "telear/core/arm_body.hpp"
 
+#include "telear/core/companion_file.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <filesystem>
@@ -162,16 +164,7 @@ BodyDescription default_body_description(const RobotModel& model) {
 }
 
 std::string find_body_file(const RobotModel& model) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!model.source().empty()) {
-    fs::path beside = fs::path(model.source());
-    beside.replace_extension(".body.yaml");
-    if (fs::is_regular_file(beside, ec)) return beside.string();
-  }
-  const fs::path shipped = fs::path(data_directory()) / "robots" / (model.name() + ".body.yaml");
-  if (fs::is_regular_file(shipped, ec)) return shipped.string();
-  return {};
+  return find_companion_file(model, ".body.yaml");
 }
 
 }  // namespace telear::core

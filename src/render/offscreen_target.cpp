@@ -1,5 +1,7 @@
 #include "telear/render/offscreen_target.hpp"
 
+#include "telear/render/framebuffer_readback.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cassert>
@@ -67,37 +69,8 @@ void OffscreenTarget::read_pixels(int channels, std::uint8_t* pixels) const {
   assert((channels == 3 || channels == 4) && "OffscreenTarget::read_pixels(): 3 or 4 channels");
   // RGBA is the driver's fast path (a copy on llvmpipe; RGB is ~4x slower); the row flip
   // into image order and the RGBA -> RGB packing are one CPU pass over the scratch copy.
-  const std::size_t w = static_cast<std::size_t>(width_);
-  scratch_.resize(w * static_cast<std::size_t>(height_) * 4);
   framebuffer_.bind(GL_READ_FRAMEBUFFER);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, scratch_.data());
-  for (int y = 0; y < height_; ++y) {
-    const std::uint8_t* s = scratch_.data() + static_cast<std::size_t>(height_ - 1 - y) * w * 4;
-    std::uint8_t* d = pixels + static_cast<std::size_t>(y) * w * static_cast<std::size_t>(channels);
-    if (channels == 4) {
-      std::copy(s, s + w * 4, d);
-      continue;
-    }
-    // RGBA -> RGB, four pixels (two 64-bit words) into 12 bytes by shifts and masks: ~4x
-    // faster than byte-wise copying (32-bit words are slower here: partial store forwarding).
-    const std::size_t groups = w / 4;
-    for (std::size_t g = 0; g < groups; ++g) {
-      std::uint64_t in[2];
-      std::memcpy(in, s + 16 * g, sizeof in);
-      const std::uint64_t lo =
-          (in[0] & 0xFFFFFFull) | ((in[0] >> 8) & 0xFFFFFF000000ull) | (in[1] << 48);
-      const auto hi =
-          static_cast<std::uint32_t>(((in[1] >> 16) & 0xFFull) | ((in[1] >> 24) & 0xFFFFFF00ull));
-      std::memcpy(d + 12 * g, &lo, sizeof lo);
-      std::memcpy(d + 12 * g + 8, &hi, sizeof hi);
-    }
-    for (std::size_t x = groups * 4; x < w; ++x) {
-      d[3 * x + 0] = s[4 * x + 0];
-      d[3 * x + 1] = s[4 * x + 1];
-      d[3 * x + 2] = s[4 * x + 2];
-    }
-  }
+  read_bound_framebuffer(width_, height_, channels, pixels, scratch_);
 }
 
 core::Image OffscreenTarget::read_rgb() const {

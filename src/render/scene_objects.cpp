@@ -20,6 +20,18 @@ SceneObject make_floor(float size_m, int tiles, float z_base) {
   return o;
 }
 
+std::vector<SceneObject> workspace_scene_objects(const core::Workspace& workspace) {
+  std::vector<SceneObject> objects;
+  for (const core::WorkspaceObject& object : workspace.objects) {
+    SceneObject o;
+    o.name = object.name;
+    o.mesh = core::workspace_object_mesh(object);
+    o.T_base_object = object.T_base_object.cast<float>();
+    objects.push_back(std::move(o));
+  }
+  return objects;
+}
+
 Result<MeshSetRenderer> create_scene_renderer(const std::vector<SceneObject>& objects) {
   std::vector<const core::Mesh*> meshes;
   std::vector<Eigen::Matrix4f> matrices;

@@ -5,6 +5,7 @@
 
 #include "telear/core/robot_loader.hpp"
 #include "telear/sim/sim_rig_source.hpp"
+#include "telear/sim/stereo_rig.hpp"
 
 namespace telear::session {
 
@@ -60,8 +61,7 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   servers->follower_->start();
 
   sim::SimRigSourceOptions rig_options;
-  rig_options.rig =
-      options.rig.empty() ? core::data_directory() + "/rigs/puma560_rig.yaml" : options.rig;
+  rig_options.rig = options.rig.empty() ? sim::default_rig_file() : options.rig;
   rig_options.fps = options.fps;
   rig_options.supersample = options.supersample;
   rig_options.noise_sigma = options.noise_sigma;
@@ -74,6 +74,7 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   };
   auto source = sim::SimRigSource::create(rig_options);
   if (!source) return Error{"embedded vision server: " + source.error().message};
+  servers->rig_cameras_ = (*source)->true_cameras();
 
   net::VisionServerOptions vision_options;
   vision_options.listen_address = "127.0.0.1:0";

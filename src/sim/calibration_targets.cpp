@@ -98,23 +98,17 @@ CalibrationTarget make_calibration_target(const vision::CalibrationPattern& patt
   return target;
 }
 
-Eigen::Isometry3d MarkerSpec::default_T_flange_marker() {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear().col(0) = Eigen::Vector3d::UnitY();  // x_marker = y6
-  T.linear().col(1) = Eigen::Vector3d::UnitZ();  // y_marker = z6
-  T.linear().col(2) = Eigen::Vector3d::UnitX();  // z_marker = x6 (face normal)
-  T.translation() = Eigen::Vector3d(0.05, 0.0, 0.07);
-  return T;
-}
-
-Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec) {
+Result<ArucoMarker> make_aruco_marker(const core::MarkerMount& spec) {
+  if (spec.dictionary != "DICT_4X4_50") {
+    return Error{"ArUco dictionary '" + spec.dictionary + "' is not supported (DICT_4X4_50)"};
+  }
   if (spec.id < 0 || spec.id >= 50) {
     return Error{"ArUco marker id " + std::to_string(spec.id) +
                  " is outside DICT_4X4_50's range 0..49"};
   }
   if (!(spec.side_m > 0.0)) return Error{"ArUco marker side must be positive"};
   ArucoMarker marker;
-  marker.spec = spec;
+  marker.mount = spec;
   // The 6 x 6 cells: 4 x 4 bits inside a one-cell black border (drawMarker, one pixel per
   // cell), then a one-cell white quiet zone around it: 8 x 8 cells.
   cv::Mat cells;
@@ -143,11 +137,7 @@ Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec) {
                    Eigen::Vector3f(2 * half, 2 * half, 0.01f), Eigen::Vector3f(0.18f, 0.18f, 0.2f));
   face.transform(spec.T_flange_marker.matrix().cast<float>());
   marker.mesh = std::move(face);
-  const double h = spec.side_m / 2.0;
-  const std::array<Eigen::Vector3d, 4> corners_marker = {
-      Eigen::Vector3d(-h, h, 0), Eigen::Vector3d(h, h, 0), Eigen::Vector3d(h, -h, 0),
-      Eigen::Vector3d(-h, -h, 0)};
-  for (int k = 0; k < 4; ++k) marker.corners_flange[k] = spec.T_flange_marker * corners_marker[k];
+  marker.corners_flange = spec.corners_flange();
   return marker;
 }
 

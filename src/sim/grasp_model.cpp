@@ -4,38 +4,42 @@
 
 namespace telear::sim {
 
-GraspModel::GraspModel(const WorkspaceObject& object, GraspModelOptions options)
-    : object_(object),
-      options_(options),
-      T_base_object_(Eigen::Isometry3d(Eigen::Translation3d(object.centre_base))) {}
+Result<GraspModel> GraspModel::create(core::Workspace workspace, GraspModelOptions options) {
+  const core::WorkspaceObject* object = workspace.first_graspable();
+  if (!object) {
+    return Error{"the workspace " + (workspace.source.empty() ? workspace.name : workspace.source) +
+                 " has no graspable object (mark one `graspable: true`)"};
+  }
+  GraspModel grasp;
+  const Eigen::Vector3d half = object->half_extent_base();
+  grasp.width_m_ = 2.0 * std::min(half.x(), half.y());
+  grasp.half_height_m_ = half.z();
+  grasp.T_base_object_ = object->T_base_object;
+  grasp.workspace_ = std::move(workspace);
+  grasp.options_ = options;
+  return grasp;
+}
 
 void GraspModel::update(const Eigen::Isometry3d& T_base_grip, double opening_m) {
-  const bool closed_on_box = opening_m <= object_.edge_m + options_.grip_slack_m;
+  const bool closed_on_object = opening_m <= width_m_ + options_.grip_slack_m;
   if (!held_) {
     const double distance = (T_base_grip.translation() - T_base_object_.translation()).norm();
-    if (closed_on_box && distance <= options_.capture_distance_m) {
+    if (closed_on_object && distance <= options_.capture_distance_m) {
       held_ = true;
       ++grasps_;
       T_grip_object_ = T_base_grip.inverse() * T_base_object_;
     }
-  } else if (!closed_on_box) {
+  } else if (!closed_on_object) {
     held_ = false;
     Eigen::Vector3d centre = T_base_object_.translation();
-    centre.z() = support_z(centre) + object_.edge_m / 2;
+    centre.z() = workspace_.support_height(centre.head<2>(), centre.z()) + half_height_m_;
     T_base_object_.translation() = centre;
   }
   if (held_) T_base_object_ = T_base_grip * T_grip_object_;
 }
 
 double GraspModel::rendered_opening(double opening_m) const {
-  return held_ ? std::max(opening_m, object_.edge_m) : opening_m;
-}
-
-double GraspModel::support_z(const Eigen::Vector3d& centre) const {
-  const Eigen::Vector2d offset = centre.head<2>() - options_.table_centre_m;
-  const bool over_table = std::abs(offset.x()) <= options_.table_size_m.x() / 2 &&
-                          std::abs(offset.y()) <= options_.table_size_m.y() / 2;
-  return over_table && centre.z() >= options_.table_top_z_m ? options_.table_top_z_m : 0.0;
+  return held_ ? std::max(opening_m, width_m_) : opening_m;
 }
 
 }  // namespace telear::sim

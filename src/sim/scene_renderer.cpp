@@ -46,32 +46,6 @@ core::Mesh make_tiled_floor(double size_m, int tiles) {
   return mesh;
 }
 
-// A wooden table (top and four legs); the box to pick is a part of its own (it can be carried).
-core::Mesh make_table() {
-  core::Mesh mesh;
-  const Eigen::Vector3f wood(0.55f, 0.38f, 0.22f);
-  const Eigen::Vector3f leg(0.25f, 0.2f, 0.16f);
-  const Eigen::Vector3f top_centre(0.55f, -0.45f, 0.385f);
-  const Eigen::Vector3f top_size(0.5f, 0.7f, 0.03f);
-  core::append_box(mesh, top_centre, top_size, wood);
-  for (int sx : {-1, 1}) {
-    for (int sy : {-1, 1}) {
-      const Eigen::Vector3f c(top_centre.x() + sx * 0.21f, top_centre.y() + sy * 0.31f, 0.185f);
-      core::append_box(mesh, c, Eigen::Vector3f(0.04f, 0.04f, 0.37f), leg);
-    }
-  }
-  return mesh;
-}
-
-// The box to pick, centred on its own frame's origin.
-core::Mesh make_object(const WorkspaceObject& object) {
-  core::Mesh mesh;
-  const float e = static_cast<float>(object.edge_m);
-  core::append_box(mesh, Eigen::Vector3f::Zero(), Eigen::Vector3f(e, e, e),
-                   Eigen::Vector3f(0.8f, 0.18f, 0.12f));
-  return mesh;
-}
-
 std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -164,16 +138,40 @@ Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const core::Ro
   if (!arm) return arm.error();
   scene.arm_ = std::move(*arm);
 
-  const core::Mesh floor = make_tiled_floor(8.0, 20);
-  const core::Mesh table = make_table();
-  const core::Mesh object = make_object(workspace_object());
-  auto environment = render::MeshSetRenderer::create({&floor, &table, &object});
+  // The room's floor, then the workspace's fixed objects, then its graspable object (a part
+  // of its own, moved by set_object_pose), each mesh in its own frame.
+  std::vector<core::Mesh> meshes;
+  std::vector<Eigen::Isometry3d> poses;
+  meshes.push_back(make_tiled_floor(8.0, 20));
+  poses.push_back(Eigen::Isometry3d::Identity());
+  const core::WorkspaceObject* graspable = rig.workspace.first_graspable();
+  for (const core::WorkspaceObject& object : rig.workspace.objects) {
+    if (&object == graspable) continue;
+    meshes.push_back(core::workspace_object_mesh(object));
+    poses.push_back(object.T_base_object);
+  }
+  if (graspable) {
+    meshes.push_back(core::workspace_object_mesh(*graspable));
+    poses.push_back(graspable->T_base_object);
+    scene.object_part_ = static_cast<int>(meshes.size()) - 1;
+  }
+  std::vector<const core::Mesh*> parts;
+  for (const core::Mesh& mesh : meshes) parts.push_back(&mesh);
+  auto environment = render::MeshSetRenderer::create(parts);
   if (!environment) return environment.error();
   scene.environment_ = std::move(*environment);
-  scene.set_object_pose(Eigen::Isometry3d(Eigen::Translation3d(workspace_object().centre_base)));
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    scene.environment_.set_matrix(static_cast<int>(i), poses[i].matrix().cast<float>());
+  }
+  if (graspable) scene.set_object_pose(graspable->T_base_object);
 
-  if (options.marker) {
-    auto marker = make_aruco_marker(*options.marker);
+  if (options.show_marker) {
+    // The marker asked for, else the rig's, else the robot's own marker file.
+    Result<core::MarkerMount> mount = options.marker ? Result<core::MarkerMount>(*options.marker)
+                                      : rig.marker   ? Result<core::MarkerMount>(*rig.marker)
+                                                     : core::marker_mount_for(model);
+    if (!mount) return mount.error();
+    auto marker = make_aruco_marker(*mount);
     if (!marker) return marker.error();
     scene.marker_ = std::move(*marker);
     auto parts = render::MeshSetRenderer::create({&scene.marker_->mesh});
@@ -224,7 +222,8 @@ double SceneRenderer::gripper_opening_m(double opening) const {
 
 void SceneRenderer::set_object_pose(const Eigen::Isometry3d& T_base_object) {
   T_base_object_ = T_base_object;
-  environment_.set_matrix(2, T_base_object.matrix().cast<float>());
+  if (object_part_ >= 0)
+    environment_.set_matrix(object_part_, T_base_object.matrix().cast<float>());
 }
 
 Status SceneRenderer::set_target(const CalibrationTarget& target,

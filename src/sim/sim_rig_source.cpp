@@ -19,7 +19,7 @@ struct SimRigSource::Loaded {
 struct SimRigSource::Gl {
   std::unique_ptr<render::GlContext> context;
   sim::SceneRenderer scene;
-  sim::GraspModel grasp;
+  std::optional<sim::GraspModel> grasp;  // none when the workspace has no graspable object
 };
 
 SimRigSource::~SimRigSource() {
@@ -39,6 +39,7 @@ Result<std::unique_ptr<SimRigSource>> SimRigSource::create(SimRigSourceOptions o
   if (options.supersample < 1 || options.supersample > 8) {
     return Error{"sim rig source: supersample must be in 1..8"};
   }
+  if (options.rig.empty()) options.rig = default_rig_file();
   auto rig = sim::load_stereo_rig(options.rig);
   if (!rig) return rig.error();
   auto model = core::load_robot(rig->robot);
@@ -56,6 +57,10 @@ Result<std::unique_ptr<SimRigSource>> SimRigSource::create(SimRigSourceOptions o
   source->last_state_.gripper = 0.5;
   source->pacer_ = std::make_unique<vision::FramePacer>(source->options_.fps);
   return source;
+}
+
+const vision::StereoCameraModel& SimRigSource::true_cameras() const {
+  return loaded_->rig.cameras;
 }
 
 int SimRigSource::width() const {
@@ -76,7 +81,13 @@ Status SimRigSource::prepare() {
   auto scene =
       sim::SceneRenderer::create(loaded_->rig, *loaded_->model, loaded_->body, scene_options);
   if (!scene) return Error{"sim rig source: " + scene.error().message};
-  gl_ = std::make_unique<Gl>(Gl{std::move(*context), std::move(*scene), sim::GraspModel{}});
+  std::optional<sim::GraspModel> grasp;
+  if (loaded_->rig.workspace.first_graspable()) {
+    auto created = sim::GraspModel::create(loaded_->rig.workspace);
+    if (!created) return Error{"sim rig source: " + created.error().message};
+    grasp = std::move(*created);
+  }
+  gl_ = std::make_unique<Gl>(Gl{std::move(*context), std::move(*scene), std::move(grasp)});
   return {};
 }
 
@@ -91,9 +102,13 @@ Result<vision::StereoCapture> SimRigSource::capture() {
   // The box on the table is picked up when the gripper closes on it (telear/sim/grasp_model.hpp).
   gl_->scene.set_configuration(last_state_.q);
   const double opening_m = gl_->scene.gripper_opening_m(last_state_.gripper);
-  gl_->grasp.update(gl_->scene.T_base_grip(), opening_m);
-  gl_->scene.set_gripper_opening(static_cast<float>(gl_->grasp.rendered_opening(opening_m)));
-  gl_->scene.set_object_pose(gl_->grasp.T_base_object());
+  if (gl_->grasp) {
+    gl_->grasp->update(gl_->scene.T_base_grip(), opening_m);
+    gl_->scene.set_gripper_opening(static_cast<float>(gl_->grasp->rendered_opening(opening_m)));
+    gl_->scene.set_object_pose(gl_->grasp->T_base_object());
+  } else {
+    gl_->scene.set_gripper_opening(static_cast<float>(opening_m));
+  }
   vision::StereoCapture out;
   out.frame_number = ++frame_;
   out.left = gl_->scene.render(sim::Eye::kLeft, out.frame_number);

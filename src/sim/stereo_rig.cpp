@@ -1,5 +1,7 @@
 #include "telear/sim/stereo_rig.hpp"
 
+#include "telear/core/robot_loader.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -128,9 +130,11 @@ Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::stri
   if (!root.IsMap()) return ctx.error("top level", "expected a map");
   for (const auto& entry : root) {
     const auto key = entry.first.as<std::string>();
-    if (key != "name" && key != "robot" && key != "body" && key != "baseline_m" && key != "pose" &&
-        key != "cameras") {
-      return ctx.error(key, "unknown key (expected name, robot, body, baseline_m, pose, cameras)");
+    if (key != "name" && key != "robot" && key != "body" && key != "workspace" && key != "marker" &&
+        key != "baseline_m" && key != "pose" && key != "cameras") {
+      return ctx.error(key,
+                       "unknown key (expected name, robot, body, workspace, marker, baseline_m, "
+                       "pose, cameras)");
     }
   }
   const auto resolve = [&](const std::string& path) {
@@ -148,8 +152,20 @@ Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::stri
       rig.robot = resolve(rig.robot);
     }
     if (root["body"]) rig.body_file = resolve(root["body"].as<std::string>());
+    if (root["workspace"]) rig.workspace_file = resolve(root["workspace"].as<std::string>());
+    if (root["marker"]) rig.marker_file = resolve(root["marker"].as<std::string>());
   } catch (const YAML::Exception&) {
-    return ctx.error("name/robot/body", "must be strings");
+    return ctx.error("name/robot/body/workspace/marker", "must be strings");
+  }
+  if (!rig.workspace_file.empty()) {
+    auto workspace = core::load_workspace_file(rig.workspace_file);
+    if (!workspace) return ctx.error("workspace", workspace.error().message);
+    rig.workspace = std::move(*workspace);
+  }
+  if (!rig.marker_file.empty()) {
+    auto marker = core::load_marker_mount_file(rig.marker_file);
+    if (!marker) return ctx.error("marker", marker.error().message);
+    rig.marker = *marker;
   }
   if (root["baseline_m"]) {
     try {
@@ -198,6 +214,10 @@ Result<StereoRig> load_stereo_rig(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   return parse_stereo_rig_yaml(text.str(), path, fs::path(path).parent_path().string());
+}
+
+std::string default_rig_file(const std::string& robot_name) {
+  return (fs::path(core::data_directory()) / "rigs" / (robot_name + "_rig.yaml")).string();
 }
 
 }  // namespace telear::sim

@@ -276,7 +276,9 @@ TEST_F(StereoRigSceneTest, FastNoiseHasTheExactSpreadAndChangesPerFrame) {
 // The ArUco marker on the gripper is detected where its corners (flange frame) project.
 TEST_F(StereoRigSceneTest, MarkerCornersProjectWhereTheTextureIs) {
   SceneOptions options;
-  options.marker = MarkerSpec{};
+  auto mount = core::marker_mount_for(*model_);
+  ASSERT_TRUE(mount) << mount.error().message;
+  options.marker = *mount;
   options.marker->side_m = 0.12;
   SceneRenderer scene = make_scene(options);
   // A configuration in which the marker faces the left camera.

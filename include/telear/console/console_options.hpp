@@ -12,6 +12,9 @@ struct ConsoleOptions {
   std::string token_file;   // first line: the bearer token
   std::string calibration;  // registered stereo camera file; empty: see docs/console.md
   std::string robot_model = "puma560";
+  // The operator's copy of the scene (drawn in the AR and VR views); empty: the robot's
+  // shipped workspace (core::default_workspace_file), none when it has no such file.
+  std::string workspace;
   std::string resolution = "640x480";  // the video size asked of the vision server
 
   // Output.

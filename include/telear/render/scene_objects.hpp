@@ -1,5 +1,6 @@
 #pragma once
-// Objects of the scene around the arm: the seed's benchmark cube and a floor plane. They are
+// Objects of the scene around the arm: the seed's benchmark cube, a floor plane and the
+// workspace's objects. They are
 // parts of a MeshSetRenderer like the arm's links, placed once with T_base_object.
 
 #include <Eigen/Core>
@@ -9,6 +10,7 @@
 
 #include "telear/core/mesh.hpp"
 #include "telear/core/result.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/render/mesh_set_renderer.hpp"
 
 namespace telear::render {
@@ -25,6 +27,10 @@ SceneObject make_cube(float edge_m, const Eigen::Vector3f& centre_base,
 
 // A checkered square floor of edge `size_m`, tiles x tiles, at height z_base (normal +z).
 SceneObject make_floor(float size_m, int tiles, float z_base = 0.0f);
+
+// The workspace's objects (include/telear/core/workspace.hpp) at their poses, each with its
+// colour: the operator's copy of the scene for the VR view and the AR view's objects.
+std::vector<SceneObject> workspace_scene_objects(const core::Workspace& workspace);
 
 // Uploads the objects and sets their matrices. Needs a current context.
 Result<MeshSetRenderer> create_scene_renderer(const std::vector<SceneObject>& objects);

@@ -20,11 +20,12 @@
 #include "telear/net/robot_server.hpp"
 #include "telear/net/vision_server.hpp"
 #include "telear/sim/sim_robot_driver.hpp"
+#include "telear/vision/camera_model.hpp"
 
 namespace telear::session {
 
 struct EmbeddedServersOptions {
-  std::string rig;               // empty: data/rigs/puma560_rig.yaml
+  std::string rig;               // empty: sim::default_rig_file()
   std::string calibration_file;  // served by GetCameraInfo; empty: none
   std::string token;             // empty: a random one
   Eigen::VectorXd initial_q;     // empty: the model's "qr" (or zeros)
@@ -49,6 +50,8 @@ class EmbeddedServers {
   net::RobotServer& robot_server() { return *robot_; }
   net::VisionServer& vision_server() { return *vision_; }
   sim::SimRobotDriver& driver() { return *driver_; }  // fault injection in tests
+  // The simulated rig's TRUE cameras (a stand-in when no registered calibration is given).
+  const vision::StereoCameraModel& rig_cameras() const { return rig_cameras_; }
 
   void stop();
 
@@ -59,6 +62,7 @@ class EmbeddedServers {
   std::unique_ptr<net::RobotServer> robot_;
   std::unique_ptr<net::RobotClient> follower_;  // the rig's view of the robot's state
   std::unique_ptr<net::VisionServer> vision_;
+  vision::StereoCameraModel rig_cameras_;
 };
 
 // A random 32-hex-digit bearer token.

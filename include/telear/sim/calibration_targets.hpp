@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "telear/core/marker_mount.hpp"
 #include "telear/core/mesh.hpp"
 #include "telear/core/result.hpp"
 #include "telear/vision/calibration_pattern.hpp"
@@ -51,24 +52,16 @@ struct CalibrationTarget {
 CalibrationTarget make_calibration_target(const vision::CalibrationPattern& pattern,
                                           double margin_squares = 1.0);
 
-struct MarkerSpec {
-  int id = 0;           // DICT_4X4_50: 0..49
-  double side_m = 0.1;  // black square's side (the detector's corners); ~20 px at 2.5 m
-  // Marker frame in the flange (tool) frame, the last link's frame: by default on a plate
-  // beside the gripper's palm, facing +x6 (x_marker = y6, y_marker = z6).
-  Eigen::Isometry3d T_flange_marker = default_T_flange_marker();
-  static Eigen::Isometry3d default_T_flange_marker();
-};
-
+// The marker of a mount (include/telear/core/marker_mount.hpp) as geometry.
 struct ArucoMarker {
-  MarkerSpec spec;
+  core::MarkerMount mount;
   core::Mesh mesh;  // flange frame (marker face, quiet zone and backing plate)
   // The four detector corners in the flange frame (order as above).
   std::array<Eigen::Vector3d, 4> corners_flange;
 };
 
-// Errors: id outside 0..49, side not positive.
-Result<ArucoMarker> make_aruco_marker(const MarkerSpec& spec = {});
+// Errors: a dictionary other than DICT_4X4_50, id outside 0..49, side not positive.
+Result<ArucoMarker> make_aruco_marker(const core::MarkerMount& mount);
 
 // Poses of a target held in front of the rig for a calibration set, drawn from a seeded
 // generator (the same seed gives the same poses). Each pose: the board's outline fills

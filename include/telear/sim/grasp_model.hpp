@@ -1,36 +1,35 @@
 #pragma once
-// The box on the table, picked and placed: just enough physics for a pick-and-place demo to
-// look right in the simulated video.
+// The graspable object of the workspace (the box on the table), picked and placed: just
+// enough physics for a pick-and-place demo to look right in the simulated video.
 //
-// The box is grasped when the gripper closes on it: the finger gap shrinks to the box's edge
-// (plus `grip_slack_m`) while the gripper's centre (between the fingers) is within
-// `capture_distance_m` of the box's centre. From then on the box moves rigidly with the
-// gripper (T_grip_object fixed at the grasp). When the gap opens past the edge again the box
-// is released and drops straight down onto what is under it: the table top where its centre
-// is over the table, otherwise the floor (z = 0), keeping its orientation.
+// The object is grasped when the gripper closes on it: the finger gap shrinks to its width
+// (the smaller horizontal edge of its bounds, plus `grip_slack_m`) while the gripper's centre
+// (between the fingers) is within `capture_distance_m` of the object's centre. From then on
+// it moves rigidly with the gripper (T_grip_object fixed at the grasp). When the gap opens
+// past the width again it is released and drops straight down onto what is under it (the
+// workspace's support height: a table top where it is over the table, otherwise the floor,
+// z = 0), keeping its orientation.
 //
-// While held, the fingers cannot close further than the box: rendered_opening() clamps the
-// gap to the edge so the fingers touch the box instead of passing through it.
+// While held, the fingers cannot close further than the object: rendered_opening() clamps
+// the gap to its width so the fingers touch it instead of passing through it.
 
 #include <Eigen/Geometry>
 
-#include "telear/sim/scene_renderer.hpp"
+#include "telear/core/result.hpp"
+#include "telear/core/workspace.hpp"
 
 namespace telear::sim {
 
 struct GraspModelOptions {
   double capture_distance_m = 0.02;
   double grip_slack_m = 0.002;
-  // The table top (base frame): centre, size, height of its upper face.
-  Eigen::Vector2d table_centre_m{0.55, -0.45};
-  Eigen::Vector2d table_size_m{0.5, 0.7};
-  double table_top_z_m = 0.40;
 };
 
 class GraspModel {
  public:
-  explicit GraspModel(const WorkspaceObject& object = SceneRenderer::workspace_object(),
-                      GraspModelOptions options = {});
+  GraspModel() = default;
+  // The workspace's first graspable object is the one picked. Errors: the workspace has none.
+  static Result<GraspModel> create(core::Workspace workspace, GraspModelOptions options = {});
 
   // One step: the gripper's centre frame (base frame) and the finger gap (m).
   void update(const Eigen::Isometry3d& T_base_grip, double opening_m);
@@ -39,13 +38,14 @@ class GraspModel {
   const Eigen::Isometry3d& T_base_object() const { return T_base_object_; }
   double rendered_opening(double opening_m) const;
   int grasps() const { return grasps_; }
+  // The object's grip width (m) and half height (m, its centre above a support).
+  double width_m() const { return width_m_; }
 
  private:
-  double support_z(const Eigen::Vector3d& centre) const;
-
-  WorkspaceObject object_;
+  core::Workspace workspace_;
   GraspModelOptions options_;
-  Eigen::Isometry3d T_base_object_;
+  double width_m_ = 0.0, half_height_m_ = 0.0;
+  Eigen::Isometry3d T_base_object_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_grip_object_ = Eigen::Isometry3d::Identity();
   bool held_ = false;
   int grasps_ = 0;

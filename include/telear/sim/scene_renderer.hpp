@@ -1,9 +1,10 @@
 #pragma once
-// The "real" scene as the simulated stereo rig's TRUE cameras see it: a tiled floor, a table
-// with a box to pick, the PUMA with its real body (not the ghost's), an optional calibration
-// target and the ArUco marker on the gripper, lit by the renderer's ambient + directional
-// light. Each eye is rendered through the renderer's raw (distorted) overlay pipeline with the
-// eye's true camera, so the image carries the true lens distortion; then Gaussian sensor
+// The "real" scene as the simulated stereo rig's TRUE cameras see it: a tiled floor, the
+// rig's workspace (include/telear/core/workspace.hpp: a table, the box to pick), the robot
+// with its real body (not the ghost's), an optional calibration target and the ArUco marker
+// on the gripper (include/telear/core/marker_mount.hpp), lit by the renderer's ambient +
+// directional light. Each eye is rendered through the renderer's raw (distorted) overlay pipeline
+// with the eye's true camera, so the image carries the true lens distortion; then Gaussian sensor
 // noise is added.
 //
 // Anti-aliasing by supersampling. A camera scaled by S has the same lens and the pixel grid
@@ -28,6 +29,7 @@
 #include "telear/core/arm_body.hpp"
 #include "telear/core/arm_body_pose.hpp"
 #include "telear/core/image.hpp"
+#include "telear/core/marker_mount.hpp"
 #include "telear/core/robot_model.hpp"
 #include "telear/render/arm_renderer.hpp"
 #include "telear/render/draw_options.hpp"
@@ -49,16 +51,12 @@ struct SceneOptions {
   // Stills (calibration views, observations) keep the exact per-pixel draw.
   bool fast_noise = false;
   bool show_robot = true;
-  bool show_environment = true;                     // floor, table, the box to pick
-  std::optional<MarkerSpec> marker = MarkerSpec{};  // nullopt: no marker on the gripper
+  bool show_environment = true;  // the floor and the rig's workspace
+  bool show_marker = true;       // the registration marker on the flange
+  // The marker to draw; nullopt: the rig's marker file, else the robot's (marker_mount_for).
+  std::optional<core::MarkerMount> marker;
   render::Lighting lighting;
   Eigen::Vector3f background{0.55f, 0.58f, 0.62f};  // walls (where nothing is drawn)
-};
-
-// The box to pick, on the table (base frame): edge and centre.
-struct WorkspaceObject {
-  double edge_m = 0.05;
-  Eigen::Vector3d centre_base{0.55, -0.35, 0.425};
 };
 
 class SceneRenderer {
@@ -72,7 +70,6 @@ class SceneRenderer {
 
   const StereoRig& rig() const { return rig_; }
   const SceneOptions& options() const { return options_; }
-  static WorkspaceObject workspace_object() { return {}; }
 
   void set_configuration(const Eigen::VectorXd& q) { pose_->set_configuration(q); }
   void set_gripper_opening(float opening_m) { pose_->set_gripper_opening(opening_m); }
@@ -113,6 +110,7 @@ class SceneRenderer {
   std::optional<ArucoMarker> marker_;
   Eigen::Isometry3d T_base_target_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_base_object_ = Eigen::Isometry3d::Identity();
+  int object_part_ = -1;  // the graspable object's part in environment_, -1: none
   bool has_target_ = false;
   render::Overlay overlay_[2];
   render::OffscreenTarget high_res_[2];

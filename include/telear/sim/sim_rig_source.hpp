@@ -19,12 +19,13 @@
 #include <string>
 
 #include "telear/core/robot_model.hpp"
+#include "telear/vision/camera_model.hpp"
 #include "telear/vision/stereo_source.hpp"
 
 namespace telear::sim {
 
 struct SimRigSourceOptions {
-  std::string rig = "data/rigs/puma560_rig.yaml";
+  std::string rig;  // the rig file; empty: default_rig_file() (telear/sim/stereo_rig.hpp)
   double fps = 30.0;
   int supersample = 2;       // anti-aliasing, 1..8 (4 is the stills' quality, slow on a CPU)
   double noise_sigma = 1.0;  // grey levels
@@ -47,6 +48,9 @@ class SimRigSource final : public vision::StereoSource {
   Status prepare() override;
   void release() override;
   Result<vision::StereoCapture> capture() override;
+
+  // The rig's TRUE cameras (what a perfect calibration and registration would give).
+  const vision::StereoCameraModel& true_cameras() const;
 
  private:
   struct Gl;

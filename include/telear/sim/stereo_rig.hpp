@@ -26,9 +26,12 @@
 // Untrusted input: every error names the file and the field.
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 
+#include "telear/core/marker_mount.hpp"
 #include "telear/core/result.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/vision/camera_model.hpp"
 
 namespace telear::sim {
@@ -39,6 +42,14 @@ struct StereoRig {
   std::string name;
   std::string robot;      // as given to load_robot (resolved to a path when it is a file)
   std::string body_file;  // resolved path, empty: the robot's own body
+  // The scene around the robot (the table, the box to pick): resolved path and contents;
+  // empty: nothing but the floor.
+  std::string workspace_file;
+  core::Workspace workspace;
+  // The registration marker on the flange: resolved path and contents; empty: the robot's
+  // own marker file (core::marker_mount_for), looked up by the scene renderer.
+  std::string marker_file;
+  std::optional<core::MarkerMount> marker;
   double baseline_m = 0.06;
   Eigen::Isometry3d T_base_rig = Eigen::Isometry3d::Identity();
   vision::StereoCameraModel cameras;  // true cameras, T_cam_base set from the rig pose
@@ -57,5 +68,8 @@ struct StereoRig {
 Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::string& source,
                                         const std::string& base_directory);
 Result<StereoRig> load_stereo_rig(const std::string& path);
+
+// The shipped rig of a robot: <data>/rigs/<robot>_rig.yaml.
+std::string default_rig_file(const std::string& robot_name = "puma560");
 
 }  // namespace telear::sim

@@ -1,0 +1,270 @@
+#include "telear/core/workspace.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "telear/core/pose.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/core/yaml_number.hpp"
+
+namespace telear::core {
+namespace {
+
+void check_keys(const YAML::Node& map, const std::set<std::string>& allowed,
+                const std::string& what) {
+  for (const auto& entry : map) {
+    const std::string key = entry.first.Scalar();
+    if (!allowed.count(key)) {
+      std::string list;
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw YamlParseError{what + ": unknown key '" + key + "' (expected " + list + ")"};
+    }
+  }
+}
+
+Eigen::Vector3d vector3(const YAML::Node& node, const std::string& what) {
+  if (!node.IsSequence() || node.size() != 3) {
+    throw YamlParseError{what + " must be a list of 3 numbers"};
+  }
+  return {yaml_number(node[0], what + "[0]"), yaml_number(node[1], what + "[1]"),
+          yaml_number(node[2], what + "[2]")};
+}
+
+double positive(const YAML::Node& node, const std::string& what) {
+  if (!node) throw YamlParseError{what + ": missing"};
+  const double value = yaml_number(node, what);
+  if (!(value > 0.0)) {
+    std::ostringstream s;
+    s << what << " must be positive, got " << value;
+    throw YamlParseError{s.str()};
+  }
+  return value;
+}
+
+Eigen::Isometry3d parse_pose(const YAML::Node& node, const std::string& what) {
+  if (!node.IsMap()) throw YamlParseError{what + " must be a map {xyz: [x, y, z], rpy: [r, p, y]}"};
+  check_keys(node, {"xyz", "rpy"}, what);
+  if (!node["xyz"]) throw YamlParseError{what + ".xyz: missing"};
+  const Eigen::Vector3d xyz = vector3(node["xyz"], what + ".xyz");
+  const Eigen::Vector3d rpy =
+      node["rpy"] ? vector3(node["rpy"], what + ".rpy") : Eigen::Vector3d::Zero();
+  return pose_from_xyz_rpy(xyz, rpy);
+}
+
+WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
+  if (!node.IsMap()) throw YamlParseError{what + " must be a map"};
+  WorkspaceObject object;
+  if (!node["name"] || !node["name"].IsScalar() || node["name"].Scalar().empty()) {
+    throw YamlParseError{what + ".name: missing (every object has a name)"};
+  }
+  object.name = node["name"].Scalar();
+  const std::string where = "object '" + object.name + "'";
+  if (!node["shape"] || !node["shape"].IsScalar()) {
+    throw YamlParseError{where + ": shape: missing (box, cylinder or sphere)"};
+  }
+  const std::string shape = node["shape"].Scalar();
+  const std::set<std::string> common = {"name", "shape", "pose", "colour", "graspable"};
+  auto keys = [&](std::initializer_list<std::string> extra) {
+    std::set<std::string> allowed = common;
+    allowed.insert(extra.begin(), extra.end());
+    check_keys(node, allowed, where);
+  };
+  if (shape == "box") {
+    object.shape = ShapeKind::kBox;
+    keys({"size"});
+    if (!node["size"]) throw YamlParseError{where + ": size: missing ([x, y, z] in m)"};
+    object.size_m = vector3(node["size"], where + ": size");
+    for (int i = 0; i < 3; ++i) {
+      if (!(object.size_m[i] > 0.0)) {
+        std::ostringstream s;
+        s << where << ": size[" << i << "] must be positive, got " << object.size_m[i];
+        throw YamlParseError{s.str()};
+      }
+    }
+  } else if (shape == "cylinder") {
+    object.shape = ShapeKind::kCylinder;
+    keys({"radius", "length"});
+    object.radius_m = positive(node["radius"], where + ": radius");
+    object.length_m = positive(node["length"], where + ": length");
+  } else if (shape == "sphere") {
+    object.shape = ShapeKind::kSphere;
+    keys({"radius"});
+    object.radius_m = positive(node["radius"], where + ": radius");
+  } else {
+    throw YamlParseError{where + ": unknown shape '" + shape + "' (box, cylinder or sphere)"};
+  }
+  if (node["pose"]) object.T_base_object = parse_pose(node["pose"], where + ": pose");
+  if (node["colour"]) {
+    const Eigen::Vector3d c = vector3(node["colour"], where + ": colour");
+    if ((c.array() < 0.0).any() || (c.array() > 1.0).any()) {
+      throw YamlParseError{where + ": colour components must lie in 0..1"};
+    }
+    object.colour = c.cast<float>();
+  }
+  if (node["graspable"]) {
+    try {
+      object.graspable = node["graspable"].as<bool>();
+    } catch (const YAML::Exception&) {
+      throw YamlParseError{where + ": graspable must be true or false, got '" +
+                           node["graspable"].Scalar() + "'"};
+    }
+  }
+  return object;
+}
+
+void append_sphere(Mesh& mesh, double radius, int segments, const Eigen::Vector3f& colour) {
+  const int rings = std::max(2, segments / 2);
+  const std::uint32_t first = static_cast<std::uint32_t>(mesh.vertices.size());
+  for (int i = 0; i <= rings; ++i) {
+    const double theta = std::numbers::pi * i / rings;  // from the +z pole
+    for (int j = 0; j <= segments; ++j) {
+      const double phi = 2.0 * std::numbers::pi * j / segments;
+      const Eigen::Vector3f n(static_cast<float>(std::sin(theta) * std::cos(phi)),
+                              static_cast<float>(std::sin(theta) * std::sin(phi)),
+                              static_cast<float>(std::cos(theta)));
+      mesh.add_vertex(n * static_cast<float>(radius), n, colour);
+    }
+  }
+  const std::uint32_t stride = static_cast<std::uint32_t>(segments + 1);
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < segments; ++j) {
+      const std::uint32_t a = first + i * stride + j, b = a + stride;
+      // Counter-clockwise seen from outside.
+      mesh.triangles.insert(mesh.triangles.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+  }
+}
+
+}  // namespace
+
+const char* to_string(ShapeKind kind) {
+  switch (kind) {
+    case ShapeKind::kBox:
+      return "box";
+    case ShapeKind::kCylinder:
+      return "cylinder";
+    case ShapeKind::kSphere:
+      return "sphere";
+  }
+  return "?";
+}
+
+Eigen::Vector3d WorkspaceObject::half_extent_base() const {
+  Eigen::Vector3d half;
+  switch (shape) {
+    case ShapeKind::kBox:
+      half = size_m / 2.0;
+      break;
+    case ShapeKind::kCylinder:
+      half = Eigen::Vector3d(radius_m, radius_m, length_m / 2.0);
+      break;
+    case ShapeKind::kSphere:
+      half = Eigen::Vector3d::Constant(radius_m);
+      break;
+  }
+  // The rotated box of half-extents `half` spans |R| half about the centre (a cylinder and a
+  // sphere lie inside their boxes, so the bounds are conservative for them).
+  return T_base_object.linear().cwiseAbs() * half;
+}
+
+Eigen::AlignedBox3d WorkspaceObject::bounds_base() const {
+  const Eigen::Vector3d extent = half_extent_base();
+  const Eigen::Vector3d centre = T_base_object.translation();
+  return Eigen::AlignedBox3d(centre - extent, centre + extent);
+}
+
+const WorkspaceObject* Workspace::find(const std::string& name) const {
+  for (const WorkspaceObject& o : objects) {
+    if (o.name == name) return &o;
+  }
+  return nullptr;
+}
+
+const WorkspaceObject* Workspace::first_graspable() const {
+  for (const WorkspaceObject& o : objects) {
+    if (o.graspable) return &o;
+  }
+  return nullptr;
+}
+
+double Workspace::support_height(const Eigen::Vector2d& xy_base, double below_z) const {
+  double height = 0.0;
+  for (const WorkspaceObject& o : objects) {
+    if (o.graspable) continue;
+    const Eigen::AlignedBox3d b = o.bounds_base();
+    if (xy_base.x() >= b.min().x() && xy_base.x() <= b.max().x() && xy_base.y() >= b.min().y() &&
+        xy_base.y() <= b.max().y() && b.max().z() <= below_z) {
+      height = std::max(height, b.max().z());
+    }
+  }
+  return height;
+}
+
+Result<Workspace> parse_workspace_yaml(const std::string& text, const std::string& source) {
+  Workspace workspace;
+  workspace.source = source;
+  try {
+    const YAML::Node root = YAML::Load(text);
+    if (!root.IsMap()) return Error{source + ": not a workspace file (expected name, objects)"};
+    check_keys(root, {"name", "objects"}, source);
+    if (root["name"]) workspace.name = root["name"].Scalar();
+    const YAML::Node objects = root["objects"];
+    if (!objects || !objects.IsSequence()) {
+      return Error{source + ": objects: missing (a list of objects)"};
+    }
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      WorkspaceObject object = parse_object(objects[i], "objects[" + std::to_string(i) + "]");
+      if (!names.insert(object.name).second) {
+        return Error{source + ": object '" + object.name + "' is named twice"};
+      }
+      workspace.objects.push_back(std::move(object));
+    }
+  } catch (const YamlParseError& e) {
+    return Error{source + ": " + e.message};
+  } catch (const YAML::Exception& e) {
+    return Error{source + ": not valid YAML: " + e.what()};
+  }
+  return workspace;
+}
+
+Result<Workspace> load_workspace_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return Error{"cannot read the workspace file " + path};
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_workspace_yaml(text.str(), path);
+}
+
+std::string default_workspace_file(const std::string& robot_name) {
+  return (std::filesystem::path(data_directory()) / "workspaces" / (robot_name + "_table.yaml"))
+      .string();
+}
+
+Mesh workspace_object_mesh(const WorkspaceObject& object, int segments) {
+  Mesh mesh;
+  switch (object.shape) {
+    case ShapeKind::kBox:
+      append_box(mesh, Eigen::Vector3f::Zero(), object.size_m.cast<float>(), object.colour);
+      break;
+    case ShapeKind::kCylinder: {
+      const float h = static_cast<float>(object.length_m / 2.0);
+      append_cylinder(mesh, Eigen::Vector3f(0, 0, -h), Eigen::Vector3f(0, 0, h),
+                      static_cast<float>(object.radius_m), std::max(segments, kMinCylinderSegments),
+                      object.colour);
+      break;
+    }
+    case ShapeKind::kSphere:
+      append_sphere(mesh, object.radius_m, std::max(segments, 4), object.colour);
+      break;
+  }
+  return mesh;
+}
+
+}  // namespace telear::core
