@@ -18,13 +18,14 @@
 #include <optional>
 #include <string>
 
+#include "telear/core/robot_loader.hpp"
 #include "telear/core/robot_model.hpp"
 #include "telear/vision/stereo_source.hpp"
 
 namespace telear::sim {
 
 struct SimRigSourceOptions {
-  std::string rig = "data/rigs/puma560_rig.yaml";
+  std::string rig = core::data_directory() + "/rigs/puma560_rig.yaml";  // the shipped rig
   double fps = 30.0;
   int supersample = 2;       // anti-aliasing, 1..8 (4 is the stills' quality, slow on a CPU)
   double noise_sigma = 1.0;  // grey levels
