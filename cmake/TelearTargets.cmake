@@ -1,8 +1,12 @@
 # Helpers shared by every layer: one place sets warnings and include roots.
 
+# CMAKE_INSTALL_LIBDIR, CMAKE_INSTALL_INCLUDEDIR for every install() (cmake/TelearInstall.cmake).
+include(GNUInstallDirs)
+
 # telear_library(NAME SOURCES ... ) creates the static library telear_NAME, alias telear::NAME,
 # whose public headers are included as "telear/NAME/file.hpp" from include/ (in the build
-# tree and, installed, from the package's include directory).
+# tree and, installed, from the package's include directory). It is installed and exported
+# as telear::NAME (find_package(telear)).
 function(telear_library name)
   add_library(telear_${name} STATIC ${ARGN})
   add_library(telear::${name} ALIAS telear_${name})
@@ -10,6 +14,8 @@ function(telear_library name)
   target_include_directories(telear_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
                                                    $<INSTALL_INTERFACE:include>)
   telear_warnings(telear_${name})
+  # Every layer library is installed and exported (cmake/TelearInstall.cmake).
+  set_property(GLOBAL APPEND PROPERTY TELEAR_EXPORTED_LIBRARIES telear_${name})
 endfunction()
 
 function(telear_warnings target)

@@ -20,11 +20,12 @@
 #include "apps/sim_observations_command.hpp"
 #include "apps/stream_bench_command.hpp"
 #include "apps/vision_server_command.hpp"
+#include "telear/core/version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"telear: augmented-reality telerobotics (docs/cli.md)", "telear"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "telear 0.1.0");
+  app.set_version_flag("--version", "telear " + std::string(telear::core::version_string()));
 
   // [SECTION] demo (the README's main command; docs/demo.md)
   telear::cli::DemoOptions demo;

@@ -10,10 +10,12 @@
 #include <ostream>
 #include <string>
 
+#include "telear/core/robot_loader.hpp"
+
 namespace telear::cli {
 
 struct SimCaptureOptions {
-  std::string rig = "data/rigs/puma560_rig.yaml";
+  std::string rig = core::data_directory() + "/rigs/puma560_rig.yaml";  // the shipped rig
   std::string pattern = "chessboard:9x6:0.03";
   int views = 20;
   std::string output;      // directory, created if missing

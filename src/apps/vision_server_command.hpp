@@ -17,13 +17,15 @@
 #include <ostream>
 #include <string>
 
+#include "telear/core/robot_loader.hpp"
+
 namespace telear::cli {
 
 struct VisionServerCommandOptions {
   std::string listen = "127.0.0.1:50052";
   std::string source = "sim";  // sim | files | v4l2 | synthetic
-  std::string rig = "data/rigs/puma560_rig.yaml";
-  std::string robot_server;  // HOST:PORT, sim only
+  std::string rig = core::data_directory() + "/rigs/puma560_rig.yaml";  // the shipped rig
+  std::string robot_server;                                             // HOST:PORT, sim only
   std::string token_file;
   std::string robot_token_file;  // empty: token_file
   std::string left, right;       // files

@@ -15,6 +15,7 @@
 #include "cli_runner.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/pose.hpp"
+#include "telear/core/version.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear {
@@ -116,6 +117,13 @@ Eigen::VectorXd json_vector(const nlohmann::json& j) {
   Eigen::VectorXd v(static_cast<Eigen::Index>(j.size()));
   for (size_t i = 0; i < j.size(); ++i) v[static_cast<Eigen::Index>(i)] = j[i].get<double>();
   return v;
+}
+
+TEST(Cli, VersionIsTheProjectVersionAndTheGitDescription) {
+  const auto r = run_telear("--version");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "telear " + std::string(core::version_string()) + "\n");
+  EXPECT_THAT(std::string(core::version_string()), ::testing::StartsWith(core::version()));
 }
 
 TEST(CliKinIk, JsonGivesAllEightSolutionsReproducingThePose) {

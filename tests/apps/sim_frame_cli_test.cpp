@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "cli_runner.hpp"
@@ -26,6 +27,23 @@ TEST(SimFrameCli, WritesBothEyesOfTheSceneAtAConfiguration) {
     EXPECT_THAT(r.out, HasSubstr("wrote " + path));
     std::filesystem::remove(path);
   }
+}
+
+// The default rig comes from core::data_directory(), not from a path relative to the working
+// directory: `telear sim frame` works from anywhere without TELEAR_DATA_DIR.
+TEST(SimFrameCli, DefaultRigIsFoundFromAnyWorkingDirectory) {
+  const std::filesystem::path dir =
+      ::testing::TempDir() + "sim_frame_cwd_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  const std::string command = "cd '" + dir.string() + "' && env -u TELEAR_DATA_DIR " +
+                              std::string(TELEAR_BINARY) +
+                              " sim frame --q qr -o frame > out.txt 2> err.txt";
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << test::slurp(dir / "err.txt");
+  for (const char* eye : {"frame_left.png", "frame_right.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / eye)) << (dir / eye);
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(SimFrameCli, BadInputIsOneLineAndWritesNothing) {

@@ -3,7 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <numbers>
+#include <string>
 
 #include "telear/core/angles.hpp"
 #include "telear/core/joint_limits.hpp"
@@ -129,6 +131,27 @@ TEST(RobotLoader, ReportsMissingAndUnknownRobots) {
   auto empty = load_robot("");
   ASSERT_FALSE(empty);
   EXPECT_THAT(empty.error().message, HasSubstr("no robot given"));
+}
+
+// data_directory()'s order (include/telear/core/robot_loader.hpp): TELEAR_DATA_DIR, then
+// <program>/../share/telear/data (an installed telear; tests/install covers it), then the
+// source tree's data/. A test program in the build tree has no share/ beside it.
+TEST(DataDirectory, EnvironmentWinsThenTheSourceTree) {
+  const char* saved = std::getenv("TELEAR_DATA_DIR");
+  const std::string saved_value = saved != nullptr ? saved : "";
+  ASSERT_EQ(setenv("TELEAR_DATA_DIR", "/nonexistent/telear-data", 1), 0);
+  EXPECT_EQ(data_directory(), "/nonexistent/telear-data");
+  auto moved = load_robot("puma560");
+  ASSERT_FALSE(moved);
+  EXPECT_THAT(moved.error().message, HasSubstr("no /nonexistent/telear-data/robots/puma560.yaml"));
+
+  ASSERT_EQ(setenv("TELEAR_DATA_DIR", "", 1), 0);  // empty counts as unset
+  EXPECT_EQ(data_directory(), TELEAR_TEST_DATA_DIR);
+  ASSERT_EQ(unsetenv("TELEAR_DATA_DIR"), 0);
+  EXPECT_EQ(data_directory(), TELEAR_TEST_DATA_DIR);
+  EXPECT_TRUE(load_robot("puma560"));
+
+  if (saved != nullptr) setenv("TELEAR_DATA_DIR", saved_value.c_str(), 1);
 }
 
 TEST(UrdfLoader, RejectsMalformedAndUnsupportedFiles) {

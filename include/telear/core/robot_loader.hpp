@@ -23,8 +23,11 @@ Result<RobotModel> load_urdf_file(const std::string& path, const std::string& ti
 Result<RobotModel> parse_urdf(const std::string& text, const std::string& source,
                               const std::string& tip_link = "");
 
-// The directory holding robots/, rigs/ ...: $TELEAR_DATA_DIR if set, else the source tree's
-// data/ directory recorded at build time.
+// The directory holding robots/, rigs/, cameras/, in this order (docs/install.md):
+//   1. $TELEAR_DATA_DIR when set and not empty (not checked: a wrong one fails on use);
+//   2. <directory of the running program>/../share/telear/data when that directory exists
+//      (an installed telear: PREFIX/bin/telear reads PREFIX/share/telear/data);
+//   3. the source tree's data/ directory recorded at build time (programs in the build tree).
 std::string data_directory();
 
 }  // namespace telear::core
