@@ -9,24 +9,14 @@
 // per eye fx, fy, cx, cy, k1, k2, k3, p1, p2 truth / estimate / error (% for focal lengths,
 // px for the principal point), the stereo baseline (mm), the registration error per eye
 // (mm, deg), the overlay error RMS / max per eye (px, telear/vision/overlay_accuracy.hpp), and PASS
-// or FAIL against the targets below. Exit codes: 0 evaluated (whatever the verdict), 2 bad
+// or FAIL against the targets of include/telear/vision/accuracy_check.hpp (whose JSON
+// --json writes). Exit codes: 0 evaluated (whatever the verdict), 2 bad
 // input (one line on `err`), 1 the JSON could not be written.
 
 #include <iosfwd>
 #include <string>
 
 namespace telear::cli {
-
-// Issue 4 item 7.
-struct AccuracyTargets {
-  double focal_percent = 0.2;
-  double principal_point_px = 1.0;
-  double baseline_mm = 0.5;
-  double registration_mm = 1.0;
-  double registration_deg = 0.1;
-  double overlay_rms_px = 0.5;
-  double overlay_max_px = 1.5;
-};
 
 struct EvalOptions {
   std::string truth;

@@ -1,14 +1,13 @@
 #include "apps/register_command.hpp"
 
 #include <cstdio>
-#include <iomanip>
 #include <ostream>
-#include <sstream>
 
 #include "telear/core/robot_loader.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/camera_file.hpp"
 #include "telear/vision/observations_file.hpp"
+#include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration.hpp"
 
 namespace telear::cli {
@@ -19,17 +18,6 @@ constexpr const char* kCommand = "telear register: ";
 int fail(std::ostream& err, const std::string& message, int code = 2) {
   err << kCommand << message << "\n";
   return code;
-}
-
-// An OpenCV FileStorage matrix entry (rows x cols, row-major data), as cv::FileStorage
-// writes it, so OpenCV programs and load_stereo_geometry() read the appended keys.
-std::string matrix_entry(const std::string& key, int rows, int cols, const double* data) {
-  std::ostringstream s;
-  s << std::setprecision(17);
-  s << key << ": !!opencv-matrix\n   rows: " << rows << "\n   cols: " << cols
-    << "\n   dt: d\n   data: [ ";
-  for (int i = 0; i < rows * cols; ++i) s << data[i] << (i + 1 == rows * cols ? " ]\n" : ", ");
-  return s.str();
 }
 
 std::string residual_line(const char* label, const vision::EyeResiduals& r) {
@@ -60,18 +48,8 @@ int run_register(const RegisterOptions& options, std::ostream& out, std::ostream
                          "' is a mono camera file; registration needs a stereo pair (the "
                          "output of `telear calibrate --left ... --right ...`)");
   }
-  Eigen::Isometry3d T_right_left = Eigen::Isometry3d::Identity();
-  if (auto geometry = vision::load_stereo_geometry(options.rig)) {
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) T_right_left.linear()(r, c) = geometry->R(r, c);
-      T_right_left.translation()(r) = geometry->T(r);
-    }
-  } else if (cameras->left_has_pose && cameras->right_has_pose) {
-    T_right_left = vision::right_from_left(cameras->left.T_cam_base, cameras->right->T_cam_base);
-  } else {
-    return fail(err, "--rig: " + geometry.error().message +
-                         ", and the file has no T_cam_base for both eyes either");
-  }
+  auto T_right_left = vision::stereo_pair_geometry(options.rig, *cameras);
+  if (!T_right_left) return fail(err, "--rig: " + T_right_left.error().message);
 
   auto model = core::load_robot(options.robot);
   if (!model) return fail(err, "--robot: " + model.error().message);
@@ -80,7 +58,7 @@ int run_register(const RegisterOptions& options, std::ostream& out, std::ostream
 
   vision::RegistrationOptions registration_options;
   registration_options.max_iterations = options.max_iterations;
-  auto result = vision::register_stereo(**model, cameras->left, *cameras->right, T_right_left,
+  auto result = vision::register_stereo(**model, cameras->left, *cameras->right, *T_right_left,
                                         *observations, registration_options);
   if (!result) {
     return fail(err, "observations '" + options.observations + "': " + result.error().message);
@@ -89,13 +67,7 @@ int run_register(const RegisterOptions& options, std::ostream& out, std::ostream
   vision::StereoCameraModel registered{cameras->left, *cameras->right};
   registered.left.T_cam_base = result->T_left_base;
   registered.right.T_cam_base = result->T_right_base;
-  // The pair's geometry as R, T (X_R = R X_L + T), row-major.
-  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = T_right_left.linear();
-  const Eigen::Vector3d T = T_right_left.translation();
-  std::string text = vision::opencv_stereo_camera_yaml(registered);
-  text += "# Stereo geometry the registration held fixed: X_R = R X_L + T (metres).\n";
-  text += matrix_entry("R", 3, 3, R.data());
-  text += matrix_entry("T", 3, 1, T.data());
+  const std::string text = vision::registered_camera_yaml(registered, *T_right_left);
   if (Status s = vision::write_files_atomically({{options.output, text}}); !s) {
     return fail(err, s.error().message, 1);
   }

@@ -1,10 +1,9 @@
 #pragma once
 // `telear sim capture`: a calibration image set from the simulated stereo rig
-// (docs/simulation.md, "Stereo rig"). Writes DIR/left_NN.png and DIR/right_NN.png (NN = 00,
-// 01, ...) with the target at varied, well-conditioned poses, and DIR/truth.yaml: the true
-// cameras in the camera-file format (OpenCV FileStorage YAML, left: / right:, each with its
-// T_cam_base), the rig's baseline, the pattern, seed, noise, and per view the target's pose
-// in the base frame and in the left camera.
+// (docs/simulation.md, "Stereo rig"): option parsing and printing around
+// include/telear/sim/calibration_capture.hpp, which says what DIR holds afterwards (left_NN.png,
+// right_NN.png, truth.yaml). Exit codes: 0 written, 2 bad options, 1 the rig, rendering or
+// writing failed (one line on `err`).
 
 #include <cstdint>
 #include <ostream>

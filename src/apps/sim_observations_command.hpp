@@ -5,18 +5,11 @@
 //   telear sim observations --rig data/rigs/puma560_rig.yaml --robot puma560 --configs 20
 //                           -o obs.yaml [--seed S]
 //
-// Draws seeded random in-limit joint configurations and keeps those at which the gripper's
-// ArUco marker (telear/sim/calibration_targets.hpp) faces both cameras -- its face normal within
-// `max_view_angle_deg` of the direction to each optical centre -- and all four corners
-// project, with the true cameras, at least `margin_px` inside both images. At each kept
-// configuration the "real" images are rendered per eye (telear/sim/scene_renderer.hpp: true
-// distortion, sensor noise) and the marker's corners are DETECTED with cv::aruco
-// (DICT_4X4_50), as on a real rig, then refined to sub-pixel precision by fitting lines to
-// the black border's outer edges (cv::aruco's own refinement is only whole-pixel accurate on
-// a ~20 px marker). An eye where the marker is not
-// found gets an empty pixel list; a configuration seen by neither eye is skipped, and said so.
-// The file's point_in_flange are the marker's corners in the flange frame, in detection order.
-// Exit codes: 0 written, 2 bad input (one line on `err`), 1 rendering or writing failed.
+// Option parsing and printing around include/telear/sim/marker_observations.hpp, which says
+// how the configurations are drawn and the marker detected. One line per configuration on
+// `out`; a configuration seen by neither eye is skipped, and said so.
+// Exit codes: 0 written, 2 bad options (one line on `err`), 1 the rig, robot, rendering or
+// writing failed (one line on `err`).
 
 #include <cstdint>
 #include <iosfwd>

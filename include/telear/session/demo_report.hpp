@@ -1,0 +1,54 @@
+#pragma once
+// The demo's report (docs/demo.md, "Outputs"): report.json (machine-readable) and report.md
+// (the same figures as tables), from what the demo measured.
+//
+// report.json's keys: calibration (eval.json, include/telear/vision/accuracy_check.hpp),
+// calibration_cached, overlay_error_live.{left,right}.{rms_px_mean, max_px, checks,
+// marker_not_found, last_miss}, video.{resolution, camera_fps, frames_shown, display_ticks,
+// fps_shown, latency.<stage>.{p50_ms, p99_ms, samples}, bytes_per_s}, bytes.{
+// plan_then_send_measured, plan_then_send, jog_100hz, jog_messages, ratio}, execution.{result,
+// max_error_rad, max_error_joint (1-based), rms_error_rad, samples, tolerance_rad,
+// plan_duration_s, waypoints}, display.{ar_to_vr, vr_to_ar, injected_delay_ms, switches},
+// outputs.{video, video_codec, video_warning, video_frames, key_frames}, seconds.
+// Latency stages, in order: capture_to_encode, encode, send_queue, network, decode,
+// capture_to_decoded (nearest-rank percentiles, include/telear/net/latency_summary.hpp).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "telear/core/result.hpp"
+#include "telear/net/command_bytes.hpp"
+#include "telear/session/display_mode.hpp"
+#include "telear/session/execution_monitor.hpp"
+#include "telear/session/session_recorder.hpp"
+
+namespace telear::session {
+
+struct DemoFacts {
+  std::string calibration_json;  // eval.json's text
+  bool calibration_cached = false;
+  Recording recording;
+  std::string resolution;  // "WxH" as given
+  double camera_fps = 0.0;
+  double video_bytes_per_s = 0.0;
+  std::uint64_t plan_bytes_measured = 0;
+  net::CommandBytes bytes;
+  std::string execution_result;
+  std::optional<TrackingStatus> tracking;  // when the session monitored the execution
+  double tolerance_rad = 0.0;
+  double plan_duration_s = 0.0;
+  int waypoints = 0;
+  int ar_to_vr = 0;
+  int vr_to_ar = 0;
+  std::vector<ModeSwitch> switches;
+  int injected_delay_ms = 0;
+  double seconds = 0.0;  // the whole demo so far
+};
+
+std::string demo_report_json(const DemoFacts& facts);
+std::string demo_report_markdown(const DemoFacts& facts);
+// OUT/report.json and OUT/report.md, all or nothing.
+Status write_demo_report(const DemoFacts& facts, const std::string& out_dir);
+
+}  // namespace telear::session

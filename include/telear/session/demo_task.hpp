@@ -1,0 +1,71 @@
+#pragma once
+// The demo's task on a connected Session (docs/demo.md, steps 3-6): take the lease, rehearse a
+// pick-and-place on the ghost into a plan, preview it, then validate, execute and monitor it
+// with a window of injected video delay, recording every display tick and the key frames
+// through a SessionRecorder (include/telear/session/session_recorder.hpp).
+//
+// The task: approach 0.12 m above the box, grasp (close the gripper, dwell 1.2 s), lift, carry
+// to 0.2 m along -y of the base, place (open, dwell 1.2 s), retreat 0.12 m up; the gripper's
+// rotation is chosen once for all steps (include/telear/session/grasp_choice.hpp). The plan is
+// timed at half the arm's speed and acceleration limits, previewed at 2x; during execution,
+// from 40 % of the plan's duration for 3 s, the video is held back by `delay_ms` (the display
+// switches to VR and back). Key frames: keyframe_1_start, keyframe_2_rehearsal_grasp,
+// keyframe_3_preview, keyframe_4_execution, keyframe_5_vr_while_video_late (when VR was
+// shown), keyframe_6_done. Runs on the recorder's (OpenGL) thread; seconds of wall time.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "telear/core/result.hpp"
+#include "telear/net/command_bytes.hpp"
+#include "telear/session/grasp_choice.hpp"
+#include "telear/session/session.hpp"
+#include "telear/session/session_recorder.hpp"
+
+namespace telear::session {
+
+// Progress for a terminal: step(n, what) at each numbered step, note(text) for its details.
+struct DemoProgress {
+  std::function<void(int step, const std::string& what)> step;
+  std::function<void(const std::string& text)> note;
+};
+
+struct TaskStep {
+  std::string label;
+  Eigen::Vector3d grip_position_base_m;
+  std::optional<double> gripper;  // opening on arrival, 0..1
+  double dwell_s = 0.0;           // at the pose after arrival (a repeated waypoint)
+};
+
+// The six steps of the pick-and-place from `box` to `place` (base frame, m).
+std::vector<TaskStep> pick_and_place_steps(const Eigen::Vector3d& box_base_m,
+                                           const Eigen::Vector3d& place_base_m);
+
+struct DemoTaskInputs {
+  Eigen::Vector3d box_base_m = Eigen::Vector3d::Zero();      // the object's centre
+  Eigen::Vector3d grip_in_link_m = Eigen::Vector3d::Zero();  // the gripper's centre in link 6
+  Eigen::Vector3d camera_base_m = Eigen::Vector3d::Zero();   // the left camera's centre
+  double fps = 15.0;                                         // the recorder's tick rate
+  int delay_ms = 400;                                        // injected video delay; 0: none
+  double connect_timeout_s = 30.0;  // for the first robot state and video frame
+};
+
+struct DemoTaskOutcome {
+  GraspChoice grasp;
+  int waypoints = 0;
+  double plan_duration_s = 0.0;
+  std::string validation_summary;
+  std::uint64_t plan_bytes_measured = 0;  // what execute_plan sent
+  net::CommandBytes bytes;                // plan-then-send vs 100 Hz jogs of the same motion
+  std::string execution_result;           // Session::last_execution_result()
+};
+
+// Errors name the phase ("start", "rehearsal: grasp", "preview", "execution") and the
+// session's reason. The step callbacks are numbered 4..6 (the demo's 7 steps).
+Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorder,
+                                      const DemoTaskInputs& inputs,
+                                      const DemoProgress& progress = {});
+
+}  // namespace telear::session

@@ -1,0 +1,53 @@
+#pragma once
+// `telear demo` as a library call (docs/demo.md): the operator's whole workflow on the
+// embedded simulated robot and stereo rig, headless, in seven numbered steps:
+//
+//   1. calibrate and register (include/telear/session/calibration_pipeline.hpp, cached)
+//   2. start the simulated robot and vision servers on loopback (embedded_servers.hpp)
+//   3. connect a Session, open the AR view and the recorder (session_recorder.hpp)
+//   4-6. the task (include/telear/session/demo_task.hpp)
+//   7. the report (include/telear/session/demo_report.hpp)
+//
+// Blocks for the whole run (tens of seconds; minutes when the calibration is not cached) on
+// the calling thread, which gets the headless OpenGL context.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "telear/core/result.hpp"
+#include "telear/session/demo_task.hpp"
+
+namespace telear::session {
+
+struct DemoOptions {
+  std::string out_dir = "out/demo";
+  std::string cache_dir;  // empty: <out_dir>/cache
+  std::string rig_file;   // empty: the data directory's rigs/puma560_rig.yaml
+  int width = 640;        // the operator's view per eye, px
+  int height = 480;
+  int delay_ms = 400;  // injected video delay during the execution window, 0..5000
+  std::uint64_t seed = 1;
+  double fps = 15.0;         // the recorded video's (and the display loop's) rate, 1..60
+  double camera_fps = 20.0;  // the simulated cameras' rate
+  bool video = true;         // false: no MP4 (key frames and report still written)
+
+  // Errors name the option as the CLI spells it and its range.
+  Status validate() const;
+};
+
+struct DemoOutcome {
+  std::string execution_result;  // "completed" when the plan ran to its end
+  std::string report_md;         // paths
+  std::string report_json;
+  std::string video_path;  // empty: no video
+  std::string video_codec;
+  std::string video_warning;  // H.264 unavailable: mp4v used
+  std::vector<std::string> key_frames;
+  bool calibration_cached = false;
+  double seconds = 0.0;
+};
+
+Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& progress = {});
+
+}  // namespace telear::session

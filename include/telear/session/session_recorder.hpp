@@ -1,0 +1,96 @@
+#pragma once
+// What the demo records while it drives a Session (docs/demo.md): one display tick at a time
+// (session update, AR view, one video frame), the per-stage video latency of every new frame
+// shown, the live marker residual of every registration check per eye, the composed stereo
+// view as an MP4, and named key frames (PNG).
+//
+// The MP4 is H.264 (fourcc avc1, OpenCV's FFmpeg backend) so browsers play it; when this
+// OpenCV cannot open an H.264 writer, MPEG-4 part 2 (mp4v) with a warning (video_warning()).
+// Latencies in s, residuals in px. Ticks are paced at `fps` by sleeping: call from one thread,
+// the one whose OpenGL context the ArView uses.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "telear/core/image.hpp"
+#include "telear/core/result.hpp"
+#include "telear/net/latency_summary.hpp"
+#include "telear/render/ar_view.hpp"
+#include "telear/session/session.hpp"
+
+namespace cv {
+class VideoWriter;
+}  // namespace cv
+
+namespace telear::session {
+
+// Per stage, one entry per frame shown, s.
+struct LatencySeries {
+  std::vector<double> capture_to_encode, encode, send_queue, network, decode, total;
+  void add(const net::StageLatency& latency);
+};
+
+// Per eye (0 left, 1 right): one entry per registration check that found the marker.
+struct ResidualSeries {
+  std::vector<double> rms_px[2];
+  std::vector<double> max_px[2];
+  int misses[2] = {0, 0};    // checks where the marker was not found
+  std::string last_miss[2];  // the last such check's message
+};
+
+struct Recording {
+  LatencySeries latency;
+  ResidualSeries residuals;
+  int ticks = 0;
+  int frames_shown = 0;
+  int video_frames = 0;
+  std::string video_path;               // empty: no video
+  std::string video_codec;              // "avc1" (H.264) or "mp4v"; empty: no video
+  std::string video_warning;            // set when H.264 could not be opened
+  std::vector<std::string> key_frames;  // PNG paths, in order
+};
+
+struct RecorderOptions {
+  std::string out_dir;
+  double fps = 15.0;  // display ticks (and video frames) per second, > 0
+  bool video = true;  // false: no MP4 (key frames still written)
+};
+
+class SessionRecorder {
+ public:
+  SessionRecorder(Session& session, render::ArView& view, RecorderOptions options);
+  ~SessionRecorder();
+  SessionRecorder(const SessionRecorder&) = delete;
+  SessionRecorder& operator=(const SessionRecorder&) = delete;
+
+  // Opens OUT/demo_stereo.mp4 for width x height frames (H.264, else mp4v); Ok and nothing
+  // when options.video is false. An error when no writer opens at all.
+  Status open_video(int width, int height);
+  // One display frame: session update, AR view, video frame; paced at options.fps.
+  void tick();
+  void ticks(int count) {
+    for (int i = 0; i < count; ++i) tick();
+  }
+  // Writes the last composed view to OUT/NAME.png; returns the path.
+  Result<std::string> key_frame(const std::string& name);
+  void close_video();
+
+  const Recording& recording() const { return recording_; }
+
+ private:
+  Session& session_;
+  render::ArView& view_;
+  RecorderOptions options_;
+  std::unique_ptr<cv::VideoWriter> writer_;  // opencv_videoio, linked privately
+  Recording recording_;
+  std::optional<std::chrono::steady_clock::time_point> last_;
+  std::uint64_t last_frame_id_ = 0;
+  int residual_checks_ = 0;
+  core::Image last_image_;
+};
+
+}  // namespace telear::session

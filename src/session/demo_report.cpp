@@ -1,0 +1,164 @@
+#include "telear/session/demo_report.hpp"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "telear/core/number_format.hpp"
+#include "telear/net/latency_summary.hpp"
+#include "telear/vision/calibration_file.hpp"
+
+namespace telear::session {
+namespace {
+
+using net::percentile;
+
+double mean(const std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  double s = 0;
+  for (double x : v) s += x;
+  return s / static_cast<double>(v.size());
+}
+
+double max_of(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+}
+
+std::string fixed(double v, int digits) {
+  const std::string format = "%." + std::to_string(digits) + "f";
+  return core::format_number(v, format.c_str());
+}
+
+nlohmann::json latency_json(const std::vector<double>& v) {
+  return {{"p50_ms", percentile(v, 50) * 1e3},
+          {"p99_ms", percentile(v, 99) * 1e3},
+          {"samples", v.size()}};
+}
+
+double jog_ratio(const net::CommandBytes& bytes) {
+  return bytes.plan_bytes > 0
+             ? static_cast<double>(bytes.jog_stream_bytes) / static_cast<double>(bytes.plan_bytes)
+             : 0.0;
+}
+
+}  // namespace
+
+std::string demo_report_json(const DemoFacts& facts) {
+  const Recording& r = facts.recording;
+  nlohmann::json report;
+  report["calibration"] = nlohmann::json::parse(facts.calibration_json, nullptr, false);
+  report["calibration_cached"] = facts.calibration_cached;
+  nlohmann::json overlay;
+  const char* eye_names[2] = {"left", "right"};
+  for (int i = 0; i < 2; ++i) {
+    overlay[eye_names[i]] = {{"rms_px_mean", mean(r.residuals.rms_px[i])},
+                             {"max_px", max_of(r.residuals.max_px[i])},
+                             {"checks", r.residuals.rms_px[i].size()},
+                             {"marker_not_found", r.residuals.misses[i]},
+                             {"last_miss", r.residuals.last_miss[i]}};
+  }
+  report["overlay_error_live"] = overlay;
+  const LatencySeries& lat = r.latency;
+  report["video"] = {{"resolution", facts.resolution},
+                     {"camera_fps", facts.camera_fps},
+                     {"frames_shown", r.frames_shown},
+                     {"display_ticks", r.ticks},
+                     {"fps_shown", facts.seconds > 0 ? r.frames_shown / facts.seconds : 0.0},
+                     {"latency",
+                      {{"capture_to_encode", latency_json(lat.capture_to_encode)},
+                       {"encode", latency_json(lat.encode)},
+                       {"send_queue", latency_json(lat.send_queue)},
+                       {"network", latency_json(lat.network)},
+                       {"decode", latency_json(lat.decode)},
+                       {"capture_to_decoded", latency_json(lat.total)}}},
+                     {"bytes_per_s", facts.video_bytes_per_s}};
+  report["bytes"] = {{"plan_then_send_measured", facts.plan_bytes_measured},
+                     {"plan_then_send", facts.bytes.plan_bytes},
+                     {"jog_100hz", facts.bytes.jog_stream_bytes},
+                     {"jog_messages", facts.bytes.jog_messages},
+                     {"ratio", jog_ratio(facts.bytes)}};
+  nlohmann::json tracking;
+  tracking["result"] = facts.execution_result;
+  if (facts.tracking) {
+    tracking["max_error_rad"] = facts.tracking->max_error_so_far;
+    tracking["max_error_joint"] = facts.tracking->max_error_joint + 1;
+    tracking["rms_error_rad"] = facts.tracking->rms_error;
+    tracking["samples"] = facts.tracking->samples;
+    tracking["tolerance_rad"] = facts.tolerance_rad;
+  }
+  tracking["plan_duration_s"] = facts.plan_duration_s;
+  tracking["waypoints"] = facts.waypoints;
+  report["execution"] = tracking;
+  nlohmann::json switches = nlohmann::json::array();
+  for (const ModeSwitch& s : facts.switches) {
+    switches.push_back(
+        {{"from", to_string(s.from)}, {"to", to_string(s.to)}, {"reason", s.reason}});
+  }
+  report["display"] = {{"ar_to_vr", facts.ar_to_vr},
+                       {"vr_to_ar", facts.vr_to_ar},
+                       {"injected_delay_ms", facts.injected_delay_ms},
+                       {"switches", switches}};
+  report["outputs"] = {{"video", r.video_path},
+                       {"video_codec", r.video_codec},
+                       {"video_warning", r.video_warning},
+                       {"video_frames", r.video_frames},
+                       {"key_frames", r.key_frames}};
+  report["seconds"] = facts.seconds;
+  return report.dump(2) + "\n";
+}
+
+std::string demo_report_markdown(const DemoFacts& facts) {
+  const Recording& r = facts.recording;
+  std::string md =
+      "# telear demo report\n\n"
+      "Pick-and-place rehearsed on the ghost over the simulated stereo video, previewed, "
+      "executed on the simulated robot as one trajectory and monitored.\n\n"
+      "| | left | right |\n|---|---|---|\n";
+  const nlohmann::json eval = nlohmann::json::parse(facts.calibration_json, nullptr, false);
+  if (eval.is_object() && eval.contains("left") && eval.contains("right")) {
+    for (const char* key : {"fx_error_percent", "cx_error_px", "cy_error_px", "registration_mm",
+                            "registration_deg", "overlay_rms_px"}) {
+      md += std::string("| calibration ") + key + " | " + fixed(eval["left"].value(key, 0.0), 3) +
+            " | " + fixed(eval["right"].value(key, 0.0), 3) + " |\n";
+    }
+  }
+  md += "| live overlay error (marker), mean RMS px | " + fixed(mean(r.residuals.rms_px[0]), 3) +
+        " | " + fixed(mean(r.residuals.rms_px[1]), 3) + " |\n\n";
+  md += "| stage | p50 ms | p99 ms |\n|---|---|---|\n";
+  const LatencySeries& lat = r.latency;
+  const std::pair<const char*, const std::vector<double>*> stages[] = {
+      {"capture -> encode", &lat.capture_to_encode},
+      {"encode", &lat.encode},
+      {"send queue", &lat.send_queue},
+      {"network", &lat.network},
+      {"decode", &lat.decode},
+      {"capture -> decoded", &lat.total}};
+  for (const auto& [name, series] : stages) {
+    md += std::string("| ") + name + " | " + fixed(percentile(*series, 50) * 1e3, 2) + " | " +
+          fixed(percentile(*series, 99) * 1e3, 2) + " |\n";
+  }
+  md += "\n- video: " + facts.resolution + " stereo, " + std::to_string(r.frames_shown) +
+        " frames shown";
+  if (!r.video_codec.empty()) md += ", " + r.video_codec;
+  md += "\n";
+  if (!r.video_warning.empty()) md += "- warning: " + r.video_warning + "\n";
+  md += "- bytes to command the motion: plan-then-send " + std::to_string(facts.bytes.plan_bytes) +
+        " B (one message), jogging at 100 Hz " + std::to_string(facts.bytes.jog_stream_bytes) +
+        " B (" + std::to_string(facts.bytes.jog_messages) + " messages), " +
+        fixed(jog_ratio(facts.bytes), 1) + "x\n- execution: " + facts.execution_result;
+  if (facts.tracking) {
+    md += ", max tracking error " + fixed(facts.tracking->max_error_so_far * 1e3, 3) +
+          " mrad (tolerance " + fixed(facts.tolerance_rad * 1e3, 0) + " mrad)";
+  }
+  md += "\n- display: " + std::to_string(facts.ar_to_vr) + " AR -> VR and " +
+        std::to_string(facts.vr_to_ar) + " VR -> AR switches (injected delay " +
+        std::to_string(facts.injected_delay_ms) + " ms)\n- total " + fixed(facts.seconds, 1) +
+        " s\n";
+  return md;
+}
+
+Status write_demo_report(const DemoFacts& facts, const std::string& out_dir) {
+  return vision::write_files_atomically({{out_dir + "/report.json", demo_report_json(facts)},
+                                         {out_dir + "/report.md", demo_report_markdown(facts)}});
+}
+
+}  // namespace telear::session

@@ -1,0 +1,167 @@
+#include "telear/session/demo_task.hpp"
+
+#include <chrono>
+#include <thread>
+
+#include "telear/core/number_format.hpp"
+
+namespace telear::session {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Error phase_error(const std::string& phase, const std::string& message) {
+  return Error{phase + ": " + message};
+}
+
+// Waits for the first state and frame, takes the lease, shows a second of video.
+Status start(Session& session, SessionRecorder& recorder, const DemoTaskInputs& inputs) {
+  const auto wait_start = Clock::now();
+  while (!(session.view().real && session.view().frame)) {
+    if (seconds_since(wait_start) > inputs.connect_timeout_s) {
+      return Error{"no robot state or video from the servers after " +
+                   core::format_number(inputs.connect_timeout_s) + " s"};
+    }
+    session.update(0.02);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (Status s = session.take_control(); !s) return s;
+  recorder.ticks(static_cast<int>(inputs.fps));
+  if (auto k = recorder.key_frame("keyframe_1_start"); !k) return k.error();
+  return Status::Ok();
+}
+
+}  // namespace
+
+std::vector<TaskStep> pick_and_place_steps(const Eigen::Vector3d& box_base_m,
+                                           const Eigen::Vector3d& place_base_m) {
+  const Eigen::Vector3d up(0, 0, 0.12);
+  return {
+      {"approach", box_base_m + up, 1.0, 0.0},
+      {"grasp", box_base_m, 0.0, 1.2},
+      {"lift", box_base_m + up, std::nullopt, 0.0},
+      {"carry", place_base_m + up, std::nullopt, 0.0},
+      {"place", place_base_m, 1.0, 1.2},
+      {"retreat", place_base_m + up, std::nullopt, 0.0},
+  };
+}
+
+Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorder,
+                                      const DemoTaskInputs& inputs, const DemoProgress& progress) {
+  const auto step = [&](int n, const std::string& what) {
+    if (progress.step) progress.step(n, what);
+  };
+  const auto note = [&](const std::string& text) {
+    if (progress.note) progress.note(text);
+  };
+  if (Status s = start(session, recorder, inputs); !s)
+    return phase_error("start", s.error().message);
+  const core::RobotModel& model = session.model();
+  DemoTaskOutcome outcome;
+
+  // Rehearsal.
+  step(4, "rehearsing the pick-and-place on the ghost");
+  if (Status s = session.ghost_to_real(); !s) return phase_error("rehearsal", s.error().message);
+  const Eigen::Vector3d place = inputs.box_base_m + Eigen::Vector3d(0.0, -0.2, 0.0);
+  const std::vector<TaskStep> steps = pick_and_place_steps(inputs.box_base_m, place);
+  GraspRequest request;
+  for (const TaskStep& s : steps) request.grip_positions_base_m.push_back(s.grip_position_base_m);
+  request.grip_in_link_m = inputs.grip_in_link_m;
+  request.q_start = session.ghost().q();
+  request.camera_base_m = inputs.camera_base_m;
+  auto grasp = choose_grasp(model, request);
+  if (!grasp) return phase_error("rehearsal", grasp.error().message);
+  outcome.grasp = *grasp;
+  note("grasp: " + grasp->note());
+  (void)session.plan().set_scales(0.5, 0.5);
+  if (Status s = session.add_ghost_waypoint(0.0, "start"); !s)
+    return phase_error("rehearsal", s.error().message);
+  for (const TaskStep& task : steps) {
+    const core::MotionOutcome moved = session.move_ghost(core::CartesianTarget{
+        grasp->T_base_tool(model, inputs.grip_in_link_m, task.grip_position_base_m)});
+    if (!moved.accepted) return phase_error("rehearsal: " + task.label, moved.rejection.message);
+    if (task.gripper) (void)session.ghost().set_gripper(*task.gripper);
+    if (Status s = session.add_ghost_waypoint(0.0, task.label); !s)
+      return phase_error("rehearsal: " + task.label, s.error().message);
+    if (task.dwell_s > 0) (void)session.add_ghost_waypoint(task.dwell_s, task.label + " (dwell)");
+    recorder.ticks(static_cast<int>(inputs.fps / 3));
+    if (task.label == "grasp") {
+      if (auto k = recorder.key_frame("keyframe_2_rehearsal_grasp"); !k)
+        return phase_error("rehearsal", k.error().message);
+    }
+  }
+  auto trajectory = session.plan().trajectory();
+  if (!trajectory) return phase_error("rehearsal", trajectory.error().message);
+  outcome.waypoints = static_cast<int>(session.plan().size());
+  outcome.plan_duration_s = trajectory->duration();
+  note(std::to_string(outcome.waypoints) + " waypoints, " +
+       core::format_number(outcome.plan_duration_s, "%.2f") + " s");
+
+  // Preview.
+  step(5, "previewing the plan on the ghost over the live video");
+  if (Status s = session.start_preview({.loop = false, .speed = 2.0}); !s)
+    return phase_error("preview", s.error().message);
+  bool preview_key = false;
+  while (session.preview() && !session.preview()->current().at_end) {
+    recorder.tick();
+    if (!preview_key && session.preview()->time() > 0.45 * outcome.plan_duration_s) {
+      if (auto k = recorder.key_frame("keyframe_3_preview"); !k)
+        return phase_error("preview", k.error().message);
+      preview_key = true;
+    }
+  }
+  session.stop_preview();
+  (void)session.ghost_to_real();
+
+  // Execution.
+  step(6, "validating, executing on the robot and monitoring");
+  const ValidationReport validation = session.validate_plan();
+  outcome.validation_summary = validation.summary();
+  note("validation: " + outcome.validation_summary);
+  if (!validation.ok())
+    return phase_error("execution", "the plan is not valid: " + outcome.validation_summary);
+  const std::uint64_t bytes_before = session.robot().command_bytes_sent();
+  auto ack = session.execute_plan();
+  if (!ack) return phase_error("execution", ack.error().message);
+  outcome.plan_bytes_measured = session.robot().command_bytes_sent() - bytes_before;
+  const auto exec_start = Clock::now();
+  const double duration = outcome.plan_duration_s;
+  const double delay_s = inputs.delay_ms / 1000.0;
+  bool execution_key = false, vr_key = false;
+  while (session.executing()) {
+    const double t = seconds_since(exec_start);
+    if (t > duration + 30) return phase_error("execution", "the execution did not finish in time");
+    const bool in_window = t > 0.4 * duration && t < 0.4 * duration + 3.0;
+    session.set_injected_video_delay(in_window ? delay_s : 0.0);
+    recorder.tick();
+    if (!execution_key && t > 0.3 * duration) {
+      if (auto k = recorder.key_frame("keyframe_4_execution"); !k)
+        return phase_error("execution", k.error().message);
+      execution_key = true;
+    }
+    if (!vr_key && session.view().display.mode == DisplayMode::kVR) {
+      if (auto k = recorder.key_frame("keyframe_5_vr_while_video_late"); !k)
+        return phase_error("execution", k.error().message);
+      vr_key = true;
+    }
+  }
+  session.set_injected_video_delay(0.0);
+  recorder.ticks(static_cast<int>(inputs.fps * 1.5));
+  if (auto k = recorder.key_frame("keyframe_6_done"); !k)
+    return phase_error("execution", k.error().message);
+  recorder.close_video();
+  outcome.execution_result = session.last_execution_result();
+  note("execution: " + outcome.execution_result);
+
+  auto samples = trajectory->sampled(100.0);
+  if (!samples) return phase_error("execution", samples.error().message);
+  outcome.bytes =
+      net::compare_command_bytes(*samples, 100.0, std::string(32, '0'), "plan-0000000000-1");
+  return outcome;
+}
+
+}  // namespace telear::session

@@ -1,0 +1,105 @@
+#include "telear/session/session_recorder.hpp"
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+#include <thread>
+
+#include "telear/render/image_io.hpp"
+#include "telear/session/view_input.hpp"
+
+namespace telear::session {
+
+void LatencySeries::add(const net::StageLatency& latency) {
+  capture_to_encode.push_back(latency.capture_to_encode_s);
+  encode.push_back(latency.encode_s);
+  send_queue.push_back(latency.send_queue_s);
+  network.push_back(latency.network_s);
+  decode.push_back(latency.decode_s);
+  total.push_back(latency.total_s);
+}
+
+SessionRecorder::SessionRecorder(Session& session, render::ArView& view, RecorderOptions options)
+    : session_(session),
+      view_(view),
+      options_(std::move(options)),
+      writer_(std::make_unique<cv::VideoWriter>()) {}
+
+SessionRecorder::~SessionRecorder() = default;
+
+void SessionRecorder::close_video() {
+  writer_->release();
+}
+
+Status SessionRecorder::open_video(int width, int height) {
+  if (!options_.video) return Status::Ok();
+  const std::string path = options_.out_dir + "/demo_stereo.mp4";
+  const cv::Size size(width, height);
+  writer_->open(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('a', 'v', 'c', '1'), options_.fps,
+                size);
+  if (writer_->isOpened()) {
+    recording_.video_codec = "avc1";
+  } else {
+    writer_->open(path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), options_.fps, size);
+    if (!writer_->isOpened()) {
+      return Error{"cannot write the video " + path +
+                   ": neither an H.264 (avc1) nor an MPEG-4 (mp4v) writer opens; check the "
+                   "folder and OpenCV's FFmpeg support, or record without video"};
+    }
+    recording_.video_codec = "mp4v";
+    recording_.video_warning = "this OpenCV cannot write H.264 (avc1); " + path +
+                               " is MPEG-4 part 2 (mp4v), which browsers may not play";
+  }
+  recording_.video_path = path;
+  return Status::Ok();
+}
+
+void SessionRecorder::tick() {
+  using Clock = std::chrono::steady_clock;
+  const double period = 1.0 / options_.fps;
+  const auto now = Clock::now();
+  const double dt = last_ ? std::chrono::duration<double>(now - *last_).count() : period;
+  last_ = now;
+  session_.update(dt);
+  const SessionView& v = session_.view();
+  if (v.frame && v.frame->frame_id != last_frame_id_) {
+    last_frame_id_ = v.frame->frame_id;
+    recording_.latency.add(v.frame->latency);
+    ++recording_.frames_shown;
+  }
+  const SessionStats stats = session_.stats();
+  if (stats.residual_checks != residual_checks_) {
+    residual_checks_ = stats.residual_checks;
+    const EyeResidual* eyes[2] = {&stats.residual.left, &stats.residual.right};
+    ResidualSeries& r = recording_.residuals;
+    for (int i = 0; i < 2; ++i) {
+      if (eyes[i]->valid()) {
+        r.rms_px[i].push_back(eyes[i]->rms_px);
+        r.max_px[i].push_back(eyes[i]->max_px);
+      } else {
+        ++r.misses[i];
+        r.last_miss[i] = eyes[i]->message;
+      }
+    }
+  }
+  view_.render(ar_view_input(v));
+  last_image_ = view_.read_composed_rgb();
+  if (writer_->isOpened()) {
+    cv::Mat rgb(last_image_.height, last_image_.width, CV_8UC3, last_image_.pixels.data());
+    cv::Mat bgr;
+    cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+    writer_->write(bgr);
+    ++recording_.video_frames;
+  }
+  ++recording_.ticks;
+  const double spent = std::chrono::duration<double>(Clock::now() - now).count();
+  if (spent < period) std::this_thread::sleep_for(std::chrono::duration<double>(period - spent));
+}
+
+Result<std::string> SessionRecorder::key_frame(const std::string& name) {
+  const std::string path = options_.out_dir + "/" + name + ".png";
+  if (Status s = render::write_png(path, last_image_); !s.ok()) return s.error();
+  recording_.key_frames.push_back(path);
+  return path;
+}
+
+}  // namespace telear::session

@@ -1,0 +1,111 @@
+// The grasp choice (include/telear/session/grasp_choice.hpp) on the PUMA 560 and the simulated
+// rig's box: every task position is reachable within the limits with the chosen rotation, the
+// marker side faces the cameras better than the naive straight-down grasp, and a box out of
+// reach is an error that names it.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "telear/core/angles.hpp"
+#include "telear/core/arm_body.hpp"
+#include "telear/core/inverse_kinematics.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/session/demo_task.hpp"
+#include "telear/session/grasp_choice.hpp"
+#include "telear/sim/scene_renderer.hpp"
+#include "telear/sim/stereo_rig.hpp"
+#include "test_util/test_util.hpp"
+
+namespace telear::session {
+namespace {
+
+struct Fixture {
+  core::RobotModelPtr model;
+  GraspRequest request;
+};
+
+Fixture make_fixture(const Eigen::Vector3d& box) {
+  auto model = core::load_robot("puma560");
+  EXPECT_TRUE(model.ok());
+  auto body = core::body_description_for(**model);
+  EXPECT_TRUE(body.ok());
+  const core::ArmBody arm_body = core::build_arm_body(*body);
+  auto rig = sim::load_stereo_rig(test::data_path("rigs/puma560_rig.yaml"));
+  EXPECT_TRUE(rig.ok()) << (rig ? "" : rig.error().message);
+  Fixture f{*model, {}};
+  for (const TaskStep& s : pick_and_place_steps(box, box + Eigen::Vector3d(0.0, -0.2, 0.0)))
+    f.request.grip_positions_base_m.push_back(s.grip_position_base_m);
+  f.request.grip_in_link_m = arm_body.gripper
+                                 ? Eigen::Vector3d(arm_body.gripper->centre.cast<double>())
+                                 : Eigen::Vector3d::Zero();
+  Eigen::VectorXd ready_deg(6);
+  ready_deg << 0.0, 30.0, -120.0, 0.0, -45.0, 0.0;
+  f.request.q_start = ready_deg.unaryExpr([](double d) { return core::radians_from_degrees(d); });
+  f.request.camera_base_m = rig->cameras.left.T_cam_base.inverse().translation();
+  return f;
+}
+
+double marker_away_deg(const Eigen::Matrix3d& R, const GraspRequest& request) {
+  const Eigen::Vector3d to_camera =
+      (request.camera_base_m - request.grip_positions_base_m.front()).normalized();
+  return core::degrees_from_radians(std::acos(std::clamp(R.col(0).dot(to_camera), -1.0, 1.0)));
+}
+
+TEST(GraspChoice, EveryTaskPositionOfTheBoxHasAnInLimitIkSolution) {
+  const Fixture f = make_fixture(sim::SceneRenderer::workspace_object().centre_base);
+  auto choice = choose_grasp(*f.model, f.request);
+  ASSERT_TRUE(choice.ok()) << choice.error().message;
+  EXPECT_NEAR(
+      (choice->R_base_link.transpose() * choice->R_base_link - Eigen::Matrix3d::Identity()).norm(),
+      0.0, 1e-12);
+  Eigen::VectorXd q = f.request.q_start;
+  for (const Eigen::Vector3d& p : f.request.grip_positions_base_m) {
+    const Eigen::Isometry3d T = choice->T_base_tool(*f.model, f.request.grip_in_link_m, p);
+    auto solution = core::solve_ik_nearest(*f.model, T, q);
+    ASSERT_TRUE(solution.ok()) << solution.error().message;
+    EXPECT_TRUE(solution->within_limits);
+    // Forward kinematics of the solution puts the gripper's centre on the task position.
+    const Eigen::Isometry3d T_base_link =
+        core::tool_pose(*f.model, solution->q) * f.model->T_flange_tool().inverse();
+    EXPECT_LT((T_base_link * f.request.grip_in_link_m - p).norm(), 1e-6);
+    EXPECT_LT((T_base_link.linear() - choice->R_base_link).norm(), 1e-6);
+    q = solution->q;
+  }
+  EXPECT_GE(choice->tilt_deg, 0);
+  EXPECT_LE(choice->tilt_deg, 60);
+  EXPECT_THAT(choice->note(), ::testing::HasSubstr("deg away from facing the cameras"));
+}
+
+TEST(GraspChoice, TheMarkerFacesTheCamerasBetterThanStraightDown) {
+  const Fixture f = make_fixture(sim::SceneRenderer::workspace_object().centre_base);
+  auto choice = choose_grasp(*f.model, f.request);
+  ASSERT_TRUE(choice.ok()) << choice.error().message;
+  Eigen::Matrix3d naive;  // fingers down, no spin: the marker side along +x of the base
+  naive.col(0) = Eigen::Vector3d::UnitX();
+  naive.col(1) = -Eigen::Vector3d::UnitY();
+  naive.col(2) = -Eigen::Vector3d::UnitZ();
+  const double chosen = marker_away_deg(choice->R_base_link, f.request);
+  EXPECT_LT(chosen, marker_away_deg(naive, f.request));
+  EXPECT_NEAR(chosen, choice->away_deg, 0.5);
+}
+
+TEST(GraspChoice, AnUnreachableBoxIsAnErrorNamingIt) {
+  Fixture f = make_fixture(Eigen::Vector3d(3.0, 0.0, 0.5));
+  f.request.object_name = "the far box";
+  auto choice = choose_grasp(*f.model, f.request);
+  ASSERT_FALSE(choice.ok());
+  EXPECT_THAT(choice.error().message,
+              ::testing::HasSubstr("no gripper orientation reaches the far box at [3.000, 0.000"));
+  EXPECT_THAT(choice.error().message, ::testing::HasSubstr("within the joint limits"));
+
+  f.request.grip_positions_base_m.clear();
+  auto empty = choose_grasp(*f.model, f.request);
+  ASSERT_FALSE(empty.ok());
+  EXPECT_THAT(empty.error().message, ::testing::HasSubstr("no task positions"));
+}
+
+}  // namespace
+}  // namespace telear::session
