@@ -9,12 +9,13 @@
 #include <ostream>
 #include <string>
 
+#include "telear/sim/stereo_rig.hpp"
 #include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
 
 struct SimCaptureOptions {
-  std::string rig = core::data_directory() + "/rigs/puma560_rig.yaml";  // the shipped rig
+  std::string rig = sim::default_rig_file();  // the shipped rig
   std::string pattern = "chessboard:9x6:0.03";
   int views = 20;
   std::string output;      // directory, created if missing

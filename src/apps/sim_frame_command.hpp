@@ -8,12 +8,13 @@
 #include <ostream>
 #include <string>
 
+#include "telear/sim/stereo_rig.hpp"
 #include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
 
 struct SimFrameOptions {
-  std::string rig = core::data_directory() + "/rigs/puma560_rig.yaml";  // the shipped rig
+  std::string rig = sim::default_rig_file();  // the shipped rig
   std::string q = "qr";  // joint values (rad, or deg with `degrees`) or a named configuration
   bool degrees = false;
   double gripper = 0.04;   // gripper opening, m

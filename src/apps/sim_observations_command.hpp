@@ -15,12 +15,13 @@
 #include <iosfwd>
 #include <string>
 
+#include "telear/sim/stereo_rig.hpp"
 #include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
 
 struct SimObservationsOptions {
-  std::string rig = core::data_directory() + "/rigs/puma560_rig.yaml";  // the shipped rig
+  std::string rig = sim::default_rig_file();  // the shipped rig
   std::string robot = "puma560";  // the kinematics of the observations (and of the scene)
   int configs = 20;               // configurations to render (1..500)
   std::string output;             // observations YAML to write

@@ -1,3 +1,4 @@
+#include "telear/sim/stereo_rig.hpp"
 #include "telear/session/demo_workflow.hpp"
 
 #include <chrono>
@@ -61,7 +62,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   step(1, "calibrating the simulated stereo rig and registering the robot");
   CalibrationPipelineOptions pipeline;
-  pipeline.rig_file = options.rig_file.empty() ? core::data_directory() + "/rigs/puma560_rig.yaml"
+  pipeline.rig_file = options.rig_file.empty() ? sim::default_rig_file()
                                                : options.rig_file;
   pipeline.cache_dir = options.cache_dir.empty() ? options.out_dir + "/cache" : options.cache_dir;
   pipeline.seed = options.seed;
