@@ -15,7 +15,7 @@
 #include "telear/core/robot_loader.hpp"
 #include "telear/session/demo_task.hpp"
 #include "telear/session/grasp_choice.hpp"
-#include "telear/sim/scene_renderer.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/sim/stereo_rig.hpp"
 #include "test_util/test_util.hpp"
 
@@ -48,6 +48,14 @@ Fixture make_fixture(const Eigen::Vector3d& box) {
   return f;
 }
 
+// The box to pick of the PUMA's shipped workspace (data/workspaces/puma560_table.yaml).
+Eigen::Vector3d shipped_box_centre() {
+  auto workspace = core::load_workspace_file(core::default_workspace_file("puma560"));
+  EXPECT_TRUE(workspace.ok()) << workspace.error().message;
+  if (!workspace.ok() || !workspace->first_graspable()) return Eigen::Vector3d::Zero();
+  return workspace->first_graspable()->T_base_object.translation();
+}
+
 double marker_away_deg(const Eigen::Matrix3d& R, const GraspRequest& request) {
   const Eigen::Vector3d to_camera =
       (request.camera_base_m - request.grip_positions_base_m.front()).normalized();
@@ -55,7 +63,7 @@ double marker_away_deg(const Eigen::Matrix3d& R, const GraspRequest& request) {
 }
 
 TEST(GraspChoice, EveryTaskPositionOfTheBoxHasAnInLimitIkSolution) {
-  const Fixture f = make_fixture(sim::SceneRenderer::workspace_object().centre_base);
+  const Fixture f = make_fixture(shipped_box_centre());
   auto choice = choose_grasp(*f.model, f.request);
   ASSERT_TRUE(choice.ok()) << choice.error().message;
   EXPECT_NEAR(
@@ -80,7 +88,7 @@ TEST(GraspChoice, EveryTaskPositionOfTheBoxHasAnInLimitIkSolution) {
 }
 
 TEST(GraspChoice, TheMarkerFacesTheCamerasBetterThanStraightDown) {
-  const Fixture f = make_fixture(sim::SceneRenderer::workspace_object().centre_base);
+  const Fixture f = make_fixture(shipped_box_centre());
   auto choice = choose_grasp(*f.model, f.request);
   ASSERT_TRUE(choice.ok()) << choice.error().message;
   Eigen::Matrix3d naive;  // fingers down, no spin: the marker side along +x of the base
