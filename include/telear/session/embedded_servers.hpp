@@ -10,7 +10,6 @@
 // given.
 
 #include <Eigen/Core>
-#include <functional>
 #include <memory>
 #include <string>
 
@@ -32,7 +31,6 @@ struct EmbeddedServersOptions {
   int supersample = 1;           // the video's anti-aliasing (1 is fastest)
   double noise_sigma = 1.0;      // grey levels
   std::uint64_t seed = 1;
-  std::function<void(const std::string&)> log;  // server log lines; empty: silent
 };
 
 class EmbeddedServers {
@@ -60,8 +58,5 @@ class EmbeddedServers {
   std::unique_ptr<net::RobotClient> follower_;  // the rig's view of the robot's state
   std::unique_ptr<net::VisionServer> vision_;
 };
-
-// A random 32-hex-digit bearer token.
-std::string random_token();
 
 }  // namespace telear::session
