@@ -278,6 +278,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   robot_server_app->add_option("--q", robot_server.initial_q,
                                "initial joint values (rad) or a named configuration");
+  robot_server_app->add_option("--log-level", robot_server.log_level,
+                               "trace, debug, info, warn, error or off");
 
   // [SECTION] vision-server (docs/network.md)
   telear::cli::VisionServerCommandOptions vision_server;
@@ -313,6 +315,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   vision_server_app->add_option("--noise", vision_server.noise, "sim: sensor noise, grey levels")
       ->capture_default_str();
+  vision_server_app->add_option("--log-level", vision_server.log_level,
+                                "trace, debug, info, warn, error or off");
 
   // [SECTION] console (docs/console.md)
   telear::console::ConsoleOptions console;

@@ -1,8 +1,5 @@
 #include "apps/robot_server_command.hpp"
 
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
-
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +8,7 @@
 #include "apps/cli_parsing.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/net/robot_server.hpp"
+#include "telear/net/server_log.hpp"
 #include "telear/sim/sim_robot_driver.hpp"
 
 namespace telear::cli {
@@ -33,6 +31,11 @@ std::string find_urdf_text(const core::RobotModel& model) {
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,
                      std::ostream& err) {
+  auto log_level = net::parse_log_level(options.log_level);
+  if (!log_level) {
+    err << "telear robot-server: " << log_level.error().message << "\n";
+    return 2;
+  }
   auto model = core::load_robot(options.robot);
   if (!model) {
     err << "telear robot-server: " << model.error().message << "\n";
@@ -72,7 +75,7 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
       std::max(server_options.lease.max_heartbeat_ns, heartbeat_ns);
 
   // The log (one line per command) goes to stderr: stdout carries only the ready line.
-  spdlog::set_default_logger(spdlog::stderr_color_mt("robot-server"));
+  net::log_to_stderr("robot-server", *log_level);
 
   // Block the stop signals before any thread starts (the driver's servo, gRPC's pool), so
   // every thread inherits the mask and sigwait below is the one place they arrive.

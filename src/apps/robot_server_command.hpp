@@ -3,6 +3,8 @@
 // as its driver, until SIGINT or SIGTERM. Prints "robot server listening on HOST:PORT" on
 // `out` once it accepts connections (scripts wait for that line; with port 0 it carries the
 // ephemeral port), and shuts down cleanly on the signal: streams are ended, the arm stops.
+// The log (spdlog, telear/net/server_log.hpp: one line per command with the client's name)
+// goes to stderr at --log-level (trace, debug, info, warn, error, off); a bad level exits 2.
 
 #include <ostream>
 #include <string>
@@ -15,8 +17,9 @@ struct RobotServerCommandOptions {
   bool allow_observers = true;
   std::string tls_cert, tls_key;
   std::string robot = "puma560";
-  int heartbeat_ms = 250;  // default lease heartbeat period
-  std::string initial_q;   // joint values or a named configuration; empty: zero
+  int heartbeat_ms = 250;          // default lease heartbeat period
+  std::string initial_q;           // joint values or a named configuration; empty: zero
+  std::string log_level = "info";  // trace | debug | info | warn | error | off
 };
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,

@@ -19,6 +19,7 @@
 #include "telear/core/trajectory.hpp"
 #include "telear/net/command_bytes.hpp"
 #include "telear/net/jpeg_codec.hpp"
+#include "telear/net/latency_stages.hpp"
 #include "telear/net/latency_summary.hpp"
 #include "telear/net/robot_client.hpp"
 #include "telear/net/robot_server.hpp"
@@ -89,21 +90,10 @@ double since_s(std::chrono::steady_clock::time_point start) {
 
 // [SECTION] video
 
-struct Stage {
-  const char* name;
-  const char* json_name;
-  double net::StageLatency::*member;
-};
-
-constexpr Stage kStages[] = {
-    {"capture -> encode", "capture_to_encode", &net::StageLatency::capture_to_encode_s},
-    {"encode (both eyes)", "encode", &net::StageLatency::encode_s},
-    {"send queue", "send_queue", &net::StageLatency::send_queue_s},
-    {"network", "network", &net::StageLatency::network_s},
-    {"decode (both eyes)", "decode", &net::StageLatency::decode_s},
-    {"total capture -> decoded", "total", &net::StageLatency::total_s},
-};
-constexpr int kStageCount = static_cast<int>(std::size(kStages));
+// The stages are net::kLatencyStages (telear/net/latency_stages.hpp), the total last.
+using net::kLatencyStages;
+constexpr int kStageCount = static_cast<int>(net::kLatencyStageCount);
+constexpr int kTotalStage = static_cast<int>(net::kTotalLatencyStage);
 
 struct VideoResult {
   Resolution size;
@@ -116,7 +106,7 @@ struct VideoResult {
   double codec_ms = 0;  // baseline: encode + decode of one pair, median
   std::optional<Target> target;
   bool fps_met() const { return target && fps >= target->fps; }
-  bool latency_met() const { return target && stages[kStageCount - 1].p50 <= target->total_p50_ms; }
+  bool latency_met() const { return target && stages[kTotalStage].p50 <= target->total_p50_ms; }
 };
 
 // The baseline: TurboJPEG encode + decode of both eyes of one synthetic pair on this thread,
@@ -183,7 +173,7 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
     after = frame->second;
   }
 
-  std::vector<double> stage_samples[kStageCount];
+  net::LatencySeries stage_samples;
   double message_bytes = 0, jpeg_bytes = 0;
   const std::uint64_t decoded_before = client.frames_decoded();
   const auto start = std::chrono::steady_clock::now();
@@ -192,7 +182,7 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
     if (!frame) continue;
     after = frame->second;
     const net::DecodedStereoFrame& f = *frame->first;
-    for (int s = 0; s < kStageCount; ++s) stage_samples[s].push_back(f.latency.*kStages[s].member);
+    stage_samples.add(f.latency);
     message_bytes += static_cast<double>(f.message_bytes);
     jpeg_bytes += static_cast<double>(f.jpeg_bytes);
     result.skipped_server += f.frames_skipped_server;
@@ -203,11 +193,11 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
   (*server)->stop();
 
   result.fps = static_cast<double>(result.frames) / elapsed;
-  const double seen = static_cast<double>(stage_samples[0].size());
+  const double seen = static_cast<double>(stage_samples.size());
   if (seen == 0) return Error{"no stereo frame decoded in the measured window"};
   result.bytes_per_frame = message_bytes / seen;
   result.jpeg_bytes_per_frame = jpeg_bytes / seen;
-  for (int s = 0; s < kStageCount; ++s) result.stages[s] = quantiles_ms(stage_samples[s]);
+  for (int s = 0; s < kStageCount; ++s) result.stages[s] = quantiles_ms(stage_samples.seconds[s]);
   return result;
 }
 
@@ -294,20 +284,20 @@ void print_video(const VideoResult& v, const StreamBenchOptions& options, std::o
   out << "| sustained decoded fps | " << format("%.1f", v.fps) << " | | " << fps_target << " | "
       << (v.target ? (v.fps_met() ? "PASS" : "MISS") : "-") << " |\n";
   for (int s = 0; s < kStageCount; ++s) {
-    const bool total = s == kStageCount - 1;
+    const bool total = s == kTotalStage;
     std::string target = "-", met = "-";
     if (total && v.target) {
       target = "p50 <= " + format("%.0f", v.target->total_p50_ms) + " ms";
       met = v.latency_met() ? "PASS" : "MISS";
     }
-    out << "| " << kStages[s].name << " (ms) | " << format("%.2f", v.stages[s].p50) << " | "
-        << format("%.2f", v.stages[s].p99) << " | " << target << " | " << met << " |\n";
+    out << "| " << kLatencyStages[s].long_label << " (ms) | " << format("%.2f", v.stages[s].p50)
+        << " | " << format("%.2f", v.stages[s].p99) << " | " << target << " | " << met << " |\n";
   }
   out << "| bytes per frame (message; JPEG both eyes) | " << format("%.0f", v.bytes_per_frame)
       << "; " << format("%.0f", v.jpeg_bytes_per_frame) << " | | | |\n";
   out << "baseline: TurboJPEG encode + decode of one stereo pair on one thread "
       << format("%.2f", v.codec_ms)
-      << " ms; total p50 = " << format("%.1f", v.stages[kStageCount - 1].p50 / v.codec_ms)
+      << " ms; total p50 = " << format("%.1f", v.stages[kTotalStage].p50 / v.codec_ms)
       << " x codec time; " << v.frames << " frames decoded, " << v.skipped_server
       << " source frames skipped for this client by the server\n";
 }
@@ -346,11 +336,11 @@ nlohmann::json to_json(const VideoResult& v) {
   j["bytes_per_frame"] = v.bytes_per_frame;
   j["jpeg_bytes_per_frame"] = v.jpeg_bytes_per_frame;
   for (int s = 0; s < kStageCount; ++s) {
-    j["latency_ms"][kStages[s].json_name] = {{"p50", number(v.stages[s].p50)},
-                                             {"p99", number(v.stages[s].p99)}};
+    j["latency_ms"][kLatencyStages[s].key] = {{"p50", number(v.stages[s].p50)},
+                                              {"p99", number(v.stages[s].p99)}};
   }
   j["codec_baseline_ms"] = v.codec_ms;
-  j["total_p50_over_codec"] = v.stages[kStageCount - 1].p50 / v.codec_ms;
+  j["total_p50_over_codec"] = v.stages[kTotalStage].p50 / v.codec_ms;
   if (v.target) {
     j["target"] = {{"fps", v.target->fps}, {"total_p50_ms", v.target->total_p50_ms}};
     j["fps_met"] = v.fps_met();

@@ -1,13 +1,15 @@
 #include "apps/vision_server_command.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <csignal>
 #include <memory>
-#include <mutex>
 #include <optional>
 
 #include "apps/cli_parsing.hpp"
 #include "telear/net/bearer_auth.hpp"
 #include "telear/net/robot_client.hpp"
+#include "telear/net/server_log.hpp"
 #include "telear/net/vision_server.hpp"
 #include "telear/sim/sim_rig_source.hpp"
 #include "telear/vision/camera_source.hpp"
@@ -55,6 +57,11 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   sigaddset(&signals, SIGINT);
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  auto log_level = net::parse_log_level(options.log_level);
+  if (!log_level) return fail(log_level.error().message, 2);
+  // The log (streams, clients, errors) goes to stderr: stdout carries only the ready line.
+  net::log_to_stderr("vision-server", *log_level);
 
   auto resolution = parse_resolution(options.resolution);
   if (!resolution) return fail(resolution.error().message, 2);
@@ -145,22 +152,13 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   server_options.calibration_file = options.calibration;
   server_options.token_file = options.token_file;
   server_options.jpeg_quality = options.quality;
-  auto log_mutex = std::make_shared<std::mutex>();
-  server_options.log = [&err, log_mutex](const std::string& line) {
-    std::lock_guard lock(*log_mutex);
-    err << line << std::endl;
-  };
   auto server = net::VisionServer::start(std::move(server_options));
   if (!server) return fail(server.error().message, 1);
   out << "vision server listening on " << (*server)->address() << std::endl;
 
   int signal_number = 0;
   sigwait(&signals, &signal_number);
-  {
-    std::lock_guard lock(*log_mutex);
-    err << "telear vision-server: " << (signal_number == SIGINT ? "SIGINT" : "SIGTERM")
-        << ", shutting down" << std::endl;
-  }
+  spdlog::info("{}, shutting down", signal_number == SIGINT ? "SIGINT" : "SIGTERM");
   const auto stats = (*server)->pipeline().stats();
   (*server)->stop();
   if (robot) robot->stop();

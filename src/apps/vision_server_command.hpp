@@ -11,8 +11,9 @@
 // the video moves with the robot). --token-file makes every call need the token, and is also
 // presented to the robot server (unless --robot-token-file names another). Prints
 // "vision server listening on HOST:PORT" once it accepts calls (port 0: an ephemeral port,
-// printed), then one line per client stream on `err`. Exit codes: 0 after a signal, 2 bad
-// options, 1 the server could not start.
+// printed). The log (spdlog, telear/net/server_log.hpp: one line per client stream with the
+// client's name, errors) goes to stderr at --log-level (trace, debug, info, warn, error, off).
+// Exit codes: 0 after a signal, 2 bad options, 1 the server could not start.
 
 #include <ostream>
 #include <string>
@@ -35,8 +36,9 @@ struct VisionServerCommandOptions {
   double fps = 0.0;              // 0: the source's default (30; a file's own rate)
   std::string resolution;        // WxH; empty: the source's default
   int quality = 85;
-  int supersample = 2;  // sim
-  double noise = 1.0;   // sim
+  int supersample = 2;             // sim
+  double noise = 1.0;              // sim
+  std::string log_level = "info";  // trace | debug | info | warn | error | off
 };
 
 int run_vision_server(const VisionServerCommandOptions& options, std::ostream& out,

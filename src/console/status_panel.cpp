@@ -52,12 +52,9 @@ void draw_status_panel(PanelContext& ctx, const PanelLayout& layout) {
     ImGui::TableSetupColumn("p50 ms");
     ImGui::TableSetupColumn("p99 ms");
     ImGui::TableHeadersRow();
-    latency_row("capture -> encode", st.capture_to_encode);
-    latency_row("encode", st.encode);
-    latency_row("send queue", st.send_queue);
-    latency_row("network", st.network);
-    latency_row("decode", st.decode);
-    latency_row("capture -> decoded", st.total);
+    for (std::size_t i = 0; i < net::kLatencyStageCount; ++i) {
+      latency_row(net::kLatencyStages[i].label, st.latency[i]);
+    }
     ImGui::EndTable();
   }
   ImGui::Separator();

@@ -3,25 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <random>
 #include <utility>
 
 #include "telear/core/clock.hpp"
+#include "telear/net/random_token.hpp"
 
 namespace telear::net {
 
 namespace {
-
-std::string random_lease_id() {
-  std::random_device device;
-  std::string id;
-  for (int i = 0; i < 4; ++i) {
-    char word[9];
-    std::snprintf(word, sizeof word, "%08x", static_cast<unsigned>(device()));
-    id += word;
-  }
-  return id;
-}
 
 std::string milliseconds(std::int64_t ns) {
   char text[32];
@@ -69,7 +58,7 @@ Result<LeaseGrant> LeaseManager::acquire(const std::string& holder,
                  milliseconds(lease_->heartbeat_ns) + ")"};
   }
   LeaseGrant grant;
-  grant.lease_id = random_lease_id();
+  grant.lease_id = random_token(16);
   grant.holder = holder;
   grant.heartbeat_ns = granted_heartbeat_ns(requested_heartbeat_ns);
   grant.expires_ns = now + grant.heartbeat_ns;

@@ -7,14 +7,13 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
-#include <fstream>
+#include <functional>
 #include <mutex>
-#include <sstream>
 #include <thread>
 #include <utility>
 
 #include "telear/core/clock.hpp"
-#include "telear/net/client_channel.hpp"
+#include "telear/net/client_base.hpp"
 #include "telear/net/latest_slot.hpp"
 #include "telear/net/robot_messages.hpp"
 #include "telear/v1/robot.grpc.pb.h"
@@ -57,19 +56,17 @@ std::int64_t RobotStateSample::capture_client_ns() const {
 struct RobotClient::Impl {
   explicit Impl(RobotClientOptions o)
       : options(std::move(o)),
-        channel(make_client_channel(options)),
-        stub(v1::RobotService::NewStub(channel)) {}
+        base(options, "robot server"),
+        stub(v1::RobotService::NewStub(base.channel())) {}
 
   RobotClientOptions options;
-  std::shared_ptr<grpc::Channel> channel;
+  ClientBase base;  // channel, metadata, reconnect back-off and accounting
   std::unique_ptr<Stub> stub;
   LatestSlot<RobotStateSample> states;
 
   mutable std::mutex mutex;  // everything below but the atomics
   ClockOffsetEstimator estimator;
-  grpc::ClientContext* stream_context = nullptr;
-  bool running = false;
-  std::condition_variable wake;  // stop() and release wake the sleeping threads
+  std::condition_variable wake;  // release and destruction wake the heartbeat
   std::thread stream_thread, ping_thread;
 
   std::string lease_id;
@@ -79,39 +76,17 @@ struct RobotClient::Impl {
   std::int64_t heartbeat_ns = 0;
   std::thread heartbeat_thread;
 
-  std::atomic<int> reconnects{0};
-  std::atomic<std::int64_t> last_message_ns{0};
   std::atomic<std::uint64_t> command_bytes{0};
 
-  void prepare(grpc::ClientContext& context, bool deadline = true) const {
-    if (!options.token.empty()) context.AddMetadata("authorization", "Bearer " + options.token);
-    context.AddMetadata("telear-client", options.client_name);
-    if (deadline)
-      context.set_deadline(std::chrono::system_clock::now() + seconds(options.rpc_timeout_s));
-  }
-
   Error error(const std::string& command, const grpc::Status& status) const {
-    switch (status.error_code()) {
-      case grpc::StatusCode::UNAVAILABLE:
-        return Error{command + ": robot server at " + options.address +
-                     " unreachable: " + status.error_message()};
-      case grpc::StatusCode::DEADLINE_EXCEEDED:
-        return Error{command + ": robot server at " + options.address + " did not answer within " +
-                     std::to_string(options.rpc_timeout_s) + " s"};
-      default:
-        // The server's message may already name the command ("acquire lease: ...").
-        if (status.error_message().rfind(command + ": ", 0) == 0) {
-          return Error{status.error_message()};
-        }
-        return Error{command + ": " + status.error_message()};
-    }
+    return base.error(command, status);
   }
 
   template <typename Request, typename Response>
   grpc::Status call(grpc::Status (Stub::*method)(grpc::ClientContext*, const Request&, Response*),
                     const Request& request, Response* response, bool is_command) {
     grpc::ClientContext context;
-    prepare(context);
+    base.prepare(context);
     if (is_command) command_bytes += request.ByteSizeLong();
     return (stub.get()->*method)(&context, request, response);
   }
@@ -126,13 +101,6 @@ struct RobotClient::Impl {
     return estimator.to_server_ns(client_ns);
   }
 
-  // Sleeps up to `duration`; false when woken by stop (running turned false).
-  bool sleep_while_running(std::chrono::nanoseconds duration) {
-    std::unique_lock lock(mutex);
-    wake.wait_for(lock, duration, [&] { return !running; });
-    return running;
-  }
-
   void stream_loop();
   void ping_loop();
   void heartbeat_loop();
@@ -140,28 +108,14 @@ struct RobotClient::Impl {
 };
 
 void RobotClient::Impl::stream_loop() {
-  double backoff = options.reconnect_initial_backoff_s;
-  bool delivered_before = false;
   v1::StreamStateRequest request;
   request.set_rate_hz(options.state_rate_hz);
-  while (true) {
-    grpc::ClientContext context;
-    prepare(context, false);
-    {
-      std::lock_guard lock(mutex);
-      if (!running) return;
-      stream_context = &context;
-    }
+  base.run_stream([&](grpc::ClientContext& context, const std::function<void()>& on_message) {
     auto reader = stub->StreamState(&context, request);
     v1::RobotState message;
-    bool delivered = false;
     while (reader->Read(&message)) {
       const std::int64_t received = core::monotonic_ns();
-      if (!delivered) {
-        if (delivered_before) ++reconnects;
-        delivered = delivered_before = true;
-        backoff = options.reconnect_initial_backoff_s;
-      }
+      on_message();
       RobotStateSample sample;
       sample.state = state_from_proto(message);
       sample.sequence = states.count() + 1;
@@ -176,17 +130,10 @@ void RobotClient::Impl::stream_loop() {
         std::lock_guard lock(mutex);
         sample.clock_offset_ns = estimator.to_server_ns(0);
       }
-      last_message_ns = received;
       states.put(std::move(sample));
     }
-    reader->Finish();
-    {
-      std::lock_guard lock(mutex);
-      stream_context = nullptr;
-    }
-    if (!sleep_while_running(seconds(backoff))) return;
-    backoff = std::min(2.0 * backoff, options.reconnect_max_backoff_s);
-  }
+    return reader->Finish();
+  });
 }
 
 Result<double> RobotClient::Impl::ping() {
@@ -208,7 +155,7 @@ Result<double> RobotClient::Impl::ping() {
 void RobotClient::Impl::ping_loop() {
   do {
     (void)ping();
-  } while (sleep_while_running(seconds(options.ping_period_s)));
+  } while (base.sleep_while_running(options.ping_period_s));
 }
 
 void RobotClient::Impl::heartbeat_loop() {
@@ -267,34 +214,30 @@ const RobotClientOptions& RobotClient::options() const {
 }
 
 void RobotClient::start() {
+  if (!impl_->base.begin()) return;
   std::lock_guard lock(impl_->mutex);
-  if (impl_->running) return;
-  impl_->running = true;
   impl_->stream_thread = std::thread([this] { impl_->stream_loop(); });
   impl_->ping_thread = std::thread([this] { impl_->ping_loop(); });
 }
 
 void RobotClient::stop() {
+  impl_->base.stop();
   std::thread stream, ping;
   {
     std::lock_guard lock(impl_->mutex);
-    impl_->running = false;
-    if (impl_->stream_context) impl_->stream_context->TryCancel();
     stream = std::move(impl_->stream_thread);
     ping = std::move(impl_->ping_thread);
   }
-  impl_->wake.notify_all();
   if (stream.joinable()) stream.join();
   if (ping.joinable()) ping.join();
 }
 
 bool RobotClient::connected() const {
-  const std::int64_t last = impl_->last_message_ns;
-  return last != 0 && core::monotonic_ns() - last < 1'000'000'000;
+  return impl_->base.connected();
 }
 
-int RobotClient::reconnects() const {
-  return impl_->reconnects;
+ReconnectStats RobotClient::reconnect_stats() const {
+  return impl_->base.reconnect_stats();
 }
 
 Result<RobotInfo> RobotClient::get_info() {

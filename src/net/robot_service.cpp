@@ -65,15 +65,6 @@ std::chrono::steady_clock::time_point steady_time(std::int64_t ns) {
 
 }  // namespace
 
-std::string describe_caller(const grpc::ServerContext& context) {
-  const auto& metadata = context.client_metadata();
-  const auto it = metadata.find("telear-client");
-  const std::string name = it == metadata.end()
-                               ? "unnamed client"
-                               : printable(std::string(it->second.data(), it->second.size()));
-  return name + " (" + context.peer() + ")";
-}
-
 RobotService::RobotService(core::RobotDriver& driver, BearerAuth auth, LeaseOptions lease_options,
                            CommandLimits limits)
     : driver_(driver),

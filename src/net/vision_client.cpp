@@ -4,14 +4,13 @@
 
 #include <algorithm>
 #include <atomic>
-#include <condition_variable>
-#include <fstream>
+#include <functional>
 #include <mutex>
-#include <sstream>
 #include <thread>
+#include <utility>
 
 #include "telear/core/clock.hpp"
-#include "telear/net/client_channel.hpp"
+#include "telear/net/client_base.hpp"
 #include "telear/net/jpeg_codec.hpp"
 #include "telear/net/latest_slot.hpp"
 #include "telear/v1/vision.grpc.pb.h"
@@ -52,40 +51,28 @@ double seconds_between(std::int64_t from_ns, std::int64_t to_ns) {
 
 }  // namespace
 
+// Stereo 1280x720 JPEG pairs are a few hundred KB; leave room for large frames.
+constexpr int kMaxReceiveBytes = 64 * 1024 * 1024;
+
 struct VisionClient::Impl {
+  explicit Impl(VisionClientOptions o)
+      : options(std::move(o)),
+        base(options, "vision server", kMaxReceiveBytes),
+        stub(telear::v1::VisionService::NewStub(base.channel())) {}
+
   VisionClientOptions options;
-  std::shared_ptr<grpc::Channel> channel;
+  ClientBase base;  // channel, metadata, reconnect back-off and accounting
   std::unique_ptr<telear::v1::VisionService::Stub> stub;
 
   LatestSlot<Received> received;
   LatestSlot<DecodedStereoFrame> decoded;
+  std::mutex threads_mutex;  // start() against stop()
   std::thread receive_thread, decode_thread, ping_thread;
-
-  std::mutex mutex;  // guards running, active_context; `wake` interrupts back-off and ping waits
-  std::condition_variable wake;
-  bool running = false;
-  grpc::ClientContext* active_context = nullptr;
 
   mutable std::mutex offset_mutex;
   ClockOffsetEstimator estimator;
 
   std::atomic<std::uint64_t> frames_received{0}, frames_decoded{0}, bytes_received{0};
-  std::atomic<int> reconnects{0};
-  std::atomic<std::int64_t> last_receive_ns{0};
-
-  void add_metadata(grpc::ClientContext& context) const {
-    if (!options.token.empty()) context.AddMetadata("authorization", "Bearer " + options.token);
-  }
-  bool is_running() {
-    std::lock_guard lock(mutex);
-    return running;
-  }
-  // Sleeps up to `seconds`, returns at once on stop(); false once stopped.
-  bool sleep_unless_stopped(double seconds) {
-    std::unique_lock lock(mutex);
-    wake.wait_for(lock, std::chrono::nanoseconds(core::s_to_ns(seconds)), [&] { return !running; });
-    return running;
-  }
   std::int64_t to_client(std::int64_t server_ns) const {
     std::lock_guard lock(offset_mutex);
     return estimator.to_client_ns(server_ns);
@@ -96,7 +83,7 @@ struct VisionClient::Impl {
   void ping_loop();
 };
 
-// [SECTION] receive: the stream, reconnecting with exponential back-off
+// [SECTION] receive: the stream, reconnecting with back-off (ClientBase)
 
 void VisionClient::Impl::receive_loop() {
   telear::v1::StreamFramesRequest request;
@@ -104,38 +91,20 @@ void VisionClient::Impl::receive_loop() {
   request.set_jpeg_quality(options.jpeg_quality);
   request.set_width(options.width);
   request.set_height(options.height);
-  double backoff_s = options.reconnect_initial_backoff_s;
-  bool first = true;
-  while (true) {
-    grpc::ClientContext context;
-    add_metadata(context);
-    {
-      std::lock_guard lock(mutex);
-      if (!running) break;
-      active_context = &context;
-    }
-    if (!first) ++reconnects;
-    first = false;
+  base.run_stream([&](grpc::ClientContext& context, const std::function<void()>& on_message) {
     auto reader = stub->StreamFrames(&context, request);
     Received item;
     while (reader->Read(&item.message)) {
       item.receive_ns = core::monotonic_ns();
       item.bytes = item.message.ByteSizeLong();
-      last_receive_ns = item.receive_ns;
+      on_message();
       ++frames_received;
       bytes_received += item.bytes;
       received.put(std::move(item));
       item = Received{};
-      backoff_s = options.reconnect_initial_backoff_s;  // a working stream resets the back-off
     }
-    reader->Finish();
-    {
-      std::lock_guard lock(mutex);
-      active_context = nullptr;
-    }
-    if (!sleep_unless_stopped(backoff_s)) break;
-    backoff_s = std::min(backoff_s * 2.0, options.reconnect_max_backoff_s);
-  }
+    return reader->Finish();
+  });
 }
 
 // [SECTION] decode: the newest received message, both eyes, latencies
@@ -192,9 +161,7 @@ void VisionClient::Impl::decode_loop() {
 void VisionClient::Impl::ping_loop() {
   do {
     grpc::ClientContext context;
-    add_metadata(context);
-    context.set_deadline(std::chrono::system_clock::now() +
-                         std::chrono::nanoseconds(core::s_to_ns(options.rpc_timeout_s)));
+    base.prepare(context);
     telear::v1::PingRequest request;
     telear::v1::PingResponse reply;
     request.set_client_send_ns(core::monotonic_ns());
@@ -204,28 +171,22 @@ void VisionClient::Impl::ping_loop() {
       std::lock_guard lock(offset_mutex);
       estimator.add(sample);
     }
-  } while (sleep_unless_stopped(options.ping_period_s));
+  } while (base.sleep_while_running(options.ping_period_s));
 }
 
 // [SECTION] public API
 
-VisionClient::VisionClient(VisionClientOptions options) : impl_(std::make_unique<Impl>()) {
-  impl_->options = std::move(options);
-  // Stereo 1280x720 JPEG pairs are a few hundred KB; leave room for large frames.
-  impl_->channel = make_client_channel(impl_->options, 64 * 1024 * 1024);
-  impl_->stub = telear::v1::VisionService::NewStub(impl_->channel);
-}
+VisionClient::VisionClient(VisionClientOptions options)
+    : impl_(std::make_unique<Impl>(std::move(options))) {}
 
 VisionClient::~VisionClient() {
   stop();
 }
 
 void VisionClient::start() {
-  {
-    std::lock_guard lock(impl_->mutex);
-    if (impl_->running || impl_->received.closed()) return;  // running, or stopped for good
-    impl_->running = true;
-  }
+  std::lock_guard lock(impl_->threads_mutex);
+  if (impl_->received.closed()) return;  // stopped for good
+  if (!impl_->base.begin()) return;      // running
   impl_->receive_thread = std::thread([this] { impl_->receive_loop(); });
   impl_->decode_thread = std::thread([this] { impl_->decode_loop(); });
   if (impl_->options.ping_period_s > 0) {
@@ -234,12 +195,8 @@ void VisionClient::start() {
 }
 
 void VisionClient::stop() {
-  {
-    std::lock_guard lock(impl_->mutex);
-    impl_->running = false;
-    if (impl_->active_context != nullptr) impl_->active_context->TryCancel();
-  }
-  impl_->wake.notify_all();
+  std::lock_guard lock(impl_->threads_mutex);
+  impl_->base.stop();
   impl_->received.close();
   impl_->decoded.close();
   for (std::thread* t : {&impl_->receive_thread, &impl_->decode_thread, &impl_->ping_thread}) {
@@ -248,30 +205,20 @@ void VisionClient::stop() {
 }
 
 bool VisionClient::connected() const {
-  const std::int64_t last = impl_->last_receive_ns;
-  return last != 0 && core::monotonic_ns() - last < core::s_to_ns(1.0);
+  return impl_->base.connected();
 }
 
-int VisionClient::reconnects() const {
-  return impl_->reconnects;
+ReconnectStats VisionClient::reconnect_stats() const {
+  return impl_->base.reconnect_stats();
 }
 
 Result<CameraInfoReply> VisionClient::get_camera_info() {
   grpc::ClientContext context;
-  impl_->add_metadata(context);
-  context.set_deadline(std::chrono::system_clock::now() +
-                       std::chrono::nanoseconds(core::s_to_ns(impl_->options.rpc_timeout_s)));
+  impl_->base.prepare(context);
   telear::v1::CameraInfo info;
   const grpc::Status status =
       impl_->stub->GetCameraInfo(&context, telear::v1::GetCameraInfoRequest(), &info);
-  if (!status.ok()) {
-    if (status.error_code() == grpc::StatusCode::UNAVAILABLE ||
-        status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED) {
-      return Error{"vision server at " + impl_->options.address +
-                   " unreachable: " + status.error_message()};
-    }
-    return Error{"GetCameraInfo: " + status.error_message()};
-  }
+  if (!status.ok()) return impl_->base.error("GetCameraInfo", status);
   CameraInfoReply reply;
   reply.found = info.found();
   reply.source = info.source();

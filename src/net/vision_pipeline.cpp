@@ -1,5 +1,7 @@
 #include "telear/net/vision_pipeline.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 
 #include "telear/vision/opencv_frame.hpp"
@@ -101,6 +103,8 @@ PipelineStats VisionPipeline::stats() const {
 void VisionPipeline::record_error(const std::string& message, bool capture) {
   (capture ? capture_errors_ : encode_errors_)++;
   std::lock_guard lock(error_mutex_);
+  // A failing camera fails every retry: log a message when it changes, not every time.
+  if (message != last_error_) spdlog::error("vision pipeline: {}", message);
   last_error_ = message;
 }
 

@@ -1,6 +1,7 @@
 #include "telear/net/vision_server.hpp"
 
 #include <grpcpp/grpcpp.h>
+#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <fstream>
@@ -40,7 +41,6 @@ Result<std::unique_ptr<VisionServer>> VisionServer::start(VisionServerOptions op
   }
   VisionServiceConfig config;
   config.max_streams = options.max_streams;
-  config.log = options.log;
   if (!options.token_file.empty()) {
     auto token = load_token_file(options.token_file);
     if (!token) return Error{"vision server: " + token.error().message};
@@ -83,6 +83,10 @@ Result<std::unique_ptr<VisionServer>> VisionServer::start(VisionServerOptions op
   }
   impl.port = port;
   impl.address = options.listen_address.substr(0, colon) + ":" + std::to_string(port);
+  const vision::StereoSource& source = impl.pipeline->source();
+  spdlog::info("vision server listening on {} (source {}, {}x{} at {} fps, JPEG quality {}, {})",
+               impl.address, source.name(), source.width(), source.height(), source.fps(),
+               options.jpeg_quality, options.token_file.empty() ? "no token" : "token required");
   return server;
 }
 
@@ -99,6 +103,7 @@ void VisionServer::stop() {
                             std::chrono::milliseconds(static_cast<int>(impl_->grace_s * 1000)));
     impl_->server->Wait();
   }
+  if (impl_->server) spdlog::info("vision server on {} shut down", impl_->address);
 }
 
 int VisionServer::port() const {

@@ -1,6 +1,9 @@
 #include "telear/net/vision_service.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include "telear/core/clock.hpp"
+#include "telear/net/client_name.hpp"
 
 namespace telear::net {
 namespace {
@@ -55,19 +58,21 @@ VisionServiceImpl::VisionServiceImpl(const VisionPipeline& pipeline, VisionServi
   camera_info_ = camera_info_message(config_, pipeline_.source());
 }
 
-void VisionServiceImpl::log(const std::string& line) const {
-  if (config_.log) config_.log(line);
-}
-
-grpc::Status VisionServiceImpl::authorize(const grpc::ServerContext& context) const {
+grpc::Status VisionServiceImpl::authorize(const grpc::ServerContext& context,
+                                          const char* what) const {
   if (!config_.auth) return grpc::Status::OK;
-  return config_.auth->authorize_read(context);
+  grpc::Status status = config_.auth->authorize_read(context);
+  if (!status.ok()) {
+    spdlog::warn("vision call from {}: {}: refused: {}", describe_caller(context), what,
+                 status.error_message());
+  }
+  return status;
 }
 
 grpc::Status VisionServiceImpl::GetCameraInfo(grpc::ServerContext* context,
                                               const telear::v1::GetCameraInfoRequest*,
                                               telear::v1::CameraInfo* reply) {
-  if (auto status = authorize(*context); !status.ok()) return status;
+  if (auto status = authorize(*context, "GetCameraInfo"); !status.ok()) return status;
   *reply = camera_info_;
   return grpc::Status::OK;
 }
@@ -76,7 +81,7 @@ grpc::Status VisionServiceImpl::Ping(grpc::ServerContext* context,
                                      const telear::v1::PingRequest* request,
                                      telear::v1::PingResponse* reply) {
   const std::int64_t received = core::monotonic_ns();
-  if (auto status = authorize(*context); !status.ok()) return status;
+  if (auto status = authorize(*context, "Ping"); !status.ok()) return status;
   reply->set_client_send_ns(request->client_send_ns());
   reply->set_server_receive_ns(received);
   reply->set_server_send_ns(core::monotonic_ns());
@@ -86,7 +91,8 @@ grpc::Status VisionServiceImpl::Ping(grpc::ServerContext* context,
 grpc::Status VisionServiceImpl::StreamFrames(grpc::ServerContext* context,
                                              const telear::v1::StreamFramesRequest* request,
                                              grpc::ServerWriter<telear::v1::StereoFrame>* writer) {
-  if (auto status = authorize(*context); !status.ok()) return status;
+  if (auto status = authorize(*context, "StreamFrames"); !status.ok()) return status;
+  const std::string who = describe_caller(*context);
   StreamSettings settings;
   settings.max_rate_hz = request->max_rate_hz();
   settings.jpeg_quality = request->jpeg_quality();
@@ -94,18 +100,20 @@ grpc::Status VisionServiceImpl::StreamFrames(grpc::ServerContext* context,
   settings.height = request->height();
   auto subscriber = pipeline_.subscribe(settings);
   if (!subscriber) {
+    spdlog::warn("vision stream to {} refused: {}", who, subscriber.error().message);
     return {grpc::StatusCode::INVALID_ARGUMENT, "StreamFrames: " + subscriber.error().message};
   }
   // Counted before the check so two racing calls cannot both take the last place.
   if (++active_streams_ > config_.max_streams) {
     --active_streams_;
+    spdlog::warn("vision stream to {} refused: already {} streams (the maximum)", who,
+                 config_.max_streams);
     return {grpc::StatusCode::RESOURCE_EXHAUSTED, "StreamFrames: the server already sends " +
                                                       std::to_string(config_.max_streams) +
                                                       " streams (its maximum)"};
   }
-  const std::string who = context->peer();
-  log("vision stream to " + who + " opened (" +
-      (subscriber->custom_encode() ? "own encode" : "shared encode") + ")");
+  spdlog::info("vision stream to {} opened ({})", who,
+               subscriber->custom_encode() ? "own encode" : "shared encode");
   std::uint64_t sent = 0, skipped = 0;
   std::string why = "client left";
   telear::v1::StereoFrame message;
@@ -119,7 +127,7 @@ grpc::Status VisionServiceImpl::StreamFrames(grpc::ServerContext* context,
     if (!delivery) {
       if (!subscriber->error().empty()) {
         --active_streams_;
-        log("vision stream to " + who + " failed: " + subscriber->error());
+        spdlog::error("vision stream to {} failed: {}", who, subscriber->error());
         return {grpc::StatusCode::INTERNAL, "StreamFrames: " + subscriber->error()};
       }
       if (subscriber->closed()) {
@@ -147,10 +155,14 @@ grpc::Status VisionServiceImpl::StreamFrames(grpc::ServerContext* context,
     if (!writer->Write(message)) break;  // the client went away (or the server cancelled)
     ++sent;
     skipped += delivery->frames_skipped;
+    if (delivery->frames_skipped > 0) {
+      spdlog::debug("vision stream to {}: frame {} sent, {} source frames skipped before it", who,
+                    frame.frame_id, delivery->frames_skipped);
+    }
   }
   --active_streams_;
-  log("vision stream to " + who + " closed (" + why + "): " + std::to_string(sent) +
-      " frames sent, " + std::to_string(skipped) + " skipped");
+  spdlog::info("vision stream to {} closed ({}): {} frames sent, {} skipped", who, why, sent,
+               skipped);
   return grpc::Status::OK;
 }
 

@@ -1,24 +1,11 @@
 #include "telear/session/embedded_servers.hpp"
 
-#include <cstdio>
-#include <random>
-
 #include "telear/core/robot_loader.hpp"
+#include "telear/net/random_token.hpp"
 #include "telear/sim/sim_rig_source.hpp"
 #include "telear/sim/stereo_rig.hpp"
 
 namespace telear::session {
-
-std::string random_token() {
-  std::random_device device;
-  std::string token;
-  for (int i = 0; i < 4; ++i) {
-    char chunk[9];
-    std::snprintf(chunk, sizeof chunk, "%08x", static_cast<unsigned>(device()));
-    token += chunk;
-  }
-  return token;
-}
 
 EmbeddedServers::~EmbeddedServers() {
   stop();
@@ -34,7 +21,7 @@ void EmbeddedServers::stop() {
 Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotModelPtr model,
                                                                  EmbeddedServersOptions options) {
   std::unique_ptr<EmbeddedServers> servers(new EmbeddedServers());
-  servers->token_ = options.token.empty() ? random_token() : options.token;
+  servers->token_ = options.token.empty() ? net::random_token(16) : options.token;
 
   sim::SimRobotDriverOptions driver_options;
   driver_options.robot.initial_q = options.initial_q;
@@ -80,7 +67,6 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   vision_options.listen_address = "127.0.0.1:0";
   vision_options.source = std::move(*source);
   vision_options.calibration_file = options.calibration_file;
-  vision_options.log = options.log;
   auto vision = net::VisionServer::start(std::move(vision_options));
   if (!vision) return Error{"embedded vision server: " + vision.error().message};
   servers->vision_ = std::move(*vision);

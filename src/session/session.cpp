@@ -397,21 +397,9 @@ SessionStats Session::stats() const {
       stats.video_bytes_per_s = bytes / span;
     }
   }
-  std::vector<double> c2e, enc, send, network, decode, total;
-  for (const auto& [time, frame] : recent_frames_) {
-    c2e.push_back(frame->latency.capture_to_encode_s);
-    enc.push_back(frame->latency.encode_s);
-    send.push_back(frame->latency.send_queue_s);
-    network.push_back(frame->latency.network_s);
-    decode.push_back(frame->latency.decode_s);
-    total.push_back(frame->latency.total_s);
-  }
-  stats.capture_to_encode = net::summarize_latency(c2e);
-  stats.encode = net::summarize_latency(enc);
-  stats.send_queue = net::summarize_latency(send);
-  stats.network = net::summarize_latency(network);
-  stats.decode = net::summarize_latency(decode);
-  stats.total = net::summarize_latency(total);
+  net::LatencySeries latency;
+  for (const auto& [time, frame] : recent_frames_) latency.add(frame->latency);
+  stats.latency = latency.summarize();
   stats.robot_state_age_s = view_.real_state_age_s;
   stats.command_bytes_sent = robot_->command_bytes_sent();
   if (auto offset = robot_->clock_offset())

@@ -135,9 +135,13 @@ TEST(RobotClient, ReconnectsAfterAServerRestartOnTheSamePort) {
   ASSERT_NE(server, nullptr);
   // A state captured by the new server (its stream restarted): newer than anything before.
   const RobotStateSample later = wait_for(client, [&](const RobotStateSample& s) {
-    return s.capture_ns > first.capture_ns && client.reconnects() >= 1;
+    return s.capture_ns > first.capture_ns && client.reconnect_stats().successes >= 1;
   });
-  EXPECT_GE(client.reconnects(), 1);
+  const ReconnectStats stats = client.reconnect_stats();
+  EXPECT_GE(stats.successes, 1u);
+  EXPECT_GE(stats.attempts, stats.successes);
+  // The stream the shutdown ended says why, naming the server.
+  EXPECT_THAT(stats.last_error, HasSubstr("stream: "));
   EXPECT_GT(later.sequence, first.sequence);
   client.stop();
 }

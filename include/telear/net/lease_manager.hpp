@@ -33,7 +33,7 @@ struct LeaseOptions {
 };
 
 struct LeaseGrant {
-  std::string lease_id;  // 32 hex digits from std::random_device
+  std::string lease_id;  // 32 hex digits (random_token, telear/net/random_token.hpp)
   std::string holder;    // the client's name
   std::int64_t heartbeat_ns = 0;
   std::int64_t expires_ns = 0;

@@ -6,7 +6,8 @@
 // message is converted and published into a latest-wins slot (telear/net/latest_slot.hpp), so
 // latest_state() is a lock-light read of the newest state and a slow reader never queues.
 // When the stream breaks (server gone, network down) the thread reconnects with exponential
-// back-off; connected() and the reconnect count tell the UI. A second background thread
+// back-off (telear/net/client_base.hpp, which also sends the token and the client name with
+// every call); connected() and reconnect_stats() tell the UI. A second background thread
 // pings the server (1 Hz) to estimate the clock offset (telear/net/clock_offset.hpp), so the
 // state's age and the jog expiry are computed across machines.
 //
@@ -35,6 +36,7 @@
 #include "telear/core/trajectory.hpp"
 #include "telear/net/client_options.hpp"
 #include "telear/net/clock_offset.hpp"
+#include "telear/net/reconnect.hpp"
 
 namespace telear::net {
 
@@ -103,7 +105,7 @@ class RobotClient {
   void start();
   void stop();
   bool connected() const;  // the state stream delivered a message within the last second
-  int reconnects() const;
+  ReconnectStats reconnect_stats() const;  // the state stream's (telear/net/client_base.hpp)
 
   Result<RobotInfo> get_info();
   std::optional<RobotStateSample> latest_state() const;

@@ -15,8 +15,9 @@
 //   robot command from bob (ipv4:127.0.0.1:40120): acquire lease: rejected (PERMISSION_DENIED):
 //   the lease is held by 'alice'; ...
 //
-// "Who" is the client's name (metadata `telear-client`, which RobotClient sends) and its peer
-// address. A lapsed lease is logged by the watchdog, with how late the stop began.
+// "Who" is the client's name (metadata `telear-client`, which every telear client sends) and
+// its peer address (describe_caller, telear/net/client_name.hpp). A lapsed lease is logged by the
+// watchdog, with how late the stop began.
 //
 // Trajectory ids: the first acceptance of each id is kept, and a repeated id is answered with
 // it (duplicate = true, the current status) before any other check but authentication and
@@ -36,6 +37,7 @@
 
 #include "telear/core/robot_driver.hpp"
 #include "telear/net/bearer_auth.hpp"
+#include "telear/net/client_name.hpp"
 #include "telear/net/lease_manager.hpp"
 #include "telear/net/robot_command_validation.hpp"
 #include "telear/v1/robot.grpc.pb.h"
@@ -109,8 +111,5 @@ class RobotService final : public v1::RobotService::Service {
   std::condition_variable shutdown_cv_;
   bool shutting_down_ = false;
 };
-
-// "alice (ipv4:127.0.0.1:40112)": the `telear-client` metadata and the peer.
-std::string describe_caller(const grpc::ServerContext& context);
 
 }  // namespace telear::net

@@ -7,17 +7,14 @@
 // TurboJPEG into RGB images and publishes a DecodedStereoFrame into a second latest-wins slot
 // that latest_frame() / wait_frame() read. A slow reader skips frames; frames that were
 // received but never decoded (the decoder was busy) are counted. The receive thread
-// reconnects with exponential back-off when the stream breaks; a ping thread estimates the
+// reconnects with exponential back-off when the stream breaks (telear/net/client_base.hpp,
+// which also sends the token and the client name with every call); a ping thread estimates the
 // server's clock offset (telear/net/clock_offset.hpp) so per-stage latencies are meaningful across
 // machines.
 //
-// Latency of every stage, per frame, in seconds (client clock after offset conversion):
-//   capture  = (server) when the source delivered the pair  -> encode start
-//   encode   = encode start -> encode end (both eyes)
-//   send     = encode end -> handed to gRPC for this client (the server's send queue)
-//   network  = server send -> received here (needs the clock offset across machines)
-//   decode   = received -> both eyes decoded
-//   total    = capture -> decoded (the age of the image when the client can show it)
+// Latency of every stage, per frame, in seconds (client clock after offset conversion): the
+// six stages of telear/net/latency_stages.hpp (capture -> encode, encode, send queue, network,
+// decode, capture -> decoded), in DecodedStereoFrame::latency.
 
 #include <cstdint>
 #include <memory>
@@ -28,6 +25,8 @@
 #include "telear/core/result.hpp"
 #include "telear/net/client_options.hpp"
 #include "telear/net/clock_offset.hpp"
+#include "telear/net/latency_stages.hpp"
+#include "telear/net/reconnect.hpp"
 #include "telear/vision/camera_model.hpp"
 
 namespace telear::net {
@@ -37,11 +36,6 @@ struct VisionClientOptions : ClientOptions {
   int jpeg_quality = 0;       // 0: the server's default
   int width = 0, height = 0;  // 0: the source's size
   double ping_period_s = 1.0;
-};
-
-struct StageLatency {
-  double capture_to_encode_s = 0, encode_s = 0, send_queue_s = 0, network_s = 0, decode_s = 0;
-  double total_s = 0;  // capture -> decoded
 };
 
 struct DecodedStereoFrame {
@@ -76,8 +70,8 @@ class VisionClient {
 
   void start();  // starts the receive, decode and ping threads; returns at once
   void stop();
-  bool connected() const;  // a frame arrived within the last second
-  int reconnects() const;
+  bool connected() const;                  // a frame arrived within the last second
+  ReconnectStats reconnect_stats() const;  // the frame stream's (telear/net/client_base.hpp)
 
   Result<CameraInfoReply> get_camera_info();
   std::optional<std::shared_ptr<const DecodedStereoFrame>> latest_frame() const;

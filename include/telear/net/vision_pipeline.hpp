@@ -22,6 +22,9 @@
 // clients with the same custom request each encode; caching distinct requests is not worth
 // the bookkeeping for the few viewers a robot has.)
 //
+// Errors of the source and the encoder are counted (stats()) and logged through spdlog, once
+// per distinct message (a camera that stays unplugged is one line, not ten a second).
+//
 // Frame numbers. frame_id is the source's frame number (1, 2, 3 ...), so skipped frames are
 // counted against the source, whichever slot a client reads: skipped = id - previous id - 1.
 

@@ -8,8 +8,10 @@
 // destructor) shuts down cleanly with clients streaming: the service's loops are told to end,
 // gRPC is given a short deadline to finish the calls (then cancels them: a Write blocked on a
 // client that stopped reading returns), and the pipeline's threads are joined.
+//
+// Log: through spdlog (telear/net/server_log.hpp), like the robot server: the address once
+// listening, every stream with the client's name, errors, the shutdown.
 
-#include <functional>
 #include <memory>
 #include <string>
 
@@ -27,7 +29,6 @@ struct VisionServerOptions {
   int jpeg_quality = 85;         // the shared encode's quality
   int max_streams = 16;
   double shutdown_grace_s = 0.5;  // how long streaming calls get to finish before cancellation
-  std::function<void(const std::string&)> log;  // stream open/close lines; empty: silent
 };
 
 class VisionServer {

@@ -9,11 +9,14 @@
 // `authorization: Bearer <token>` (vision is read access; observers are allowed only when the
 // BearerAuth says so). Without one, the service is open.
 //
+// Log (spdlog, telear/net/server_log.hpp): info when a stream opens and closes (the caller's
+// name and peer, telear/net/client_name.hpp; frames sent and skipped), debug for each
+// delivery that skipped source frames, warn for a refused call, error for a failed stream.
+//
 // Shutdown: begin_shutdown() makes every StreamFrames loop return within ~0.1 s (each waits
 // on the pipeline with a short timeout and checks the flag and its call's cancellation).
 
 #include <atomic>
-#include <functional>
 #include <optional>
 #include <string>
 
@@ -29,7 +32,6 @@ struct VisionServiceConfig {
   std::optional<vision::CameraFile> calibration;  // a stereo camera file, for GetCameraInfo
   std::string calibration_yaml;                   // its text, as loaded
   int max_streams = 16;                           // concurrent StreamFrames calls
-  std::function<void(const std::string&)> log;    // one line per stream opened / closed
 };
 
 // CameraInfo of a stereo calibration (R, t of the right camera in the left camera's frame
@@ -54,8 +56,7 @@ class VisionServiceImpl final : public telear::v1::VisionService::Service {
   int active_streams() const { return active_streams_; }
 
  private:
-  grpc::Status authorize(const grpc::ServerContext& context) const;
-  void log(const std::string& line) const;
+  grpc::Status authorize(const grpc::ServerContext& context, const char* what) const;
 
   const VisionPipeline& pipeline_;
   VisionServiceConfig config_;

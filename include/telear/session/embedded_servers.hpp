@@ -10,7 +10,6 @@
 // given.
 
 #include <Eigen/Core>
-#include <functional>
 #include <memory>
 #include <string>
 
@@ -33,7 +32,6 @@ struct EmbeddedServersOptions {
   int supersample = 1;           // the video's anti-aliasing (1 is fastest)
   double noise_sigma = 1.0;      // grey levels
   std::uint64_t seed = 1;
-  std::function<void(const std::string&)> log;  // server log lines; empty: silent
 };
 
 class EmbeddedServers {
@@ -64,8 +62,5 @@ class EmbeddedServers {
   std::unique_ptr<net::VisionServer> vision_;
   vision::StereoCameraModel rig_cameras_;
 };
-
-// A random 32-hex-digit bearer token.
-std::string random_token();
 
 }  // namespace telear::session

@@ -44,6 +44,7 @@
 #include "telear/core/motion_command.hpp"
 #include "telear/core/result.hpp"
 #include "telear/core/robot_model.hpp"
+#include "telear/net/latency_stages.hpp"
 #include "telear/net/latency_summary.hpp"
 #include "telear/net/robot_client.hpp"
 #include "telear/net/vision_client.hpp"
@@ -100,7 +101,9 @@ using net::LatencySummary;
 
 struct SessionStats {
   double video_fps = 0.0;  // decoded frames per second over the last ~2 s
-  LatencySummary capture_to_encode, encode, send_queue, network, decode, total;
+  // The video's latency per stage over the last ~2 s, in net::kLatencyStages' order
+  // (telear/net/latency_stages.hpp): latency[i] is kLatencyStages[i].
+  net::StageSummaries latency{};
   double robot_state_age_s = 0.0;
   double robot_round_trip_s = 0.0;  // last ping
   double video_bytes_per_s = 0.0;
