@@ -18,197 +18,34 @@
 #include <thread>
 #include <vector>
 
+#include "bench/cpu_timing.hpp"
+#include "bench/ik_timing.hpp"
 #include "bench/kdl_chain.hpp"
+#include "bench/kin_table.hpp"
 #include "bench/kin_workload.hpp"
 #include "telear/core/ik_analytic.hpp"
 #include "telear/core/ik_numeric.hpp"
+#include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
 namespace {
 
-constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 constexpr int kInputs = 1024;  // inputs cycled through by the per-call benchmarks (power of 2)
 
-// Thread CPU time: time the scheduler gives to other processes is not counted.
-double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// Keeps the compiler from discarding a result that is never read.
-template <typename T>
-inline void keep(const T& value) {
-  asm volatile("" : : "m"(value) : "memory");
-}
-
-// CPU nanoseconds per call of call(i), i = 0, 1, ...: the best of `batches` batches of about
-// `batch_seconds` each (the minimum is the least disturbed by other processes).
-template <typename Call>
-double best_ns_per_call(Call&& call, double batch_seconds = 0.02, int batches = 15) {
-  long n = 16;
-  for (;;) {
-    const double t0 = cpu_seconds();
-    for (long i = 0; i < n; ++i) call(i);
-    const double dt = cpu_seconds() - t0;
-    if (dt >= batch_seconds / 4 || n >= (1L << 26)) {
-      n = std::max(n,
-                   static_cast<long>(static_cast<double>(n) * batch_seconds / std::max(dt, 1e-9)));
-      break;
-    }
-    n *= 4;
-  }
-  double best = std::numeric_limits<double>::infinity();
-  for (int b = 0; b < batches; ++b) {
-    const double t0 = cpu_seconds();
-    for (long i = 0; i < n; ++i) call(i);
-    best = std::min(best, (cpu_seconds() - t0) / static_cast<double>(n));
-  }
-  return best * 1e9;
-}
-
-// Outcome of one numeric IK solver over every target. A target counts as solved when the
-// solver reports success, forward kinematics of its answer reaches the target (within the
-// verification tolerance) and every joint lies within its limits (or a 2 pi equivalent
-// does): an answer the arm cannot take is no answer.
-struct IkStats {
-  double solved_percent = 0.0;
-  double mean_us = 0.0;  // over every target, failures included: what a caller pays
-  double p99_us = 0.0;
-  int outside_limits = 0;  // reported solved, but some joint outside its limits
-  int unverified = 0;      // reported solved, but FK of the answer misses the target
-};
-
-bool within_limits(const core::RobotModel& model, const Eigen::VectorXd& q) {
-  for (int i = 0; i < model.dof(); ++i) {
-    bool inside = false;
-    for (int turns = -2; turns <= 2 && !inside; ++turns) {
-      const double v = q[i] + 2.0 * std::numbers::pi * turns;
-      inside = v >= model.lower_limits()[i] && v <= model.upper_limits()[i];
-    }
-    if (!inside) return false;
-  }
-  return true;
-}
-
-// Times solve(k) -> (success, q) for every case k, one CPU-clock reading per solve.
-template <typename Solve>
-IkStats time_numeric_ik(const core::RobotModel& model, const std::vector<bench::IkCase>& cases,
-                        Solve&& solve, double verify_position_m, double verify_rotation_rad) {
-  std::vector<double> times_us(cases.size());
-  int solved = 0;
-  IkStats stats;
-  core::KinematicsData data(model);
-  for (size_t k = 0; k < cases.size(); ++k) {
-    const double t0 = cpu_seconds();
-    const auto [success, q] = solve(k);
-    times_us[k] = (cpu_seconds() - t0) * 1e6;
-    if (!success) continue;
-    core::forward_kinematics(model, data, q);
-    const core::Vector6d e = core::pose_error_in_base(data.T_base_tool, cases[k].T_base_tool);
-    if (e.head<3>().norm() > verify_position_m || e.tail<3>().norm() > verify_rotation_rad) {
-      ++stats.unverified;
-    } else if (!within_limits(model, q)) {
-      ++stats.outside_limits;
-    } else {
-      ++solved;
-    }
-  }
-  const auto count = static_cast<double>(cases.size());
-  stats.solved_percent = 100.0 * solved / count;
-  double sum = 0.0;
-  for (double t : times_us) sum += t;
-  stats.mean_us = sum / count;
-  const auto p99 = static_cast<size_t>(std::ceil(0.99 * count)) - 1;
-  std::nth_element(times_us.begin(), times_us.begin() + static_cast<long>(p99), times_us.end());
-  stats.p99_us = times_us[p99];
-  return stats;
-}
-
-struct Row {
-  std::string operation;
-  std::string unit;  // "ns", "us" or "%"
-  double telear = kNone;
-  double kdl = kNone;  // kNone: KDL has no counterpart
-  std::string target;
-  std::string met;  // "", "yes" or "no: why"
-  // KDL / telear: how many times faster telear is (time rows with a KDL figure).
-  double ratio() const { return unit == "%" || std::isnan(kdl) ? kNone : kdl / telear; }
-};
-
-std::string format_value(double v, const std::string& unit) {
-  if (std::isnan(v)) return "-";
-  char buffer[64];
-  if (unit == "%") {
-    std::snprintf(buffer, sizeof buffer, "%.2f %%", v);
-  } else if (v >= 1000.0) {
-    std::snprintf(buffer, sizeof buffer, "%.0f %s", v, unit.c_str());
-  } else if (v >= 10.0) {
-    std::snprintf(buffer, sizeof buffer, "%.1f %s", v, unit.c_str());
-  } else {
-    std::snprintf(buffer, sizeof buffer, "%.2f %s", v, unit.c_str());
-  }
-  return buffer;
-}
-
-std::string format_ratio(double r) {
-  if (std::isnan(r)) return "-";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, r >= 10.0 ? "%.0fx" : "%.1fx", r);
-  return buffer;
-}
-
-void print_table(const std::vector<Row>& rows, std::ostream& out) {
-  const std::vector<std::string> header = {"operation",  "telear", "KDL",
-                                           "KDL/telear", "target", "met"};
-  std::vector<std::vector<std::string>> cells;
-  for (const Row& r : rows) {
-    cells.push_back({r.operation, format_value(r.telear, r.unit), format_value(r.kdl, r.unit),
-                     format_ratio(r.ratio()), r.target, r.met});
-  }
-  std::vector<size_t> width(header.size());
-  for (size_t c = 0; c < header.size(); ++c) {
-    width[c] = header[c].size();
-    for (const auto& line : cells) width[c] = std::max(width[c], line[c].size());
-  }
-  auto print_line = [&](const std::vector<std::string>& line) {
-    std::string text;
-    for (size_t c = 0; c < line.size(); ++c) {
-      std::string cell = line[c];
-      // Names and notes left-aligned, numbers right-aligned.
-      const bool left = c == 0 || c + 1 >= line.size() - 1;
-      const std::string pad(width[c] - cell.size(), ' ');
-      text += left ? cell + pad : pad + cell;
-      if (c + 1 < line.size()) text += " | ";
-    }
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    out << text << "\n";
-  };
-  print_line(header);
-  std::vector<std::string> rule;
-  for (size_t w : width) rule.push_back(std::string(w, '-'));
-  print_line(rule);
-  for (const auto& line : cells) print_line(line);
-}
-
-std::string met_time(double value, double limit, const std::string& unit) {
-  if (value <= limit) return "yes";
-  return "no: " + format_value(value, unit) + " > " + format_value(limit, unit);
-}
-
-std::string met_ratio(double ratio, double wanted) {
-  if (ratio >= wanted) return "yes";
-  return "no: " + format_ratio(ratio) + " < " + format_ratio(wanted);
-}
-
-std::string join_met(const std::string& a, const std::string& b) {
-  if (a == "yes" && b == "yes") return "yes";
-  if (a == "yes") return b;
-  if (b == "yes") return a;
-  return a + "; " + b.substr(4);
-}
+using bench::best_ns_per_call;
+using bench::cpu_seconds;
+using bench::IkStats;
+using bench::join_met;
+using bench::keep;
+using bench::kNone;
+using bench::met_ratio;
+using bench::met_time;
+using bench::print_table;
+using bench::Row;
+using bench::time_numeric_ik;
 
 }  // namespace
 

@@ -13,6 +13,8 @@
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
+#include "telear/core/pose.hpp"
+#include "telear/core/rigid_transform.hpp"
 #include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
@@ -71,38 +73,7 @@ std::string format_joints(const Eigen::VectorXd& q, int width, int precision) {
   return text + "]";
 }
 
-// 1-based index of the first joint with no 2*pi-equivalent value within its limits, or 0.
-int first_joint_outside_limits(const core::RobotModel& model, const Eigen::VectorXd& q) {
-  for (int i = 0; i < model.dof(); ++i) {
-    const double lower = model.lower_limits()[i], upper = model.upper_limits()[i];
-    double v = q[i];
-    if (model.joint(i).type == core::JointType::kRevolute && std::isfinite(lower)) {
-      v += 2.0 * M_PI * std::ceil((lower - 1e-9 - v) / (2.0 * M_PI));
-    }
-    if (v < lower - 1e-9 || v > upper + 1e-9) return i + 1;
-  }
-  return 0;
-}
-
 // [SECTION] kin ik: the target pose from --T or --pose
-
-// Why a 4x4 matrix is not a rigid transform, or empty when it is one (to `tolerance`).
-std::string rigid_transform_problem(const Eigen::Matrix4d& M, double tolerance) {
-  char buffer[160];
-  const double last_row = (M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff();
-  if (last_row > tolerance) return "its last row is not 0 0 0 1";
-  const Eigen::Matrix3d R = M.topLeftCorner<3, 3>();
-  const double orthonormality =
-      (R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (orthonormality > tolerance) {
-    std::snprintf(buffer, sizeof buffer,
-                  "its rotation block is not orthonormal (R R^T - I is off by %.3g; tolerance %g)",
-                  orthonormality, tolerance);
-    return buffer;
-  }
-  if (R.determinant() < 0.0) return "its rotation block is a reflection (determinant -1)";
-  return {};
-}
 
 // "16 numbers row-major": comma-separated, or separated by blanks when there is no comma.
 Result<Eigen::Isometry3d> transform_from_text(const std::string& text) {
@@ -122,7 +93,7 @@ Result<Eigen::Isometry3d> transform_from_text(const std::string& text) {
   }
   // Printed matrices carry a few digits only: accept small deviations, then re-orthonormalize.
   constexpr double kTolerance = 1e-4;
-  if (const std::string problem = rigid_transform_problem(M, kTolerance); !problem.empty()) {
+  if (const std::string problem = core::rigid_transform_problem(M, kTolerance); !problem.empty()) {
     return Error{"--T is not a rigid transform: " + problem};
   }
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -228,7 +199,7 @@ int run_kin_info(const KinOptions& options, std::ostream& out, std::ostream& err
   for (int i = 0; i < model.dof(); ++i) {
     const core::Joint& joint = model.joint(i);
     const bool revolute = joint.type == core::JointType::kRevolute;
-    const double scale = revolute ? 180.0 / M_PI : 1000.0;
+    const double scale = revolute ? core::degrees_from_radians(1.0) : 1000.0;
     const char* unit = revolute ? "deg" : "mm";
     std::snprintf(
         buffer, sizeof buffer, "  %-3d %-14s %-10s %8.1f .. %6.1f %s %8.1f %s/s %8.1f %s/s2\n",
@@ -364,8 +335,8 @@ int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) 
     const Eigen::VectorXd q = joints_to_user(model, s.q, options.degrees);
     out << "  " << std::left << std::setw(8) << s.config
         << format_joints(q, options.degrees ? 9 : 8, options.degrees ? 4 : 5);
-    if (const int joint = first_joint_outside_limits(model, s.q); joint > 0) {
-      out << "  outside limits (joint " << joint << ")";
+    if (const auto joint = core::first_joint_outside_limits_modulo_turns(model, s.q, 1e-9)) {
+      out << "  outside limits (joint " << *joint + 1 << ")";
     } else {
       out << "  within limits";
     }

@@ -13,6 +13,7 @@
 
 #include "telear/core/arm_body.hpp"
 #include "telear/core/arm_body_pose.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/render/arm_renderer.hpp"
 #include "telear/render/egl_context.hpp"
@@ -181,12 +182,6 @@ double process_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
-
 }  // namespace
 
 int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::ostream& err) {
@@ -248,15 +243,16 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
     return 0;
   }
   out << "telear bench render: " << options.width << "x" << options.height << " per view, "
-      << fixed(options.seconds, 1) << " s per case\n"
+      << core::format_fixed(options.seconds, 1) << " s per case\n"
       << "device: " << device << "\n"
       << "seed: Pentium 4 2 GHz, Direct3D, 2006 (REFERENCES.md)\n\n"
       << "| case | view | fps | ms/frame | CPU ms/frame | seed |\n"
       << "|---|---|---:|---:|---:|---|\n";
   for (const Measured& m : results) {
     out << "| " << m.c.name << " | " << (m.c.stereo ? "stereo" : "mono") << " | "
-        << fixed(m.fps(), 0) << " | " << fixed(m.ms(), 3) << " | " << fixed(m.cpu_ms(), 3) << " | "
-        << (m.c.seed.empty() ? "-" : m.c.seed) << " |\n";
+        << core::format_fixed(m.fps(), 0) << " | " << core::format_fixed(m.ms(), 3) << " | "
+        << core::format_fixed(m.cpu_ms(), 3) << " | " << (m.c.seed.empty() ? "-" : m.c.seed)
+        << " |\n";
   }
   return 0;
 }

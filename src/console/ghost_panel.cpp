@@ -4,6 +4,7 @@
 
 #include "telear/console/console_actions.hpp"
 #include "telear/console/panels.hpp"
+#include "telear/core/angles.hpp"
 
 namespace telear::console {
 
@@ -13,7 +14,7 @@ namespace {
 void cartesian_buttons(PanelContext& ctx, ActionKind kind) {
   const UiState& ui = ctx.ui;
   const double step_m = ui.cartesian_step_mm / 1000.0;
-  const double step_rad = ui.rotation_step_deg * M_PI / 180.0;
+  const double step_rad = core::radians_from_degrees(ui.rotation_step_deg);
   static const char* axes[] = {"x", "y", "z", "rx", "ry", "rz"};
   for (int k = 0; k < 6; ++k) {
     for (int sign : {-1, +1}) {
@@ -77,7 +78,8 @@ void draw_ghost_panel(PanelContext& ctx, const PanelLayout& layout) {
   for (int j = 0; j < model.dof(); ++j) {
     ImGui::PushID(j);
     const bool prismatic = is_prismatic(model, j);
-    const double unit = prismatic ? 1e-3 : M_PI / 180.0;  // UI unit in model units
+    const double unit =
+        prismatic ? 1e-3 : core::radians_from_degrees(1.0);  // UI unit in model units
     const double step = ui.joint_step_deg * unit;
     if (ImGui::Button("-")) ctx.act(ghost_joint(j, -step));
     ImGui::SameLine();

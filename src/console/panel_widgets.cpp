@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "telear/console/panels.hpp"
+#include "telear/core/angles.hpp"
 
 namespace telear::console {
 
@@ -18,7 +19,7 @@ bool is_prismatic(const core::RobotModel& model, int joint) {
 }
 
 double display_value(const core::RobotModel& model, int joint, double q) {
-  return is_prismatic(model, joint) ? q * 1000.0 : q * 180.0 / M_PI;
+  return is_prismatic(model, joint) ? q * 1000.0 : core::degrees_from_radians(q);
 }
 
 double limit_margin(const core::RobotModel& model, int joint, double q) {

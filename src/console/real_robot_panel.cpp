@@ -5,6 +5,7 @@
 
 #include "telear/console/console_actions.hpp"
 #include "telear/console/panels.hpp"
+#include "telear/core/angles.hpp"
 
 namespace telear::console {
 
@@ -89,14 +90,15 @@ void draw_real_robot_panel(PanelContext& ctx, const PanelLayout& layout) {
     UiAction a{.kind = ActionKind::kRealInitialize};
     a.q.resize(static_cast<int>(values.size()));
     for (std::size_t j = 0; j < values.size(); ++j) {
-      a.q[static_cast<int>(j)] =
-          is_prismatic(model, static_cast<int>(j)) ? values[j] / 1000.0 : values[j] * M_PI / 180.0;
+      a.q[static_cast<int>(j)] = is_prismatic(model, static_cast<int>(j))
+                                     ? values[j] / 1000.0
+                                     : core::radians_from_degrees(values[j]);
     }
     ctx.act(a);
   }
 
   section("Direct jog (conventional mode: moves the robot now)");
-  const double step = ui.joint_step_deg * M_PI / 180.0;
+  const double step = core::radians_from_degrees(ui.joint_step_deg);
   for (int j = 0; j < model.dof(); ++j) {
     ImGui::PushID(100 + j);
     char label[16];

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "telear/core/angles.hpp"
+
 namespace telear::console {
 
 namespace {
@@ -40,7 +42,7 @@ double parse_angle(const std::string& text) {
   }
   std::string number = text;
   if (number.size() > 3 && number.ends_with("deg")) number = number.substr(0, number.size() - 3);
-  return parse_double(number, "angle") * M_PI / 180.0;
+  return core::radians_from_degrees(parse_double(number, "angle"));
 }
 
 // A length (metres unless "mm" or "m" suffix) in metres.

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "telear/core/arm_body.hpp"
+#include "telear/core/yaml_reader.hpp"
 
 namespace telear::core {
 namespace {
@@ -29,15 +30,10 @@ void check_keys(const YAML::Node& map, const std::set<std::string>& allowed,
 }
 
 float number(const YAML::Node& node, const std::string& what) {
-  if (!node || !node.IsScalar()) throw ParseError{what + " must be a number"};
-  double value = 0.0;
-  try {
-    value = node.as<double>();
-  } catch (const YAML::Exception&) {
-    throw ParseError{what + " must be a number, got '" + node.Scalar() + "'"};
-  }
-  if (!std::isfinite(value)) throw ParseError{what + " must be finite, got " + node.Scalar()};
-  return static_cast<float>(value);
+  if (!node) throw ParseError{what + " must be a number"};
+  const auto value = yaml_number(node, what, " ");
+  if (!value) throw ParseError{value.error().message};
+  return static_cast<float>(*value);
 }
 
 float positive(const YAML::Node& node, const std::string& what) {
@@ -207,12 +203,15 @@ BodyDescription parse(const YAML::Node& root, const std::string& source, const R
 
 Result<BodyDescription> parse_body_yaml(const std::string& text, const std::string& source,
                                         const RobotModel& model) {
+  const std::string where = "body file '" + source + "': ";
+  auto root = load_yaml(text, where);
+  if (!root) return root.error();
   try {
-    return parse(YAML::Load(text), source, model);
+    return parse(*root, source, model);
   } catch (const ParseError& e) {
-    return Error{"body file '" + source + "': " + e.message};
+    return Error{where + e.message};
   } catch (const YAML::Exception& e) {
-    return Error{"body file '" + source + "': not valid YAML: " + e.what()};
+    return Error{where + describe_yaml_error(e)};
   }
 }
 
@@ -230,13 +229,10 @@ Result<BodyDescription> body_description_for(const RobotModel& model) {
   if (!model.dh()) {
     // A body file in DH frames does not fit a model with other link frames (the URDF of the
     // same arm): such a model gets the default body rather than misplaced shapes.
-    try {
-      const YAML::Node root = YAML::LoadFile(path);
-      if (root.IsMap() && root["frames"] && root["frames"].Scalar() == "standard_dh") {
-        return default_body_description(model);
-      }
-    } catch (const YAML::Exception&) {
-      // Fall through: load_body_yaml_file reports the error with its context.
+    // An unreadable file falls through: load_body_yaml_file reports it with its context.
+    const auto root = load_yaml_file(path, "");
+    if (root && root->IsMap() && (*root)["frames"] && (*root)["frames"].Scalar() == "standard_dh") {
+      return default_body_description(model);
     }
   }
   return load_body_yaml_file(path, model);

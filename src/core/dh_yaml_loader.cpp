@@ -12,15 +12,20 @@
 
 #include "telear/core/pose.hpp"
 #include "telear/core/robot_loader.hpp"
-#include "telear/core/yaml_number.hpp"
+#include "telear/core/yaml_reader.hpp"
 
 namespace telear::core {
 namespace {
 
-using ParseError = YamlParseError;
+// Thrown inside this file only; parse_*() turns it into a Result (no exception leaves it).
+struct ParseError {
+  std::string message;
+};
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  return yaml_number(node, what, " ");
+  auto value = yaml_number(node, what, " ");
+  if (!value) throw ParseError{value.error().message};
+  return *value;
 }
 
 std::vector<double> numbers(const YAML::Node& node, const std::string& what, size_t count) {
@@ -155,12 +160,15 @@ RobotModel::Description parse(const YAML::Node& root, const std::string& source)
 }  // namespace
 
 Result<RobotModel> parse_dh_yaml(const std::string& text, const std::string& source) {
+  const std::string where = "robot file '" + source + "': ";
+  auto root = load_yaml(text, where);
+  if (!root) return root.error();
   try {
-    return RobotModel::create(parse(YAML::Load(text), source));
+    return RobotModel::create(parse(*root, source));
   } catch (const ParseError& e) {
-    return Error{"robot file '" + source + "': " + e.message};
+    return Error{where + e.message};
   } catch (const YAML::Exception& e) {
-    return Error{"robot file '" + source + "': not valid YAML: " + e.what()};
+    return Error{where + describe_yaml_error(e)};
   }
 }
 

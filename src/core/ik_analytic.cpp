@@ -8,6 +8,8 @@
 #include <numbers>
 
 #include "telear/core/angles.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/number_format.hpp"
 
 namespace telear::core {
 namespace {
@@ -24,25 +26,12 @@ constexpr double kEulerDegenerate = 10.0 * std::numeric_limits<double>::epsilon(
 constexpr double kLimitTolerance = 1e-9;  // rad
 constexpr double kDhTolerance = 1e-9;     // rad or m, for the class checks
 
+// Lengths and angles in the solver's messages: "0.8641 m", "12.50 deg".
 std::string format_length(double metres) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4f m", metres);
-  return buffer;
+  return format_fixed(metres, 4, "m");
 }
-
 std::string format_angle(double radians) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.2f deg", degrees_from_radians(radians));
-  return buffer;
-}
-
-// True when some 2*pi-equivalent of `value` (in (-pi, pi]) lies in [lower, upper], with
-// tolerance. Limits spanning 2 pi or more (also infinite ones) hold every angle.
-bool equivalent_within(double value, double lower, double upper) {
-  if (upper - lower >= kTwoPi) return true;
-  const double lo = lower - kLimitTolerance, hi = upper + kLimitTolerance;
-  return (value >= lo && value <= hi) || (value + kTwoPi >= lo && value + kTwoPi <= hi) ||
-         (value - kTwoPi >= lo && value - kTwoPi <= hi);
+  return format_fixed(degrees_from_radians(radians), 2, "deg");
 }
 
 // wrap_to_pi for the closed form's angles, which lie within a few pi: a subtraction or two
@@ -289,8 +278,9 @@ void solve_puma_ik(const PumaGeometry& g, const Eigen::Isometry3d& T_base_tool,
         for (int j = 0; j < 6; ++j) {
           const double t = g.mirrored ? -theta[j] : theta[j];
           q[j] = wrap_small_angle(t - g.offset[static_cast<size_t>(j)]);
-          inside = inside && equivalent_within(q[j], g.lower[static_cast<size_t>(j)],
-                                               g.upper[static_cast<size_t>(j)]);
+          inside =
+              inside && angle_equivalent_within(q[j], g.lower[static_cast<size_t>(j)],
+                                                g.upper[static_cast<size_t>(j)], kLimitTolerance);
         }
         out.within_limits[static_cast<size_t>(index)] = inside;
         unsigned bits = 0;

@@ -8,19 +8,30 @@
 
 #include "telear/core/companion_file.hpp"
 #include "telear/core/pose.hpp"
-#include "telear/core/yaml_number.hpp"
+#include "telear/core/yaml_reader.hpp"
 
 namespace telear::core {
 namespace {
+
+// Parsing throws this inside this file only; the entry points turn it into a Result.
+struct ParseError {
+  std::string message;
+};
+
+double number(const YAML::Node& node, const std::string& what) {
+  auto value = yaml_number(node, what);
+  if (!value) throw ParseError{value.error().message};
+  return *value;
+}
 
 constexpr int kDictionarySize = 50;  // DICT_4X4_50
 
 Eigen::Vector3d vector3(const YAML::Node& node, const std::string& what) {
   if (!node.IsSequence() || node.size() != 3) {
-    throw YamlParseError{what + " must be a list of 3 numbers"};
+    throw ParseError{what + " must be a list of 3 numbers"};
   }
-  return {yaml_number(node[0], what + "[0]"), yaml_number(node[1], what + "[1]"),
-          yaml_number(node[2], what + "[2]")};
+  return {number(node[0], what + "[0]"), number(node[1], what + "[1]"),
+          number(node[2], what + "[2]")};
 }
 
 }  // namespace
@@ -53,14 +64,14 @@ Result<MarkerMount> parse_marker_mount_yaml(const std::string& text, const std::
                    "' is not supported (DICT_4X4_50)"};
     }
     if (!root["id"]) return Error{source + ": id: missing (0..49)"};
-    const double id = yaml_number(root["id"], "id");
+    const double id = number(root["id"], "id");
     if (id != static_cast<int>(id) || id < 0 || id >= kDictionarySize) {
       return Error{source + ": id " + root["id"].Scalar() +
                    " is outside DICT_4X4_50's range 0..49"};
     }
     mount.id = static_cast<int>(id);
     if (!root["side_m"]) return Error{source + ": side_m: missing (m)"};
-    mount.side_m = yaml_number(root["side_m"], "side_m");
+    mount.side_m = number(root["side_m"], "side_m");
     if (!(mount.side_m > 0.0)) {
       return Error{source + ": side_m must be positive, got " + root["side_m"].Scalar()};
     }
@@ -72,10 +83,10 @@ Result<MarkerMount> parse_marker_mount_yaml(const std::string& text, const std::
     const Eigen::Vector3d rpy =
         pose["rpy"] ? vector3(pose["rpy"], "pose_in_flange.rpy") : Eigen::Vector3d::Zero();
     mount.T_flange_marker = pose_from_xyz_rpy(xyz, rpy);
-  } catch (const YamlParseError& e) {
+  } catch (const ParseError& e) {
     return Error{source + ": " + e.message};
   } catch (const YAML::Exception& e) {
-    return Error{source + ": not valid YAML: " + e.what()};
+    return Error{source + ": " + describe_yaml_error(e)};
   }
   return mount;
 }

@@ -10,4 +10,12 @@ std::string format_number(double value, const char* format) {
   return buffer;
 }
 
+std::string format_fixed(double value, int digits, std::string_view unit) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+  std::string text = buffer;
+  if (!unit.empty()) text.append(" ").append(unit);
+  return text;
+}
+
 }  // namespace telear::core

@@ -1,6 +1,7 @@
 #include "telear/core/pose.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace telear::core {
 
@@ -15,7 +16,7 @@ Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R) {
   // R(2,0) = -sin(pitch). Near +-1 the roll and yaw axes align.
   const double sin_pitch = -R(2, 0);
   if (std::abs(sin_pitch) > 1.0 - 1e-12) {
-    const double pitch = std::copysign(M_PI / 2.0, sin_pitch);
+    const double pitch = std::copysign(std::numbers::pi / 2.0, sin_pitch);
     const double yaw = std::atan2(-R(0, 1), R(1, 1));
     return {0.0, pitch, yaw};
   }

@@ -11,10 +11,21 @@
 
 #include "telear/core/pose.hpp"
 #include "telear/core/robot_loader.hpp"
-#include "telear/core/yaml_number.hpp"
+#include "telear/core/yaml_reader.hpp"
 
 namespace telear::core {
 namespace {
+
+// Parsing throws this inside this file only; the entry points turn it into a Result.
+struct ParseError {
+  std::string message;
+};
+
+double number(const YAML::Node& node, const std::string& what) {
+  auto value = yaml_number(node, what);
+  if (!value) throw ParseError{value.error().message};
+  return *value;
+}
 
 void check_keys(const YAML::Node& map, const std::set<std::string>& allowed,
                 const std::string& what) {
@@ -23,34 +34,34 @@ void check_keys(const YAML::Node& map, const std::set<std::string>& allowed,
     if (!allowed.count(key)) {
       std::string list;
       for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw YamlParseError{what + ": unknown key '" + key + "' (expected " + list + ")"};
+      throw ParseError{what + ": unknown key '" + key + "' (expected " + list + ")"};
     }
   }
 }
 
 Eigen::Vector3d vector3(const YAML::Node& node, const std::string& what) {
   if (!node.IsSequence() || node.size() != 3) {
-    throw YamlParseError{what + " must be a list of 3 numbers"};
+    throw ParseError{what + " must be a list of 3 numbers"};
   }
-  return {yaml_number(node[0], what + "[0]"), yaml_number(node[1], what + "[1]"),
-          yaml_number(node[2], what + "[2]")};
+  return {number(node[0], what + "[0]"), number(node[1], what + "[1]"),
+          number(node[2], what + "[2]")};
 }
 
 double positive(const YAML::Node& node, const std::string& what) {
-  if (!node) throw YamlParseError{what + ": missing"};
-  const double value = yaml_number(node, what);
+  if (!node) throw ParseError{what + ": missing"};
+  const double value = number(node, what);
   if (!(value > 0.0)) {
     std::ostringstream s;
     s << what << " must be positive, got " << value;
-    throw YamlParseError{s.str()};
+    throw ParseError{s.str()};
   }
   return value;
 }
 
 Eigen::Isometry3d parse_pose(const YAML::Node& node, const std::string& what) {
-  if (!node.IsMap()) throw YamlParseError{what + " must be a map {xyz: [x, y, z], rpy: [r, p, y]}"};
+  if (!node.IsMap()) throw ParseError{what + " must be a map {xyz: [x, y, z], rpy: [r, p, y]}"};
   check_keys(node, {"xyz", "rpy"}, what);
-  if (!node["xyz"]) throw YamlParseError{what + ".xyz: missing"};
+  if (!node["xyz"]) throw ParseError{what + ".xyz: missing"};
   const Eigen::Vector3d xyz = vector3(node["xyz"], what + ".xyz");
   const Eigen::Vector3d rpy =
       node["rpy"] ? vector3(node["rpy"], what + ".rpy") : Eigen::Vector3d::Zero();
@@ -58,15 +69,15 @@ Eigen::Isometry3d parse_pose(const YAML::Node& node, const std::string& what) {
 }
 
 WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
-  if (!node.IsMap()) throw YamlParseError{what + " must be a map"};
+  if (!node.IsMap()) throw ParseError{what + " must be a map"};
   WorkspaceObject object;
   if (!node["name"] || !node["name"].IsScalar() || node["name"].Scalar().empty()) {
-    throw YamlParseError{what + ".name: missing (every object has a name)"};
+    throw ParseError{what + ".name: missing (every object has a name)"};
   }
   object.name = node["name"].Scalar();
   const std::string where = "object '" + object.name + "'";
   if (!node["shape"] || !node["shape"].IsScalar()) {
-    throw YamlParseError{where + ": shape: missing (box, cylinder or sphere)"};
+    throw ParseError{where + ": shape: missing (box, cylinder or sphere)"};
   }
   const std::string shape = node["shape"].Scalar();
   const std::set<std::string> common = {"name", "shape", "pose", "colour", "graspable"};
@@ -78,13 +89,13 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
   if (shape == "box") {
     object.shape = ShapeKind::kBox;
     keys({"size"});
-    if (!node["size"]) throw YamlParseError{where + ": size: missing ([x, y, z] in m)"};
+    if (!node["size"]) throw ParseError{where + ": size: missing ([x, y, z] in m)"};
     object.size_m = vector3(node["size"], where + ": size");
     for (int i = 0; i < 3; ++i) {
       if (!(object.size_m[i] > 0.0)) {
         std::ostringstream s;
         s << where << ": size[" << i << "] must be positive, got " << object.size_m[i];
-        throw YamlParseError{s.str()};
+        throw ParseError{s.str()};
       }
     }
   } else if (shape == "cylinder") {
@@ -97,13 +108,13 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
     keys({"radius"});
     object.radius_m = positive(node["radius"], where + ": radius");
   } else {
-    throw YamlParseError{where + ": unknown shape '" + shape + "' (box, cylinder or sphere)"};
+    throw ParseError{where + ": unknown shape '" + shape + "' (box, cylinder or sphere)"};
   }
   if (node["pose"]) object.T_base_object = parse_pose(node["pose"], where + ": pose");
   if (node["colour"]) {
     const Eigen::Vector3d c = vector3(node["colour"], where + ": colour");
     if ((c.array() < 0.0).any() || (c.array() > 1.0).any()) {
-      throw YamlParseError{where + ": colour components must lie in 0..1"};
+      throw ParseError{where + ": colour components must lie in 0..1"};
     }
     object.colour = c.cast<float>();
   }
@@ -111,7 +122,7 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
     try {
       object.graspable = node["graspable"].as<bool>();
     } catch (const YAML::Exception&) {
-      throw YamlParseError{where + ": graspable must be true or false, got '" +
+      throw ParseError{where + ": graspable must be true or false, got '" +
                            node["graspable"].Scalar() + "'"};
     }
   }
@@ -226,10 +237,10 @@ Result<Workspace> parse_workspace_yaml(const std::string& text, const std::strin
       }
       workspace.objects.push_back(std::move(object));
     }
-  } catch (const YamlParseError& e) {
+  } catch (const ParseError& e) {
     return Error{source + ": " + e.message};
   } catch (const YAML::Exception& e) {
-    return Error{source + ": not valid YAML: " + e.what()};
+    return Error{source + ": " + describe_yaml_error(e)};
   }
   return workspace;
 }

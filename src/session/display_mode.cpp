@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <utility>
 
+#include "telear/core/number_format.hpp"
+
 namespace telear::session {
 namespace {
 
 std::string milliseconds(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.0f ms", seconds * 1000.0);
-  return text;
+  return core::format_fixed(seconds * 1000.0, 0, "ms");
 }
 
 }  // namespace

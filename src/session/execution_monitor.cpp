@@ -9,25 +9,22 @@
 #include "telear/core/angles.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
+#include "telear/core/number_format.hpp"
 
 namespace telear::session {
 namespace {
 
 std::string amount(const core::RobotModel& model, int joint, double value) {
-  char text[96];
   if (model.joint(joint).type == core::JointType::kRevolute) {
-    std::snprintf(text, sizeof text, "%.3f rad (%.1f deg)", value,
-                  core::degrees_from_radians(value));
-  } else {
-    std::snprintf(text, sizeof text, "%.4f m (%.1f mm)", value, value * 1000.0);
+    return core::format_fixed(value, 3, "rad") + " (" +
+           core::format_fixed(core::degrees_from_radians(value), 1, "deg") + ")";
   }
-  return text;
+  return core::format_fixed(value, 4, "m") + " (" + core::format_fixed(value * 1000.0, 1, "mm") +
+         ")";
 }
 
 std::string seconds(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f s", value);
-  return text;
+  return core::format_fixed(value, 3, "s");
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include "telear/session/plan.hpp"
 
-#include "telear/core/yaml_number.hpp"
+#include "telear/core/yaml_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -13,25 +13,25 @@
 #include <utility>
 
 #include "telear/core/joint_limits.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/session/ghost_arm.hpp"
 
 namespace telear::session {
 namespace {
 
-std::string number(double value) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 std::string waypoint_name(std::size_t index) {
   return "waypoint[" + std::to_string(index) + "]";
 }
 
-using ParseError = core::YamlParseError;
+// Thrown inside this file only; parse_*() turns it into a Result (no exception leaves it).
+struct ParseError {
+  std::string message;
+};
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  return core::yaml_number(node, what);
+  auto value = core::yaml_number(node, what);
+  if (!value) throw ParseError{value.error().message};
+  return *value;
 }
 
 void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& known,
@@ -68,11 +68,11 @@ Status Plan::check_waypoint(const PlanWaypoint& w, const std::string& where) con
   }
   if (!std::isfinite(w.min_duration) || w.min_duration < 0.0 ||
       w.min_duration > options_.max_segment_duration) {
-    return Error{where + ": min_duration " + number(w.min_duration) + " s is outside 0.." +
-                 number(options_.max_segment_duration) + " s"};
+    return Error{where + ": min_duration " + core::format_number(w.min_duration) +
+                 " s is outside 0.." + core::format_number(options_.max_segment_duration) + " s"};
   }
   if (w.gripper && (!std::isfinite(*w.gripper) || *w.gripper < 0.0 || *w.gripper > 1.0)) {
-    return Error{where + ": gripper opening " + number(*w.gripper) +
+    return Error{where + ": gripper opening " + core::format_number(*w.gripper) +
                  " is outside 0 (closed) .. 1 (open)"};
   }
   return Status::Ok();
@@ -164,7 +164,7 @@ Status Plan::set_scales(double velocity_scale, double acceleration_scale) {
   for (const auto& [name, value] :
        {std::pair{"velocity_scale", velocity_scale}, {"acceleration_scale", acceleration_scale}}) {
     if (!std::isfinite(value) || value <= 0.0 || value > 1.0) {
-      return Error{std::string(name) + " " + number(value) + " is outside (0, 1]"};
+      return Error{std::string(name) + " " + core::format_number(value) + " is outside (0, 1]"};
     }
   }
   options_.velocity_scale = velocity_scale;
@@ -216,12 +216,9 @@ std::string Plan::to_yaml() const {
 Result<Plan> Plan::from_yaml(core::RobotModelPtr model, const std::string& text,
                              const std::string& source) {
   const std::string where = "plan '" + source + "': ";
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    return Error{where + "not valid YAML: " + e.what()};
-  }
+  const auto loaded = core::load_yaml(text, where);
+  if (!loaded) return loaded.error();
+  const YAML::Node& root = *loaded;
   Plan plan(std::move(model));
   try {
     if (!root.IsMap()) throw ParseError{"expected a map with robot and waypoints"};
@@ -277,7 +274,7 @@ Result<Plan> Plan::from_yaml(core::RobotModelPtr model, const std::string& text,
   } catch (const ParseError& e) {
     return Error{where + e.message};
   } catch (const YAML::Exception& e) {
-    return Error{where + e.what()};
+    return Error{where + core::describe_yaml_error(e)};
   }
   return plan;
 }

@@ -1,8 +1,11 @@
 #include "telear/sim/calibration_targets.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <opencv2/aruco.hpp>
 #include <random>
+
+#include "telear/core/angles.hpp"
 
 namespace telear::sim {
 namespace {
@@ -83,7 +86,7 @@ CalibrationTarget make_calibration_target(const vision::CalibrationPattern& patt
       fan.push_back(target.mesh.add_vertex(centre.cast<float>(), n, kBlack));
       // Counter-clockwise on screen seen from -z (x right, y down): decreasing angle.
       for (int k = 0; k <= kSegments; ++k) {
-        const double a = -2.0 * M_PI * k / kSegments;
+        const double a = -2.0 * std::numbers::pi * k / kSegments;
         const Eigen::Vector3d p = centre + radius * Eigen::Vector3d(std::cos(a), std::sin(a), 0);
         fan.push_back(target.mesh.add_vertex(p.cast<float>(), n, kBlack));
       }
@@ -188,7 +191,6 @@ Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(
   const Eigen::Vector3d centre_target =
       0.5 * (Eigen::Vector3d(target.outline_min.x(), target.outline_min.y(), 0.0) +
              Eigen::Vector3d(target.outline_max.x(), target.outline_max.y(), 0.0));
-  constexpr double kDeg = M_PI / 180.0;
   std::vector<Eigen::Isometry3d> poses;
   for (int view = 0; view < count; ++view) {
     bool found = false;
@@ -198,9 +200,9 @@ Result<std::vector<Eigen::Isometry3d>> calibration_target_poses(
       const Eigen::Vector2d uv(uniform(0.3, 0.7) * left.width, uniform(0.3, 0.7) * left.height);
       const Eigen::Vector3d ray((uv.x() - left.cx) / left.fx, (uv.y() - left.cy) / left.fy, 1.0);
       const Eigen::Vector3d centre_rig = ray * distance;
-      const double spin = uniform(-20.0, 20.0) * kDeg;
-      const double axis_angle = uniform(0.0, 2.0 * M_PI);
-      const double tilt = uniform(10.0, 40.0) * kDeg;
+      const double spin = core::radians_from_degrees(uniform(-20.0, 20.0));
+      const double axis_angle = uniform(0.0, 2.0 * std::numbers::pi);
+      const double tilt = core::radians_from_degrees(uniform(10.0, 40.0));
       const Eigen::Matrix3d R_rig_target =
           (Eigen::AngleAxisd(tilt, Eigen::Vector3d(std::cos(axis_angle), std::sin(axis_angle), 0)) *
            Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ()))

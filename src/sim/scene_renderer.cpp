@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "telear/core/kinematics.hpp"
@@ -109,7 +110,7 @@ void add_sensor_noise(core::Image& image, double sigma, std::uint64_t seed) {
   const std::size_t n = image.pixels.size();
   for (std::size_t i = 0; i < n; i += 2) {
     const double radius = sigma * std::sqrt(-2.0 * std::log(uniform()));
-    const double angle = 2.0 * M_PI * uniform();
+    const double angle = 2.0 * std::numbers::pi * uniform();
     const double noise[2] = {radius * std::cos(angle), radius * std::sin(angle)};
     for (std::size_t k = 0; k < 2 && i + k < n; ++k) {
       const double value = std::round(image.pixels[i + k] + noise[k]);

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <vector>
 
+#include "telear/core/yaml_reader.hpp"
+
 namespace telear::sim {
 namespace {
 
@@ -120,13 +122,9 @@ void StereoRig::update_camera_poses() {
 Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::string& source,
                                         const std::string& base_directory) {
   const Context ctx{source};
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    return Error{"rig file '" + source + "': line " + std::to_string(e.mark.line + 1) + ": " +
-                 e.msg};
-  }
+  const auto loaded = core::load_yaml(text, "rig file '" + source + "': ");
+  if (!loaded) return loaded.error();
+  const YAML::Node& root = *loaded;
   if (!root.IsMap()) return ctx.error("top level", "expected a map");
   for (const auto& entry : root) {
     const auto key = entry.first.as<std::string>();

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
 
+#include "telear/core/angles.hpp"
 #include "telear/vision/calibration_images.hpp"
 
 namespace telear::vision {
@@ -129,7 +130,7 @@ std::string format(const char* fmt, Args... args) {
 double rotation_angle_deg(const cv::Matx33d& R) {
   cv::Vec3d om;
   cv::Rodrigues(R, om);
-  return cv::norm(om) * 180.0 / M_PI;
+  return core::degrees_from_radians(cv::norm(om));
 }
 
 // Pads to `width` characters (UTF-8 aware: "±" is one character, two bytes).

@@ -1,6 +1,6 @@
 #include "telear/vision/camera_file.hpp"
 
-#include "telear/core/yaml_number.hpp"
+#include "telear/core/yaml_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -14,14 +14,19 @@
 namespace telear::vision {
 namespace {
 
-using ParseError = core::YamlParseError;
+// Thrown inside this file only; parse_*() turns it into a Result (no exception leaves it).
+struct ParseError {
+  std::string message;
+};
 
 std::string join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
 }
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  return core::yaml_number(node, what);
+  auto value = core::yaml_number(node, what);
+  if (!value) throw ParseError{value.error().message};
+  return *value;
 }
 
 int integer(const YAML::Node& node, const std::string& what) {
@@ -233,8 +238,10 @@ Status write_text(const std::string& text, const std::string& path) {
 
 Result<CameraFile> parse_camera_yaml(const std::string& text, const std::string& source) {
   const std::string where = "camera file '" + source + "': ";
+  const auto loaded = core::load_yaml(strip_opencv_directive(text), where);
+  if (!loaded) return loaded.error();
   try {
-    const YAML::Node root = YAML::Load(strip_opencv_directive(text));
+    const YAML::Node& root = *loaded;
     if (!root.IsMap()) throw ParseError{"the file must be a YAML map"};
     CameraFile file;
     if (root["left"] || root["right"]) {
@@ -255,8 +262,7 @@ Result<CameraFile> parse_camera_yaml(const std::string& text, const std::string&
   } catch (const ParseError& e) {
     return Error{where + e.message};
   } catch (const YAML::Exception& e) {
-    return Error{where + "not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " +
-                 e.msg};
+    return Error{where + core::describe_yaml_error(e)};
   }
 }
 

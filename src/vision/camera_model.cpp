@@ -4,20 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <string>
 
+#include "telear/core/number_format.hpp"
 #include "telear/core/pose.hpp"
 
 namespace telear::vision {
-namespace {
-
-std::string number(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.9g", value);
-  return buffer;
-}
-
-}  // namespace
 
 Eigen::Matrix3d CameraModel::K() const {
   Eigen::Matrix3d K;
@@ -138,10 +131,12 @@ Status validate_camera(const CameraModel& c) {
     return Error{"image_height must be in [1, 16384], got " + std::to_string(c.height)};
   }
   if (!std::isfinite(c.fx) || c.fx <= 0.0) {
-    return Error{"fx (camera_matrix[0][0]) must be positive and finite, got " + number(c.fx)};
+    return Error{"fx (camera_matrix[0][0]) must be positive and finite, got " +
+                 core::format_number(c.fx, "%.9g")};
   }
   if (!std::isfinite(c.fy) || c.fy <= 0.0) {
-    return Error{"fy (camera_matrix[1][1]) must be positive and finite, got " + number(c.fy)};
+    return Error{"fy (camera_matrix[1][1]) must be positive and finite, got " +
+                 core::format_number(c.fy, "%.9g")};
   }
   if (!std::isfinite(c.cx)) return Error{"cx (camera_matrix[0][2]) must be finite"};
   if (!std::isfinite(c.cy)) return Error{"cy (camera_matrix[1][2]) must be finite"};
@@ -164,7 +159,7 @@ Status validate_camera(const CameraModel& c) {
 CameraModel look_at_camera(int width, int height, double vertical_fov,
                            const Eigen::Vector3d& eye_base, const Eigen::Vector3d& target_base,
                            const Eigen::Vector3d& up_base) {
-  assert(width > 0 && height > 0 && vertical_fov > 0.0 && vertical_fov < M_PI);
+  assert(width > 0 && height > 0 && vertical_fov > 0.0 && vertical_fov < std::numbers::pi);
   const Eigen::Vector3d z = (target_base - eye_base).normalized();  // forward
   Eigen::Vector3d x = z.cross(up_base);  // right: forward x up, since y points down
   assert(x.norm() > 1e-9 && "look_at_camera(): up is parallel to the viewing direction");

@@ -5,18 +5,11 @@
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
+#include "telear/core/number_format.hpp"
 #include "telear/vision/opencv_pose.hpp"
 
 namespace telear::vision {
-namespace {
-
-std::string format_px(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f px", value);
-  return buffer;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 Status CalibrationOptions::validate() const {
   if (!(outlier_factor == 0.0 || (std::isfinite(outlier_factor) && outlier_factor > 1.0))) {
@@ -121,10 +114,11 @@ Result<MonoCalibration> calibrate_mono(const CalibrationPattern& pattern,
         static_cast<int>(active.size()) > options.min_views) {
       char factor[16];
       std::snprintf(factor, sizeof factor, "%g", options.outlier_factor);
-      result.rejected.push_back({.name = views[active[worst]].name,
-                                 .right_name = {},
-                                 .reason = "outlier: reprojection RMS " + format_px(errors[worst]) +
-                                           " > " + factor + " x median " + format_px(median)});
+      result.rejected.push_back(
+          {.name = views[active[worst]].name,
+           .right_name = {},
+           .reason = "outlier: reprojection RMS " + core::format_fixed(errors[worst], 3, "px") +
+                     " > " + factor + " x median " + core::format_fixed(median, 3, "px")});
       active.erase(active.begin() + static_cast<std::ptrdiff_t>(worst));
       continue;
     }

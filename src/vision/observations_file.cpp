@@ -1,6 +1,7 @@
 #include "telear/vision/observations_file.hpp"
 
-#include "telear/core/yaml_number.hpp"
+#include "telear/core/number_format.hpp"
+#include "telear/core/yaml_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -14,19 +15,21 @@
 namespace telear::vision {
 namespace {
 
-using ParseError = core::YamlParseError;
+// Thrown inside this file only; parse_*() turns it into a Result (no exception leaves it).
+struct ParseError {
+  std::string message;
+};
 
 double scalar(const YAML::Node& node, const std::string& what) {
-  return core::yaml_number(node, what);
+  auto value = core::yaml_number(node, what);
+  if (!value) throw ParseError{value.error().message};
+  return *value;
 }
 
 std::vector<double> numbers(const YAML::Node& node, const std::string& what) {
-  if (!node.IsSequence()) throw ParseError{what + ": must be a list of numbers"};
-  std::vector<double> values;
-  for (std::size_t i = 0; i < node.size(); ++i) {
-    values.push_back(scalar(node[i], what + "[" + std::to_string(i) + "]"));
-  }
-  return values;
+  auto values = core::yaml_numbers(node, what);
+  if (!values) throw ParseError{values.error().message};
+  return *values;
 }
 
 std::vector<Eigen::Vector2d> pixels(const YAML::Node& node, const std::string& what) {
@@ -44,16 +47,11 @@ std::vector<Eigen::Vector2d> pixels(const YAML::Node& node, const std::string& w
   return result;
 }
 
-std::string number(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
 std::string pixel_list(const std::vector<Eigen::Vector2d>& list) {
   std::string text = "[";
   for (std::size_t i = 0; i < list.size(); ++i) {
-    text += (i == 0 ? "[" : ", [") + number(list[i].x()) + ", " + number(list[i].y()) + "]";
+    text += (i == 0 ? "[" : ", [") + core::format_number(list[i].x(), "%.17g") + ", " +
+            core::format_number(list[i].y(), "%.17g") + "]";
   }
   return text + "]";
 }
@@ -107,8 +105,10 @@ Result<RegistrationObservations> parse_observations_yaml(const std::string& text
                                                          const std::string& source) {
   const std::string where = "observations '" + source + "': ";
   RegistrationObservations observations;
+  const auto loaded = core::load_yaml(text, where);
+  if (!loaded) return loaded.error();
   try {
-    const YAML::Node root = YAML::Load(text);
+    const YAML::Node& root = *loaded;
     if (!root.IsMap()) throw ParseError{"the file must be a YAML map (docs/registration.md)"};
     const YAML::Node version = root["telear_observations"];
     if (!version) {
@@ -155,8 +155,7 @@ Result<RegistrationObservations> parse_observations_yaml(const std::string& text
   } catch (const ParseError& e) {
     return Error{where + e.message};
   } catch (const YAML::Exception& e) {
-    return Error{where + "not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " +
-                 e.msg};
+    return Error{where + core::describe_yaml_error(e)};
   }
   if (Status status = validate_observations(observations, source); !status) return status.error();
   return observations;
@@ -177,13 +176,15 @@ std::string observations_yaml(const RegistrationObservations& observations) {
   if (!observations.robot.empty()) text += "robot: " + observations.robot + "\n";
   text += "point_in_flange:\n";
   for (const Eigen::Vector3d& p : observations.point_in_flange) {
-    text += "  - [" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + "]\n";
+    text += "  - [" + core::format_number(p.x(), "%.17g") + ", " +
+            core::format_number(p.y(), "%.17g") + ", " + core::format_number(p.z(), "%.17g") +
+            "]\n";
   }
   text += "configurations:\n";
   for (const ObservedConfiguration& configuration : observations.configurations) {
     text += "  - q: [";
     for (Eigen::Index j = 0; j < configuration.q.size(); ++j) {
-      text += (j == 0 ? "" : ", ") + number(configuration.q[j]);
+      text += (j == 0 ? "" : ", ") + core::format_number(configuration.q[j], "%.17g");
     }
     text += "]\n    left: " + pixel_list(configuration.left_pixels) + "\n";
     text += "    right: " + pixel_list(configuration.right_pixels) + "\n";

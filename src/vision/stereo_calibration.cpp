@@ -6,16 +6,11 @@
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
+#include "telear/core/number_format.hpp"
 #include "telear/vision/opencv_pose.hpp"
 
 namespace telear::vision {
 namespace {
-
-std::string format_px(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f px", value);
-  return buffer;
-}
 
 cv::Mat camera_matrix(const CameraModel& camera) {
   return (cv::Mat_<double>(3, 3) << camera.fx, 0.0, camera.cx, 0.0, camera.fy, camera.cy, 0.0, 0.0,
@@ -329,8 +324,8 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
       rejected.push_back({.name = active[worst].left_name,
                           .right_name = active[worst].right_name,
                           .reason = std::string("outlier: ") + worst_side + " reprojection RMS " +
-                                    format_px(worst_error) + " > " + factor + " x median " +
-                                    format_px(worst_median)});
+                                    core::format_fixed(worst_error, 3, "px") + " > " + factor +
+                                    " x median " + core::format_fixed(worst_median, 3, "px")});
       active.erase(active.begin() + static_cast<std::ptrdiff_t>(worst));
       continue;
     }

@@ -22,5 +22,41 @@ TEST(ParseNumberList, RejectsWhatIsNotAFiniteNumberList) {
   EXPECT_EQ(parse_number_list("1,2", "--q", 3).error().message, "--q: expected 3 numbers, got 2");
 }
 
+TEST(ImageSizeCheck, AcceptsSizesWithinTheBounds) {
+  const auto check = image_size_check({64, 48}, {1920, 1080});
+  std::string text = "640x480";
+  EXPECT_EQ(check(text), "");
+  text = "64x48";
+  EXPECT_EQ(check(text), "");
+  text = "1920x1080";
+  EXPECT_EQ(check(text), "");
+}
+
+TEST(ImageSizeCheck, SaysWhyASizeIsRefused) {
+  const auto check = image_size_check({64, 48}, {1920, 1080});
+  std::string text = "20x10";
+  EXPECT_EQ(check(text), "'20x10' is outside 64x48 .. 1920x1080");
+  text = "1921x1080";
+  EXPECT_EQ(check(text), "'1921x1080' is outside 64x48 .. 1920x1080");
+  text = "640*480";
+  EXPECT_EQ(check(text), "'640*480' is not WIDTHxHEIGHT (e.g. 640x480)");
+  text = "";
+  EXPECT_EQ(check(text), "'' is not WIDTHxHEIGHT (e.g. 640x480)");
+}
+
+TEST(ImageSizeCheck, ChecksEveryItemOfAList) {
+  const auto check = image_size_check({16, 16}, {8192, 8192}, true);
+  std::string text = "64x48,1280x720";
+  EXPECT_EQ(check(text), "");
+  text = "640x480,big";
+  EXPECT_EQ(check(text), "'big' is not WIDTHxHEIGHT (e.g. 640x480)");
+  text = "640x480,";
+  EXPECT_EQ(check(text), "'' is not WIDTHxHEIGHT (e.g. 640x480)");
+  text = "640x480,9000x480";
+  EXPECT_EQ(check(text), "'9000x480' is outside 16x16 .. 8192x8192");
+  text = "";
+  EXPECT_EQ(check(text), "no size given; expected WIDTHxHEIGHT[,WIDTHxHEIGHT...]");
+}
+
 }  // namespace
 }  // namespace telear::cli

@@ -98,6 +98,58 @@ TEST(CliKin, MissingSubcommandOrOptionIsAUsageError) {
   EXPECT_THAT(r.err, HasSubstr("--q is required"));
 }
 
+// [SECTION] conventions (docs/cli.md): a usage error is one line on stderr and exit 2
+
+TEST(CliConventions, UsageErrorsAreOneLineNamingTheProblemAndExitTwo) {
+  struct Case {
+    std::string args;
+    std::string err;
+  };
+  const Case cases[] = {
+      {"bogus", "telear: unknown subcommand 'bogus' (telear --help lists them)\n"},
+      {"kin bogus", "telear kin: unknown subcommand 'bogus' (telear kin --help lists them)\n"},
+      {"", "telear: a subcommand is required (telear --help lists them)\n"},
+      {"kin info --bogus",
+       "telear kin info: unknown option '--bogus' (telear kin info --help lists the options)\n"},
+      {"kin info --robot", "telear kin info: --robot needs a value\n"},
+      {"kin fk --robot puma560", "telear kin fk: --q is required\n"},
+      {"sim capture --views x -o /tmp/x",
+       "telear sim capture: --views: 'x' is not a valid value (see --help)\n"},
+      {"demo --resolution 20x10",
+       "telear demo: --resolution: '20x10' is outside 64x48 .. 1920x1080\n"},
+      {"console --resolution 640*480",
+       "telear console: --resolution: '640*480' is not WIDTHxHEIGHT (e.g. 640x480)\n"},
+      {"console --size 1600x10",
+       "telear console: --size: '1600x10' is outside 64x48 .. 8192x8192\n"},
+      {"vision-server --resolution 8x8",
+       "telear vision-server: --resolution: '8x8' is outside 16x16 .. 8192x8192\n"},
+      {"bench stream --resolutions 640x480,big",
+       "telear bench stream: --resolutions: 'big' is not WIDTHxHEIGHT (e.g. 640x480)\n"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_telear(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args;
+    EXPECT_EQ(r.err, c.err) << c.args;
+    EXPECT_TRUE(r.out.empty()) << c.args << "\n" << r.out;
+  }
+}
+
+TEST(CliConventions, HelpAndVersionGoToStdoutAndExitZero) {
+  auto r = run_telear("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("vision-server"));
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  r = run_telear("kin fk --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("--q"));
+  r = run_telear("console --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("--size"));
+  r = run_telear("--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("telear "));
+}
+
 // [SECTION] kin ik
 
 // "a,b,...": the 16 entries of T row-major, at full precision.

@@ -65,7 +65,7 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
 TEST(DemoCli, BadOptionsAreRefusedWithTheReason) {
   auto r = run_telear("demo --resolution 20x10 --out " + ::testing::TempDir() + "demo_bad");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--resolution '20x10' must be WIDTHxHEIGHT within 64x48 .. 1920x1080"),
+  EXPECT_NE(r.err.find("telear demo: --resolution: '20x10' is outside 64x48 .. 1920x1080"),
             std::string::npos)
       << r.err;
   r = run_telear("demo --delay-ms -5 --out " + ::testing::TempDir() + "demo_bad");

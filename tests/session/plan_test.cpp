@@ -168,7 +168,7 @@ TEST(Plan, UntrustedFilesGiveErrorsNamingWaypointAndField) {
   EXPECT_EQ(load_error("robot: puma560\nvelocity_scale: 2\nwaypoints: []\n"),
             "plan 'p.yaml': velocity_scale 2 is outside (0, 1]");
   EXPECT_EQ(load_error("[1, 2"), load_error("[1, 2"));  // deterministic
-  EXPECT_EQ(load_error("[1, 2").rfind("plan 'p.yaml': not valid YAML: ", 0), 0u);
+  EXPECT_EQ(load_error("[1, 2").rfind("plan 'p.yaml': not valid YAML at line 1: ", 0), 0u);
   auto missing = Plan::load(test::puma560(), "/nonexistent/plan.yaml");
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error().message, "plan '/nonexistent/plan.yaml': cannot be opened");

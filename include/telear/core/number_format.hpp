@@ -1,11 +1,17 @@
 #pragma once
-// Numbers in messages: printf formatting into a std::string, so error texts read the same
-// wherever they are made ("%g" by default: 0.01, 1e-09, 480).
+// Numbers in messages and tables: printf formatting into a std::string, so texts read the
+// same wherever they are made ("%g" by default: 0.01, 1e-09, 480), and fixed-point numbers
+// with a unit ("12.50 deg", "0.4521 m", "33 ms"), the one formatter for both.
 
 #include <string>
+#include <string_view>
 
 namespace telear::core {
 
 std::string format_number(double value, const char* format = "%g");
+
+// `digits` decimals, fixed-point (printf's "%.*f"), then " unit" when `unit` is not empty:
+// format_fixed(12.5, 2, "deg") == "12.50 deg", format_fixed(0.0333, 0) == "0".
+std::string format_fixed(double value, int digits, std::string_view unit = {});
 
 }  // namespace telear::core

@@ -1,0 +1,200 @@
+// The command line's conventions (apps/cli_app.hpp, docs/cli.md): the one WIDTHxHEIGHT
+// validator, usage errors as one line and exit 2; and the operator's families that use them
+// most, the console and the benchmarks. One of the three translation units with CLI11.
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apps/bench_command.hpp"
+#include "apps/cli_app.hpp"
+#include "apps/cli_parsing.hpp"
+#include "apps/console_command.hpp"
+#include "apps/render_bench_command.hpp"
+#include "apps/stream_bench_command.hpp"
+
+namespace telear::cli {
+namespace {
+
+// The console's window (or headless frame buffer), pixels.
+constexpr core::ImageSize kMinWindow{64, 48};
+constexpr core::ImageSize kMaxWindow{8192, 8192};
+
+}  // namespace
+
+// [SECTION] console (docs/console.md)
+
+void add_console_command(CLI::App& app, Commands& commands) {
+  auto options = std::make_shared<console::ConsoleOptions>();
+  console::ConsoleOptions& console = *options;
+  CLI::App* console_app = app.add_subcommand(
+      "console", "the operator console: stereo AR view, ghost, plan, real robot (Dear ImGui)");
+  console_app->add_option("--robot", console.robot, "robot server HOST:PORT (none: embedded sim)");
+  console_app->add_option("--vision", console.vision,
+                          "vision server HOST:PORT (none: embedded sim)");
+  console_app->add_option("--token-file", console.token_file, "file whose first line is the token");
+  console_app->add_option("--calibration", console.calibration, "registered stereo camera file");
+  console_app->add_option("--workspace", console.workspace,
+                          "the scene drawn in the views (default: the robot's shipped workspace)");
+  console_app->add_option("--resolution", console.resolution, "video size WIDTHxHEIGHT")
+      ->capture_default_str()
+      ->check(image_size_validator({64, 48}, {1920, 1080}));
+  console_app
+      ->add_option_function<std::string>(
+          "--size",
+          [options](const std::string& text) {
+            const auto size = core::parse_image_size(text, kMinWindow, kMaxWindow);
+            if (size) options->width = size->width, options->height = size->height;
+          },
+          "window size WIDTHxHEIGHT (default 1600x1000)")
+      ->check(image_size_validator(kMinWindow, kMaxWindow));
+  console_app->add_flag("--headless", console.headless, "EGL frame buffer, no window, no X");
+  console_app->add_option("--fullscreen-eyes", console.fullscreen_eyes,
+                          "two-windows or sbs: full-screen eye output (HMD, 3-D display)");
+  console_app->add_option("--screenshot", console.screenshot, "write the console's image (PNG)");
+  console_app->add_option("--frames", console.frames, "stop after N frames (screenshot: 60)");
+  console_app->add_option("--script", console.script, "replay UI actions (docs/console.md)");
+
+  commands.push_back(
+      {console_app, [options] { return run_console(*options, std::cout, std::cerr); }});
+}
+
+// [SECTION] bench (one subcommand per benchmark: render, kin, stream)
+
+void add_bench_commands(CLI::App& app, Commands& commands) {
+  CLI::App* bench_app = app.add_subcommand("bench", "measured figures beside the seed's");
+  bench_app->require_subcommand(1);
+  auto render_options = std::make_shared<RenderBenchOptions>();
+  RenderBenchOptions& bench_render_options = *render_options;
+  CLI::App* bench_render =
+      bench_app->add_subcommand("render", "the seed's rendering Tables 1 and 2, headless (EGL)");
+  bench_render->add_option("--seconds", bench_render_options.seconds, "timed seconds per case")
+      ->capture_default_str();
+  bench_render->add_option("--width", bench_render_options.width, "view width in pixels")
+      ->capture_default_str();
+  bench_render->add_option("--height", bench_render_options.height, "view height in pixels")
+      ->capture_default_str();
+  bench_render->add_option("--only", bench_render_options.only,
+                           "run only the cases whose name contains this text");
+  bench_render->add_flag("--json", bench_render_options.json, "print JSON");
+  auto kin_options = std::make_shared<BenchKinOptions>();
+  BenchKinOptions& bench_kin_options = *kin_options;
+  CLI::App* bench_kin =
+      bench_app->add_subcommand("kin", "FK, Jacobian, analytic and numeric IK against Orocos KDL");
+  bench_kin->add_option("--robot", bench_kin_options.robot, "shipped robot name or DH .yaml file")
+      ->capture_default_str();
+  bench_kin->add_option("--poses", bench_kin_options.poses, "random targets for numeric IK")
+      ->capture_default_str();
+  bench_kin->add_option("--json", bench_kin_options.json, "also write the table as JSON to FILE");
+  auto stream_options = std::make_shared<StreamBenchOptions>();
+  StreamBenchOptions& bench_stream_options = *stream_options;
+  CLI::App* bench_stream = bench_app->add_subcommand(
+      "stream", "stereo video and robot commands through the real servers on loopback");
+  bench_stream->add_option("--seconds", bench_stream_options.seconds, "measured s per resolution")
+      ->capture_default_str();
+  bench_stream
+      ->add_option("--resolutions", bench_stream_options.resolutions,
+                   "WIDTHxHEIGHT per eye, comma-separated")
+      ->capture_default_str()
+      ->check(image_size_validator({16, 16}, {8192, 8192}, true));
+  bench_stream
+      ->add_option("--source-fps", bench_stream_options.source_fps, "synthetic source's rate")
+      ->capture_default_str();
+  bench_stream->add_option("--quality", bench_stream_options.quality, "JPEG quality 1..100")
+      ->capture_default_str();
+  bench_stream
+      ->add_option("--rtt-calls", bench_stream_options.rtt_calls,
+                   "robot round trips per command kind")
+      ->capture_default_str();
+  bench_stream->add_option("--json", bench_stream_options.json,
+                           "also write the results as JSON to FILE");
+
+  commands.push_back({bench_render, [render_options] {
+                        return run_bench_render(*render_options, std::cout, std::cerr);
+                      }});
+  commands.push_back({bench_stream, [stream_options] {
+                        return run_bench_stream(*stream_options, std::cout, std::cerr);
+                      }});
+  commands.push_back({bench_kin, [kin_options] {
+#ifdef TELEAR_HAVE_KIN_BENCH
+                        return run_bench_kin(*kin_options, std::cout, std::cerr);
+#else
+                        std::cerr << "telear bench kin: not built (configure with "
+                                     "-DTELEAR_BUILD_BENCH=ON)\n";
+                        return 2;
+#endif
+                      }});
+}
+
+// [SECTION] validators and usage errors
+
+CLI::Validator image_size_validator(core::ImageSize min, core::ImageSize max, bool list) {
+  return CLI::Validator(image_size_check(min, max, list), list ? "WxH,..." : "WxH");
+}
+
+namespace {
+
+// "telear kin fk": the program and the subcommands chosen so far.
+std::string command_path(const CLI::App& app, const CLI::App*& deepest) {
+  std::string path = app.get_name();
+  deepest = &app;
+  for (auto chosen = app.get_subcommands(); !chosen.empty();
+       chosen = chosen.front()->get_subcommands()) {
+    deepest = chosen.front();
+    path += " " + deepest->get_name();
+  }
+  return path;
+}
+
+// The problem in one line: CLI11's text, except for what it leaves unnamed (an unknown
+// subcommand or option is reported as "a subcommand is required" or as an extra argument).
+std::string usage_problem(const CLI::App& app, const CLI::App& deepest,
+                          const CLI::ParseError& error, const std::string& path) {
+  const std::vector<std::string> left = app.remaining(true);
+  if (!left.empty()) {
+    const std::string& first = left.front();
+    if (first.size() > 1 && first.front() == '-') {
+      return "unknown option '" + first + "' (" + path + " --help lists the options)";
+    }
+    if (deepest.get_require_subcommand_min() == 0) return "unexpected argument '" + first + "'";
+    return "unknown subcommand '" + first + "' (" + path + " --help lists them)";
+  }
+  std::string message = error.what();
+  if (message == "A subcommand is required") {
+    message = "a subcommand is required (" + path + " --help lists them)";
+  }
+  const std::string unconverted = "Could not convert: ";  // "Could not convert: --views = x"
+  if (error.get_name() == "ConversionError" && message.rfind(unconverted, 0) == 0) {
+    const std::string rest = message.substr(unconverted.size());
+    const auto equals = rest.find(" = ");
+    if (equals != std::string::npos) {
+      message = rest.substr(0, equals) + ": '" + rest.substr(equals + 3) +
+                "' is not a valid value (see --help)";
+    }
+  }
+  const std::string missing = " missing";  // "--q: 1 required TEXT missing"
+  if (error.get_name() == "ArgumentMismatch" && message.size() > missing.size() &&
+      message.compare(message.size() - missing.size(), missing.size(), missing) == 0) {
+    message = message.substr(0, message.find(':')) + " needs a value";
+  }
+  for (char& c : message) {
+    if (c == '\n') c = ' ';
+  }
+  return message;
+}
+
+}  // namespace
+
+int report_parse_error(const CLI::App& app, const CLI::ParseError& error, std::ostream& out,
+                       std::ostream& err) {
+  if (error.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+    return app.exit(error, out, err);  // --help, --version
+  }
+  const CLI::App* deepest = nullptr;
+  const std::string path = command_path(app, deepest);
+  err << path << ": " << usage_problem(app, *deepest, error, path) << "\n";
+  return 2;
+}
+}  // namespace telear::cli

@@ -1,0 +1,55 @@
+#include "telear/core/yaml_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace telear::core {
+
+std::string describe_yaml_error(const YAML::Exception& error) {
+  if (error.mark.is_null()) return "not valid YAML: " + error.msg;
+  return "not valid YAML at line " + std::to_string(error.mark.line + 1) + ": " + error.msg;
+}
+
+Result<YAML::Node> load_yaml(const std::string& text, const std::string& where) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    return Error{where + describe_yaml_error(e)};
+  }
+}
+
+Result<YAML::Node> load_yaml_file(const std::string& path, const std::string& where) {
+  std::ifstream in(path);
+  if (!in) return Error{where + "cannot be read"};
+  std::stringstream text;
+  text << in.rdbuf();
+  return load_yaml(text.str(), where);
+}
+
+Result<double> yaml_number(const YAML::Node& node, const std::string& what,
+                           const std::string& separator) {
+  const std::string field = what + separator;
+  if (!node.IsScalar()) return Error{field + "must be a number"};
+  double value = 0.0;
+  try {
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    return Error{field + "must be a number, got '" + node.Scalar() + "'"};
+  }
+  if (!std::isfinite(value)) return Error{field + "must be finite, got " + node.Scalar()};
+  return value;
+}
+
+Result<std::vector<double>> yaml_numbers(const YAML::Node& node, const std::string& what) {
+  if (!node.IsSequence()) return Error{what + ": must be a list of numbers"};
+  std::vector<double> values;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    auto value = yaml_number(node[i], what + "[" + std::to_string(i) + "]");
+    if (!value) return value.error();
+    values.push_back(*value);
+  }
+  return values;
+}
+
+}  // namespace telear::core
