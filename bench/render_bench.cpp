@@ -1,6 +1,6 @@
 // Google Benchmark program of the renderer: the seed paper's Tables 1 and 2 (graphics only,
 // on video; mono, stereo), one benchmark per case, on a headless EGL context. `telear bench
-// render` times the same workload (src/apps/render_bench_command.hpp) and prints the table
+// render` times the same workload (bench/render_bench_command.hpp) and prints the table
 // beside the seed's figures; this program is for profiling one case at a time, e.g.
 //   build/bench/render_bench --benchmark_filter='video.*stereo'
 // The Time column is the wall-clock time per frame (ms); the fps counter its inverse.
@@ -11,7 +11,7 @@
 #include <memory>
 #include <string>
 
-#include "apps/render_bench_command.hpp"
+#include "bench/render_bench_command.hpp"
 #include "telear/render/egl_context.hpp"
 
 namespace {

@@ -21,10 +21,11 @@ if [ ! -f "$asan_dir/build.ninja" ]; then
     -DTELEAR_SANITIZE=address -DTELEAR_BUILD_BENCH=OFF
 fi
 # Only the net test executables (tests/net/CMakeLists.txt), not the whole tree.
-cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target robot_server_test vision_server_test
+cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target robot_server_test vision_server_test \
+  net_client_test
 # Leaks are errors; the suppressions name third-party libraries only (Mesa's EGL/llvmpipe,
-# LLVM), never telear code. robot_python_example runs the telear binary, which this step
-# does not build (it ran above, uninstrumented).
+# LLVM), never telear code. robot_python_example and server_log_level run the telear binary,
+# which this step does not build (they ran above, uninstrumented).
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1"
 export LSAN_OPTIONS="suppressions=$(pwd)/scripts/sanitizers/lsan.supp:print_suppressions=0"
-ctest --test-dir "$asan_dir" --output-on-failure -j 2 -L net -E '^robot_python_example$'
+ctest --test-dir "$asan_dir" --output-on-failure -j 2 -L net -E '^(robot_python_example|server_log_level)$'

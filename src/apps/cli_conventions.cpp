@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "apps/bench_command.hpp"
 #include "apps/cli_app.hpp"
 #include "apps/cli_parsing.hpp"
 #include "apps/console_command.hpp"
-#include "apps/render_bench_command.hpp"
-#include "apps/stream_bench_command.hpp"
+#include "bench/kin_bench_command.hpp"
+#include "bench/render_bench_command.hpp"
+#include "bench/stream_bench_command.hpp"
 
 namespace telear::cli {
 namespace {

@@ -1,9 +1,10 @@
 #include "apps/demo_command.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <sstream>
 
+#include "telear/core/image_size.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/session/demo_workflow.hpp"
 
 namespace telear::cli {
@@ -12,26 +13,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct Failure {
-  std::string message;
-};
-
 constexpr int kSteps = 7;
 
-std::pair<int, int> parse_resolution(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0;
-  std::istringstream in(text);
-  if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < 64 || h < 48 || w > 1920 || h > 1080) {
-    throw Failure{"--resolution '" + text + "' must be WIDTHxHEIGHT within 64x48 .. 1920x1080"};
-  }
-  return {w, h};
-}
-
 std::string seconds_text(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f", seconds);
-  return text;
+  return core::format_fixed(seconds, 1);
 }
 
 }  // namespace
@@ -39,12 +24,13 @@ std::string seconds_text(double seconds) {
 int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   const auto demo_start = Clock::now();
   session::DemoOptions demo;
-  try {
-    std::tie(demo.width, demo.height) = parse_resolution(options.resolution);
-  } catch (const Failure& f) {
-    err << "telear demo: " << f.message << "\n";
+  auto size = core::parse_image_size(options.resolution, {64, 48}, {1920, 1080});
+  if (!size) {
+    err << "telear demo: --resolution: " << size.error().message << "\n";
     return 2;
   }
+  demo.width = size->width;
+  demo.height = size->height;
   demo.out_dir = options.out;
   demo.cache_dir = options.cache;
   demo.delay_ms = options.delay_ms;

@@ -1,5 +1,7 @@
 #include "apps/vision_server_command.hpp"
 
+#include "telear/core/image_size.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <csignal>
@@ -19,27 +21,12 @@
 namespace telear::cli {
 namespace {
 
-struct Size {
-  int width = 0, height = 0;
-};
-
-Result<std::optional<Size>> parse_resolution(const std::string& text) {
-  if (text.empty()) return std::optional<Size>{};
-  const auto x = text.find('x');
-  Size size;
-  try {
-    std::size_t used_w = 0, used_h = 0;
-    if (x == std::string::npos) throw std::invalid_argument("no x");
-    size.width = std::stoi(text.substr(0, x), &used_w);
-    size.height = std::stoi(text.substr(x + 1), &used_h);
-    if (used_w != x || used_h != text.size() - x - 1) throw std::invalid_argument("junk");
-  } catch (const std::exception&) {
-    return Error{"--resolution '" + text + "' is not WIDTHxHEIGHT, e.g. 640x480"};
-  }
-  if (size.width < 16 || size.height < 16 || size.width > 8192 || size.height > 8192) {
-    return Error{"--resolution " + text + " is outside 16x16 .. 8192x8192"};
-  }
-  return std::optional<Size>(size);
+// An empty --resolution keeps the source's own size.
+Result<std::optional<core::ImageSize>> parse_resolution(const std::string& text) {
+  if (text.empty()) return std::optional<core::ImageSize>{};
+  auto size = core::parse_image_size(text, {16, 16}, {8192, 8192});
+  if (!size) return Error{"--resolution: " + size.error().message};
+  return std::optional<core::ImageSize>(*size);
 }
 
 }  // namespace
@@ -152,7 +139,7 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   server_options.calibration_file = options.calibration;
   server_options.token_file = options.token_file;
   server_options.jpeg_quality = options.quality;
-  auto server = net::VisionServer::start(std::move(server_options));
+  auto server = net::VisionServer::create(std::move(server_options));
   if (!server) return fail(server.error().message, 1);
   out << "vision server listening on " << (*server)->address() << std::endl;
 

@@ -23,7 +23,9 @@
 #include "telear/console/keyboard_input.hpp"
 #include "telear/console/mouse_input.hpp"
 #include "telear/console/panels.hpp"
+#include "telear/core/angles.hpp"
 #include "telear/core/arm_body.hpp"
+#include "telear/core/image_size.hpp"
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/workspace.hpp"
@@ -43,16 +45,6 @@ namespace telear::console {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-Result<std::pair<int, int>> parse_resolution(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0;
-  std::istringstream in(text);
-  if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < 64 || h < 48 || w > 1920 || h > 1080) {
-    return Error{"--resolution '" + text + "' must be WIDTHxHEIGHT within 64x48 .. 1920x1080"};
-  }
-  return std::pair{w, h};
-}
 
 Result<std::string> read_token(const std::string& path) {
   std::ifstream in(path);
@@ -170,8 +162,8 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   if (!embedded && (options.robot.empty() || options.vision.empty())) {
     return Error{"give both --robot and --vision, or neither (the embedded simulated servers)"};
   }
-  auto resolution = parse_resolution(options.resolution);
-  if (!resolution) return resolution.error();
+  auto resolution = core::parse_image_size(options.resolution, {64, 48}, {1920, 1080});
+  if (!resolution) return Error{"--resolution: " + resolution.error().message};
   const auto [width, height] = *resolution;
 
   auto model = core::load_robot(options.robot_model);
@@ -386,9 +378,9 @@ bool ConsoleApp::frame() {
     act(simple(ActionKind::kEStop));
   }
   InputSteps steps;
-  steps.joint_rad = ui_.joint_step_deg * M_PI / 180.0;
+  steps.joint_rad = core::radians_from_degrees(ui_.joint_step_deg);
   steps.cartesian_m = ui_.cartesian_step_mm / 1000.0;
-  steps.rotation_rad = ui_.rotation_step_deg * M_PI / 180.0;
+  steps.rotation_rad = core::radians_from_degrees(ui_.rotation_step_deg);
   steps.frame = ui_.frame;
   steps.dof = m.model->dof();
   std::vector<InputDevice*> devices{&m.keyboard, &m.mouse};

@@ -21,7 +21,10 @@ std::string to_string(const ImageSize& size) {
 }
 
 Result<ImageSize> parse_image_size(std::string_view text, ImageSize min, ImageSize max) {
-  const std::string quoted = "'" + std::string(text) + "'";
+  // Built by appending: GCC 12 warns (-Wrestrict, a known false positive) on "'" + s + "'".
+  std::string quoted(1, '\'');
+  quoted.append(text);
+  quoted.push_back('\'');
   const auto x = text.find('x');
   const ImageSize size{x == std::string_view::npos ? -1 : whole_number(text.substr(0, x)),
                        x == std::string_view::npos ? -1 : whole_number(text.substr(x + 1))};

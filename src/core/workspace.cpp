@@ -4,27 +4,25 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <set>
-#include <sstream>
 
-#include "telear/core/pose.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/yaml_reader.hpp"
 
 namespace telear::core {
 namespace {
 
-// Parsing throws this inside this file only; the entry points turn it into a Result.
+// Parsing throws this inside this file only; parse_workspace_yaml turns it into a Result.
 struct ParseError {
   std::string message;
 };
 
-double number(const YAML::Node& node, const std::string& what) {
-  auto value = yaml_number(node, what);
-  if (!value) throw ParseError{value.error().message};
-  return *value;
+template <typename T>
+T checked(Result<T> result) {
+  if (!result) throw ParseError{result.error().message};
+  return std::move(*result);
 }
 
 void check_keys(const YAML::Node& map, const std::set<std::string>& allowed,
@@ -39,33 +37,11 @@ void check_keys(const YAML::Node& map, const std::set<std::string>& allowed,
   }
 }
 
-Eigen::Vector3d vector3(const YAML::Node& node, const std::string& what) {
-  if (!node.IsSequence() || node.size() != 3) {
-    throw ParseError{what + " must be a list of 3 numbers"};
-  }
-  return {number(node[0], what + "[0]"), number(node[1], what + "[1]"),
-          number(node[2], what + "[2]")};
-}
-
 double positive(const YAML::Node& node, const std::string& what) {
   if (!node) throw ParseError{what + ": missing"};
-  const double value = number(node, what);
-  if (!(value > 0.0)) {
-    std::ostringstream s;
-    s << what << " must be positive, got " << value;
-    throw ParseError{s.str()};
-  }
+  const double value = checked(yaml_number(node, what));
+  if (!(value > 0.0)) throw ParseError{what + " must be positive, got " + format_number(value)};
   return value;
-}
-
-Eigen::Isometry3d parse_pose(const YAML::Node& node, const std::string& what) {
-  if (!node.IsMap()) throw ParseError{what + " must be a map {xyz: [x, y, z], rpy: [r, p, y]}"};
-  check_keys(node, {"xyz", "rpy"}, what);
-  if (!node["xyz"]) throw ParseError{what + ".xyz: missing"};
-  const Eigen::Vector3d xyz = vector3(node["xyz"], what + ".xyz");
-  const Eigen::Vector3d rpy =
-      node["rpy"] ? vector3(node["rpy"], what + ".rpy") : Eigen::Vector3d::Zero();
-  return pose_from_xyz_rpy(xyz, rpy);
 }
 
 WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
@@ -90,12 +66,11 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
     object.shape = ShapeKind::kBox;
     keys({"size"});
     if (!node["size"]) throw ParseError{where + ": size: missing ([x, y, z] in m)"};
-    object.size_m = vector3(node["size"], where + ": size");
+    object.size_m = checked(yaml_vector3(node["size"], where + ": size"));
     for (int i = 0; i < 3; ++i) {
       if (!(object.size_m[i] > 0.0)) {
-        std::ostringstream s;
-        s << where << ": size[" << i << "] must be positive, got " << object.size_m[i];
-        throw ParseError{s.str()};
+        throw ParseError{where + ": size[" + std::to_string(i) + "] must be positive, got " +
+                         format_number(object.size_m[i])};
       }
     }
   } else if (shape == "cylinder") {
@@ -110,9 +85,9 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
   } else {
     throw ParseError{where + ": unknown shape '" + shape + "' (box, cylinder or sphere)"};
   }
-  if (node["pose"]) object.T_base_object = parse_pose(node["pose"], where + ": pose");
+  if (node["pose"]) object.T_base_object = checked(yaml_pose(node["pose"], where + ": pose"));
   if (node["colour"]) {
-    const Eigen::Vector3d c = vector3(node["colour"], where + ": colour");
+    const Eigen::Vector3d c = checked(yaml_vector3(node["colour"], where + ": colour"));
     if ((c.array() < 0.0).any() || (c.array() > 1.0).any()) {
       throw ParseError{where + ": colour components must lie in 0..1"};
     }
@@ -123,10 +98,35 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
       object.graspable = node["graspable"].as<bool>();
     } catch (const YAML::Exception&) {
       throw ParseError{where + ": graspable must be true or false, got '" +
-                           node["graspable"].Scalar() + "'"};
+                       node["graspable"].Scalar() + "'"};
     }
   }
   return object;
+}
+
+Result<Workspace> parse_workspace(const YAML::Node& root, const std::string& source) {
+  Workspace workspace;
+  workspace.source = source;
+  try {
+    if (!root.IsMap()) return Error{source + ": not a workspace file (expected name, objects)"};
+    check_keys(root, {"name", "objects"}, source);
+    if (root["name"]) workspace.name = root["name"].Scalar();
+    const YAML::Node objects = root["objects"];
+    if (!objects || !objects.IsSequence()) {
+      return Error{source + ": objects: missing (a list of objects)"};
+    }
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      WorkspaceObject object = parse_object(objects[i], "objects[" + std::to_string(i) + "]");
+      if (!names.insert(object.name).second) {
+        return Error{source + ": object '" + object.name + "' is named twice"};
+      }
+      workspace.objects.push_back(std::move(object));
+    }
+  } catch (const ParseError& e) {
+    return Error{source + ": " + e.message};
+  }
+  return workspace;
 }
 
 void append_sphere(Mesh& mesh, double radius, int segments, const Eigen::Vector3f& colour) {
@@ -167,7 +167,7 @@ const char* to_string(ShapeKind kind) {
 }
 
 Eigen::Vector3d WorkspaceObject::half_extent_base() const {
-  Eigen::Vector3d half;
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
   switch (shape) {
     case ShapeKind::kBox:
       half = size_m / 2.0;
@@ -218,39 +218,15 @@ double Workspace::support_height(const Eigen::Vector2d& xy_base, double below_z)
 }
 
 Result<Workspace> parse_workspace_yaml(const std::string& text, const std::string& source) {
-  Workspace workspace;
-  workspace.source = source;
-  try {
-    const YAML::Node root = YAML::Load(text);
-    if (!root.IsMap()) return Error{source + ": not a workspace file (expected name, objects)"};
-    check_keys(root, {"name", "objects"}, source);
-    if (root["name"]) workspace.name = root["name"].Scalar();
-    const YAML::Node objects = root["objects"];
-    if (!objects || !objects.IsSequence()) {
-      return Error{source + ": objects: missing (a list of objects)"};
-    }
-    std::set<std::string> names;
-    for (std::size_t i = 0; i < objects.size(); ++i) {
-      WorkspaceObject object = parse_object(objects[i], "objects[" + std::to_string(i) + "]");
-      if (!names.insert(object.name).second) {
-        return Error{source + ": object '" + object.name + "' is named twice"};
-      }
-      workspace.objects.push_back(std::move(object));
-    }
-  } catch (const ParseError& e) {
-    return Error{source + ": " + e.message};
-  } catch (const YAML::Exception& e) {
-    return Error{source + ": " + describe_yaml_error(e)};
-  }
-  return workspace;
+  auto root = load_yaml(text, source + ": ");
+  if (!root) return root.error();
+  return parse_workspace(*root, source);
 }
 
 Result<Workspace> load_workspace_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return Error{"cannot read the workspace file " + path};
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_workspace_yaml(text.str(), path);
+  auto root = load_yaml_file(path, "workspace file " + path + ": ");
+  if (!root) return root.error();
+  return parse_workspace(*root, path);
 }
 
 std::string default_workspace_file(const std::string& robot_name) {

@@ -1,5 +1,7 @@
 #include "telear/core/yaml_reader.hpp"
 
+#include "telear/core/pose.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -50,6 +52,37 @@ Result<std::vector<double>> yaml_numbers(const YAML::Node& node, const std::stri
     values.push_back(*value);
   }
   return values;
+}
+
+Result<Eigen::Vector3d> yaml_vector3(const YAML::Node& node, const std::string& what) {
+  if (!node.IsSequence() || node.size() != 3) return Error{what + " must be a list of 3 numbers"};
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) {
+    auto value = yaml_number(node[i], what + "[" + std::to_string(i) + "]");
+    if (!value) return value.error();
+    v[i] = *value;
+  }
+  return v;
+}
+
+Result<Eigen::Isometry3d> yaml_pose(const YAML::Node& node, const std::string& what) {
+  if (!node.IsMap()) return Error{what + " must be a map {xyz: [x, y, z], rpy: [r, p, y]}"};
+  for (const auto& entry : node) {
+    const std::string key = entry.first.Scalar();
+    if (key != "xyz" && key != "rpy") {
+      return Error{what + ": unknown key '" + key + "' (expected xyz, rpy)"};
+    }
+  }
+  if (!node["xyz"]) return Error{what + ".xyz: missing"};
+  auto xyz = yaml_vector3(node["xyz"], what + ".xyz");
+  if (!xyz) return xyz.error();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  if (node["rpy"]) {
+    auto value = yaml_vector3(node["rpy"], what + ".rpy");
+    if (!value) return value.error();
+    rpy = *value;
+  }
+  return pose_from_xyz_rpy(*xyz, rpy);
 }
 
 }  // namespace telear::core

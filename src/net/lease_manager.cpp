@@ -1,5 +1,7 @@
 #include "telear/net/lease_manager.hpp"
 
+#include "telear/core/number_format.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,9 +15,7 @@ namespace telear::net {
 namespace {
 
 std::string milliseconds(std::int64_t ns) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.0f ms", static_cast<double>(ns) * 1e-6);
-  return text;
+  return core::format_fixed(static_cast<double>(ns) * 1e-6, 0, "ms");
 }
 
 std::chrono::steady_clock::time_point steady_time(std::int64_t ns) {

@@ -1,5 +1,7 @@
 #include "telear/net/robot_service.hpp"
 
+#include "telear/core/number_format.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -47,12 +49,6 @@ std::string printable(const std::string& text, size_t shown = 64) {
 
 std::string quoted(const std::string& id) {
   return "'" + printable(id) + "'";
-}
-
-std::string format(const char* fmt, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, fmt, value);
-  return text;
 }
 
 grpc::Status invalid(const Error& error) {
@@ -143,8 +139,8 @@ grpc::Status RobotService::StreamState(grpc::ServerContext* context,
   double rate = request->rate_hz();
   if (rate == 0.0) rate = kDefaultStateRateHz;
   if (!(rate >= 1.0 && rate <= kMaxStateRateHz)) {
-    return {grpc::StatusCode::INVALID_ARGUMENT,
-            "state rate " + format("%g", rate) + " Hz is outside 1..250 Hz (0: 50 Hz)"};
+    return {grpc::StatusCode::INVALID_ARGUMENT, "state rate " + core::format_number(rate, "%g") +
+                                                    " Hz is outside 1..250 Hz (0: 50 Hz)"};
   }
   const auto period_ns = static_cast<std::int64_t>(1e9 / rate);
   std::int64_t next_ns = core::monotonic_ns();
@@ -218,10 +214,11 @@ grpc::Status RobotService::AcquireLease(grpc::ServerContext* context,
   response->set_holder(grant->holder);
   response->set_heartbeat_period_ns(grant->heartbeat_ns);
   response->set_expires_ns(grant->expires_ns);
-  return finish(context,
-                what + " (heartbeat " +
-                    format("%.0f ms", static_cast<double>(grant->heartbeat_ns) * 1e-6) + ")",
-                grpc::Status::OK);
+  return finish(
+      context,
+      what + " (heartbeat " +
+          core::format_number(static_cast<double>(grant->heartbeat_ns) * 1e-6, "%.0f ms") + ")",
+      grpc::Status::OK);
 }
 
 grpc::Status RobotService::RenewLease(grpc::ServerContext* context,
@@ -342,7 +339,7 @@ grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
   response->set_status(to_proto(accepted->record.status));
   response->set_duration_s(accepted->record.duration);
   response->set_accepted_ns(accepted->accepted_ns);
-  return finish(context, what + ", " + format("%.3f s", accepted->record.duration),
+  return finish(context, what + ", " + core::format_number(accepted->record.duration, "%.3f s"),
                 grpc::Status::OK);
 }
 
@@ -358,7 +355,7 @@ grpc::Status RobotService::Cancel(grpc::ServerContext* context, const v1::Cancel
 grpc::Status RobotService::SetGripper(grpc::ServerContext* context,
                                       const v1::SetGripperRequest* request,
                                       v1::SetGripperResponse*) {
-  const std::string what = "set gripper to " + format("%.3f", request->opening());
+  const std::string what = "set gripper to " + core::format_number(request->opening(), "%.3f");
   if (grpc::Status s = admit(context, what, request->lease_id()); !s.ok()) return s;
   if (Status s = check_gripper_opening(request->opening()); !s) {
     return finish(context, what, invalid(s.error()));

@@ -29,7 +29,7 @@ VisionServer::~VisionServer() {
   stop();
 }
 
-Result<std::unique_ptr<VisionServer>> VisionServer::start(VisionServerOptions options) {
+Result<std::unique_ptr<VisionServer>> VisionServer::create(VisionServerOptions options) {
   if (!options.source) return Error{"vision server: no source"};
   if (options.jpeg_quality < 1 || options.jpeg_quality > 100) {
     return Error{"vision server: JPEG quality " + std::to_string(options.jpeg_quality) +

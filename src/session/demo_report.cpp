@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "telear/core/number_format.hpp"
+#include "telear/net/latency_stages.hpp"
 #include "telear/net/latency_summary.hpp"
 #include "telear/vision/calibration_file.hpp"
 
@@ -24,8 +25,7 @@ double max_of(const std::vector<double>& v) {
 }
 
 std::string fixed(double v, int digits) {
-  const std::string format = "%." + std::to_string(digits) + "f";
-  return core::format_number(v, format.c_str());
+  return core::format_fixed(v, digits);
 }
 
 nlohmann::json latency_json(const std::vector<double>& v) {
@@ -57,19 +57,16 @@ std::string demo_report_json(const DemoFacts& facts) {
                              {"last_miss", r.residuals.last_miss[i]}};
   }
   report["overlay_error_live"] = overlay;
-  const LatencySeries& lat = r.latency;
+  nlohmann::json latency;
+  for (std::size_t i = 0; i < net::kLatencyStageCount; ++i) {
+    latency[net::kLatencyStages[i].key] = latency_json(r.latency.seconds[i]);
+  }
   report["video"] = {{"resolution", facts.resolution},
                      {"camera_fps", facts.camera_fps},
                      {"frames_shown", r.frames_shown},
                      {"display_ticks", r.ticks},
                      {"fps_shown", facts.seconds > 0 ? r.frames_shown / facts.seconds : 0.0},
-                     {"latency",
-                      {{"capture_to_encode", latency_json(lat.capture_to_encode)},
-                       {"encode", latency_json(lat.encode)},
-                       {"send_queue", latency_json(lat.send_queue)},
-                       {"network", latency_json(lat.network)},
-                       {"decode", latency_json(lat.decode)},
-                       {"capture_to_decoded", latency_json(lat.total)}}},
+                     {"latency", latency},
                      {"bytes_per_s", facts.video_bytes_per_s}};
   report["bytes"] = {{"plan_then_send_measured", facts.plan_bytes_measured},
                      {"plan_then_send", facts.bytes.plan_bytes},
@@ -124,17 +121,11 @@ std::string demo_report_markdown(const DemoFacts& facts) {
   md += "| live overlay error (marker), mean RMS px | " + fixed(mean(r.residuals.rms_px[0]), 3) +
         " | " + fixed(mean(r.residuals.rms_px[1]), 3) + " |\n\n";
   md += "| stage | p50 ms | p99 ms |\n|---|---|---|\n";
-  const LatencySeries& lat = r.latency;
-  const std::pair<const char*, const std::vector<double>*> stages[] = {
-      {"capture -> encode", &lat.capture_to_encode},
-      {"encode", &lat.encode},
-      {"send queue", &lat.send_queue},
-      {"network", &lat.network},
-      {"decode", &lat.decode},
-      {"capture -> decoded", &lat.total}};
-  for (const auto& [name, series] : stages) {
-    md += std::string("| ") + name + " | " + fixed(percentile(*series, 50) * 1e3, 2) + " | " +
-          fixed(percentile(*series, 99) * 1e3, 2) + " |\n";
+  for (std::size_t i = 0; i < net::kLatencyStageCount; ++i) {
+    const std::vector<double>& series = r.latency.seconds[i];
+    md += std::string("| ") + net::kLatencyStages[i].label + " | " +
+          fixed(percentile(series, 50) * 1e3, 2) + " | " + fixed(percentile(series, 99) * 1e3, 2) +
+          " |\n";
   }
   md += "\n- video: " + facts.resolution + " stereo, " + std::to_string(r.frames_shown) +
         " frames shown";

@@ -67,7 +67,7 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   vision_options.listen_address = "127.0.0.1:0";
   vision_options.source = std::move(*source);
   vision_options.calibration_file = options.calibration_file;
-  auto vision = net::VisionServer::start(std::move(vision_options));
+  auto vision = net::VisionServer::create(std::move(vision_options));
   if (!vision) return Error{"embedded vision server: " + vision.error().message};
   servers->vision_ = std::move(*vision);
   return servers;

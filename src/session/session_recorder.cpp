@@ -9,15 +9,6 @@
 
 namespace telear::session {
 
-void LatencySeries::add(const net::StageLatency& latency) {
-  capture_to_encode.push_back(latency.capture_to_encode_s);
-  encode.push_back(latency.encode_s);
-  send_queue.push_back(latency.send_queue_s);
-  network.push_back(latency.network_s);
-  decode.push_back(latency.decode_s);
-  total.push_back(latency.total_s);
-}
-
 SessionRecorder::SessionRecorder(Session& session, render::ArView& view, RecorderOptions options)
     : session_(session),
       view_(view),

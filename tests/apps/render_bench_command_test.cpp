@@ -1,7 +1,7 @@
 // `telear bench render`: the table's shape and the seed's figures beside ours, and its
 // error messages. Timings are printed, never asserted.
 
-#include "apps/render_bench_command.hpp"
+#include "bench/render_bench_command.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

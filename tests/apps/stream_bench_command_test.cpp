@@ -1,7 +1,7 @@
 // `telear bench stream`: a short run at a small size through the real servers on loopback;
 // the table and JSON have their fields and frames flowed. Timings are printed, never asserted.
 
-#include "apps/stream_bench_command.hpp"
+#include "bench/stream_bench_command.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -67,7 +67,7 @@ TEST(StreamBenchCommandTest, BadArgumentsGetOneClearLine) {
   bad_size.resolutions = "640x480,big";
   EXPECT_EQ(run_bench_stream(bad_size, out, err), 2);
   EXPECT_EQ(err.str(),
-            "telear bench stream: --resolutions: 'big' is not WxH with 16..8192 pixels per side\n");
+            "telear bench stream: --resolutions: 'big' is not WIDTHxHEIGHT (e.g. 640x480)\n");
 }
 
 }  // namespace

@@ -137,7 +137,7 @@ TEST(WorkspaceTest, BadFilesAreRefusedWithTheObjectAndTheFieldNamed) {
   EXPECT_NE(error_of("objects: [").find("ws.yaml: not valid YAML"), std::string::npos);
   auto missing = load_workspace_file("/nonexistent/ws.yaml");
   ASSERT_FALSE(missing);
-  EXPECT_EQ(missing.error().message, "cannot read the workspace file /nonexistent/ws.yaml");
+  EXPECT_EQ(missing.error().message, "workspace file /nonexistent/ws.yaml: cannot be read");
 }
 
 }  // namespace

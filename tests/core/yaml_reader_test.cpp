@@ -55,5 +55,30 @@ TEST(YamlNumbers, ReadsAListNamingTheBadItem) {
             "scalar: must be a list of numbers");
 }
 
+TEST(YamlPose, ReadsXyzAndRpyAndNamesTheBadField) {
+  const YAML::Node root = YAML::Load(
+      "p: {xyz: [1, 2, 3], rpy: [0, 0, 1.5707963267948966]}\n"
+      "no_rpy: {xyz: [1, 2, 3]}\n"
+      "short: {xyz: [1, 2]}\n"
+      "extra: {xyz: [1, 2, 3], scale: 2}\n"
+      "bad_angle: {xyz: [1, 2, 3], rpy: [0, x, 0]}\n"
+      "no_xyz: {rpy: [0, 0, 0]}\n");
+  const auto p = yaml_pose(root["p"], "p");
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_TRUE(p->translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  // Yaw of 90 degrees: x turns onto y.
+  EXPECT_TRUE((p->linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY()));
+  const auto no_rpy = yaml_pose(root["no_rpy"], "no_rpy");
+  ASSERT_TRUE(no_rpy);
+  EXPECT_TRUE(no_rpy->linear().isIdentity());
+  EXPECT_EQ(yaml_pose(root["short"], "short").error().message,
+            "short.xyz must be a list of 3 numbers");
+  EXPECT_EQ(yaml_pose(root["extra"], "extra").error().message,
+            "extra: unknown key 'scale' (expected xyz, rpy)");
+  EXPECT_EQ(yaml_pose(root["bad_angle"], "bad_angle").error().message,
+            "bad_angle.rpy[1]: must be a number, got 'x'");
+  EXPECT_EQ(yaml_pose(root["no_xyz"], "no_xyz").error().message, "no_xyz.xyz: missing");
+}
+
 }  // namespace
 }  // namespace telear::core

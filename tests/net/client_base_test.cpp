@@ -104,7 +104,7 @@ TEST(ClientBase, TheVisionServerSeesTheClientName) {
   server_options.listen_address = "127.0.0.1:0";
   server_options.source = std::move(*source);
   LogCapture log;
-  auto server = VisionServer::start(std::move(server_options));
+  auto server = VisionServer::create(std::move(server_options));
   ASSERT_TRUE(server) << server.error().message;
   VisionClientOptions options;
   options.address = (*server)->address();

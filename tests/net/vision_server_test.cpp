@@ -37,7 +37,7 @@ std::unique_ptr<vision::StereoSource> synthetic(int width, int height, double fp
 std::unique_ptr<VisionServer> start_server(VisionServerOptions options) {
   options.listen_address =
       options.listen_address == "127.0.0.1:50052" ? "127.0.0.1:0" : options.listen_address;
-  auto server = VisionServer::start(std::move(options));
+  auto server = VisionServer::create(std::move(options));
   EXPECT_TRUE(server) << server.error().message;
   return server ? std::move(*server) : nullptr;
 }
@@ -290,7 +290,7 @@ TEST(VisionServer, MonoCalibrationIsRefused) {
   options.listen_address = "127.0.0.1:0";
   options.source = synthetic(160, 120, 30);
   options.calibration_file = path;
-  auto server = VisionServer::start(std::move(options));
+  auto server = VisionServer::create(std::move(options));
   ASSERT_FALSE(server);
   EXPECT_THAT(server.error().message, HasSubstr("is a mono camera file"));
   std::filesystem::remove(path);
@@ -368,7 +368,7 @@ TEST(VisionClient, ReconnectsWhenTheServerComesBack) {
   VisionServerOptions again;
   again.listen_address = address;
   again.source = synthetic(160, 120, 60);
-  auto restarted = VisionServer::start(std::move(again));
+  auto restarted = VisionServer::create(std::move(again));
   ASSERT_TRUE(restarted) << restarted.error().message;
   // The new server's frames count from 1 again; any frame after the restart will do.
   auto next = client.wait_frame(first->second, 10.0);

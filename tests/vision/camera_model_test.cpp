@@ -171,7 +171,7 @@ TEST(CameraModel, AResizedCameraSeesEveryPointWhereTheScaledImageHasIt) {
   c.alpha_c = 0.002;
   const CameraModel half = resized_camera(c, c.width / 2, c.height / 2);
   EXPECT_EQ(half.width, c.width / 2);
-  for (const Eigen::Vector3d p :
+  for (const Eigen::Vector3d& p :
        {Eigen::Vector3d(0.1, -0.05, 1.0), Eigen::Vector3d(-0.3, 0.2, 2.0)}) {
     const Eigen::Vector2d full_px = *c.project(c.T_cam_base.inverse() * p);
     const Eigen::Vector2d half_px = *half.project(c.T_cam_base.inverse() * p);

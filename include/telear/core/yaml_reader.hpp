@@ -10,6 +10,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,14 @@ Result<double> yaml_number(const YAML::Node& node, const std::string& what,
 
 // A list of finite numbers: "<what>: must be a list of numbers"; items are named what[i].
 Result<std::vector<double>> yaml_numbers(const YAML::Node& node, const std::string& what);
+
+// Exactly three finite numbers: "<what> must be a list of 3 numbers" or yaml_number's message
+// for the item what[i].
+Result<Eigen::Vector3d> yaml_vector3(const YAML::Node& node, const std::string& what);
+
+// A placement written {xyz: [x, y, z], rpy: [roll, pitch, yaw]} (metres, radians; rpy optional,
+// fixed axes x then y then z as in URDF; no other key): "<what> must be a map {xyz: ...}",
+// "<what>.xyz: missing", "<what>: unknown key 'k' (expected xyz, rpy)" or the items' messages.
+Result<Eigen::Isometry3d> yaml_pose(const YAML::Node& node, const std::string& what);
 
 }  // namespace telear::core

@@ -33,7 +33,7 @@ struct VisionServerOptions {
 
 class VisionServer {
  public:
-  static Result<std::unique_ptr<VisionServer>> start(VisionServerOptions options);
+  static Result<std::unique_ptr<VisionServer>> create(VisionServerOptions options);
   ~VisionServer();  // stop()
   VisionServer(const VisionServer&) = delete;
   VisionServer& operator=(const VisionServer&) = delete;

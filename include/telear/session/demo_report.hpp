@@ -10,8 +10,8 @@
 // max_error_rad, max_error_joint (1-based), rms_error_rad, samples, tolerance_rad,
 // plan_duration_s, waypoints}, display.{ar_to_vr, vr_to_ar, injected_delay_ms, switches},
 // outputs.{video, video_codec, video_warning, video_frames, key_frames}, seconds.
-// Latency stages, in order: capture_to_encode, encode, send_queue, network, decode,
-// capture_to_decoded (nearest-rank percentiles, include/telear/net/latency_summary.hpp).
+// Latency stages: the keys of net::kLatencyStages (include/telear/net/latency_stages.hpp),
+// capture_to_encode, encode, send_queue, network, decode, total (nearest-rank percentiles).
 
 #include <optional>
 #include <string>

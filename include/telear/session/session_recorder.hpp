@@ -18,7 +18,7 @@
 
 #include "telear/core/image.hpp"
 #include "telear/core/result.hpp"
-#include "telear/net/latency_summary.hpp"
+#include "telear/net/latency_stages.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/session/session.hpp"
 
@@ -27,12 +27,6 @@ class VideoWriter;
 }  // namespace cv
 
 namespace telear::session {
-
-// Per stage, one entry per frame shown, s.
-struct LatencySeries {
-  std::vector<double> capture_to_encode, encode, send_queue, network, decode, total;
-  void add(const net::StageLatency& latency);
-};
 
 // Per eye (0 left, 1 right): one entry per registration check that found the marker.
 struct ResidualSeries {
@@ -43,7 +37,7 @@ struct ResidualSeries {
 };
 
 struct Recording {
-  LatencySeries latency;
+  net::LatencySeries latency;  // per stage (net::kLatencyStages), one entry per frame shown, s
   ResidualSeries residuals;
   int ticks = 0;
   int frames_shown = 0;

@@ -1,4 +1,4 @@
-#include "apps/render_bench_command.hpp"
+#include "bench/render_bench_command.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-#include "apps/stream_bench_command.hpp"
+#include "bench/stream_bench_command.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "telear/core/clock.hpp"
+#include "telear/core/image_size.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/trajectory.hpp"
 #include "telear/net/command_bytes.hpp"
@@ -40,20 +41,15 @@ struct Resolution {
   int width = 0, height = 0;
 };
 
-// "640x480,1280x720" -> sizes; every item WxH with 16..8192 per side.
+// "640x480,1280x720" -> sizes; every item WIDTHxHEIGHT with 16..8192 per side.
 Result<std::vector<Resolution>> parse_resolutions(const std::string& text) {
   std::vector<Resolution> sizes;
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ',')) {
-    Resolution r;
-    char x = 0;
-    std::istringstream in(item);
-    if (!(in >> r.width >> x >> r.height) || x != 'x' || in.peek() != EOF || r.width < 16 ||
-        r.height < 16 || r.width > 8192 || r.height > 8192) {
-      return Error{"--resolutions: '" + item + "' is not WxH with 16..8192 pixels per side"};
-    }
-    sizes.push_back(r);
+    auto size = core::parse_image_size(item, {16, 16}, {8192, 8192});
+    if (!size) return Error{"--resolutions: " + size.error().message};
+    sizes.push_back(Resolution{size->width, size->height});
   }
   if (sizes.empty()) return Error{"--resolutions: no resolution given"};
   return sizes;
@@ -155,7 +151,7 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
   server_options.listen_address = "127.0.0.1:0";
   server_options.source = std::move(*source);
   server_options.jpeg_quality = options.quality;
-  auto server = net::VisionServer::start(std::move(server_options));
+  auto server = net::VisionServer::create(std::move(server_options));
   if (!server) return server.error();
 
   net::VisionClientOptions client_options;

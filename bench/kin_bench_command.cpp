@@ -1,4 +1,4 @@
-#include "apps/bench_command.hpp"
+#include "bench/kin_bench_command.hpp"
 
 #include <time.h>
 
