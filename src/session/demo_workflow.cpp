@@ -99,6 +99,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   session_options.robot.address = (*servers)->robot_address();
   session_options.robot.token = (*servers)->token();
   session_options.robot.client_name = "telear-demo";
+  session_options.vision.client_name = "telear-demo";
   session_options.lease_heartbeat_s = 1.0;  // see SessionOptions::lease_heartbeat_s
   session_options.vision.address = (*servers)->vision_address();
   session_options.vision.width = options.width;
