@@ -16,7 +16,6 @@
 #include <string>
 
 #include "telear/sim/stereo_rig.hpp"
-#include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
 

@@ -19,15 +19,14 @@
 #include <string>
 
 #include "telear/sim/stereo_rig.hpp"
-#include "telear/core/robot_loader.hpp"
 
 namespace telear::cli {
 
 struct VisionServerCommandOptions {
   std::string listen = "127.0.0.1:50052";
-  std::string source = "sim";  // sim | files | v4l2 | synthetic
+  std::string source = "sim";                 // sim | files | v4l2 | synthetic
   std::string rig = sim::default_rig_file();  // the shipped rig
-  std::string robot_server;                                             // HOST:PORT, sim only
+  std::string robot_server;                   // HOST:PORT, sim only
   std::string token_file;
   std::string robot_token_file;  // empty: token_file
   std::string left, right;       // files

@@ -1,4 +1,3 @@
-#include "telear/sim/stereo_rig.hpp"
 #include "telear/session/demo_workflow.hpp"
 
 #include <chrono>
@@ -18,6 +17,7 @@
 #include "telear/session/embedded_servers.hpp"
 #include "telear/session/session.hpp"
 #include "telear/session/session_recorder.hpp"
+#include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/camera_file.hpp"
 
 namespace telear::session {
@@ -62,8 +62,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   step(1, "calibrating the simulated stereo rig and registering the robot");
   CalibrationPipelineOptions pipeline;
-  pipeline.rig_file = options.rig_file.empty() ? sim::default_rig_file()
-                                               : options.rig_file;
+  pipeline.rig_file = options.rig_file.empty() ? sim::default_rig_file() : options.rig_file;
   pipeline.cache_dir = options.cache_dir.empty() ? options.out_dir + "/cache" : options.cache_dir;
   pipeline.seed = options.seed;
   auto calibration = run_calibration_pipeline(pipeline);

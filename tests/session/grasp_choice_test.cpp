@@ -13,9 +13,9 @@
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/session/demo_task.hpp"
 #include "telear/session/grasp_choice.hpp"
-#include "telear/core/workspace.hpp"
 #include "telear/sim/stereo_rig.hpp"
 #include "test_util/test_util.hpp"
 
