@@ -32,6 +32,7 @@ RobotInfo info_from_proto(const v1::RobotInfo& message) {
   RobotInfo info;
   info.model_name = message.model_name();
   info.urdf = message.urdf();
+  info.tip_link = message.tip_link();
   for (const v1::JointInfo& j : message.joints()) {
     info.joints.push_back(JointInfo{j.name(), j.prismatic(), j.min_position(), j.max_position(),
                                     j.max_velocity(), j.max_acceleration()});

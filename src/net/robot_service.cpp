@@ -124,6 +124,7 @@ grpc::Status RobotService::GetInfo(grpc::ServerContext* context, const v1::GetIn
   if (grpc::Status s = auth_.authorize_read(*context); !s.ok()) return s;
   fill_model_info(*driver_.model(), *response);
   response->set_urdf(driver_.urdf());
+  response->set_tip_link(driver_.tip_link());
   response->set_driver(driver_.name());
   response->set_heartbeat_period_ns(lease_.options().default_heartbeat_ns);
   response->set_start_tolerance(driver_.start_tolerance());

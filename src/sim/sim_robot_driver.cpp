@@ -24,12 +24,17 @@ Result<std::unique_ptr<SimRobotDriver>> SimRobotDriver::create(core::RobotModelP
   auto robot = SimulatedRobot::create(std::move(model), clock, std::move(options.robot));
   if (!robot) return Error{"simulated robot: " + robot.error().message};
   return std::unique_ptr<SimRobotDriver>(
-      new SimRobotDriver(std::move(clock), std::move(robot).value(), std::move(options.urdf)));
+      new SimRobotDriver(std::move(clock), std::move(robot).value(), std::move(options.urdf),
+                         std::move(options.tip_link)));
 }
 
 SimRobotDriver::SimRobotDriver(std::shared_ptr<const MonotonicClock> clock,
-                               std::unique_ptr<SimulatedRobot> robot, std::string urdf)
-    : clock_(std::move(clock)), robot_(std::move(robot)), urdf_(std::move(urdf)) {
+                               std::unique_ptr<SimulatedRobot> robot, std::string urdf,
+                               std::string tip_link)
+    : clock_(std::move(clock)),
+      robot_(std::move(robot)),
+      urdf_(std::move(urdf)),
+      tip_link_(std::move(tip_link)) {
   servo_ = std::make_unique<ServoThread>(*robot_, robot_->options().servo_period);
 }
 

@@ -44,9 +44,10 @@ class RobotDriver {
   virtual ~RobotDriver() = default;
 
   virtual const RobotModelPtr& model() const = 0;
-  virtual std::string name() const = 0;        // "simulated", shown in GetInfo
-  virtual std::string urdf() const = 0;        // the robot's URDF text, empty when unknown
-  virtual double start_tolerance() const = 0;  // rad or m, a trajectory's start vs the arm
+  virtual std::string name() const = 0;                // "simulated", shown in GetInfo
+  virtual std::string urdf() const = 0;                // the robot's URDF text, empty when unknown
+  virtual std::string tip_link() const { return {}; }  // the URDF link the chain ends at
+  virtual double start_tolerance() const = 0;          // rad or m, a trajectory's start vs the arm
 
   virtual DriverSnapshot snapshot() const = 0;
   virtual std::optional<TrajectoryRecord> trajectory_record(const std::string& id) const = 0;

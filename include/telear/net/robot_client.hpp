@@ -54,6 +54,7 @@ struct JointInfo {
 struct RobotInfo {
   std::string model_name;
   std::string urdf;
+  std::string tip_link;  // with urdf: the chain the server's model follows
   std::vector<JointInfo> joints;
   std::vector<std::pair<std::string, Eigen::VectorXd>> named_configurations;
   std::string driver;

@@ -21,6 +21,7 @@ namespace telear::sim {
 struct SimRobotDriverOptions {
   SimulatedRobotOptions robot;  // initial state, servo period, start tolerance, ...
   std::string urdf;             // reported by urdf(); empty: unknown
+  std::string tip_link;         // reported by tip_link(); empty: the URDF's single leaf
 };
 
 class SimRobotDriver final : public core::RobotDriver {
@@ -33,6 +34,7 @@ class SimRobotDriver final : public core::RobotDriver {
   const core::RobotModelPtr& model() const override { return robot_->model(); }
   std::string name() const override { return "simulated"; }
   std::string urdf() const override { return urdf_; }
+  std::string tip_link() const override { return tip_link_; }
   double start_tolerance() const override { return robot_->options().start_tolerance; }
 
   core::DriverSnapshot snapshot() const override;
@@ -55,11 +57,12 @@ class SimRobotDriver final : public core::RobotDriver {
  private:
   class MonotonicClock;
   SimRobotDriver(std::shared_ptr<const MonotonicClock> clock, std::unique_ptr<SimulatedRobot> robot,
-                 std::string urdf);
+                 std::string urdf, std::string tip_link);
 
   std::shared_ptr<const MonotonicClock> clock_;
   std::unique_ptr<SimulatedRobot> robot_;
   std::string urdf_;
+  std::string tip_link_;
   std::unique_ptr<ServoThread> servo_;
 };
 
