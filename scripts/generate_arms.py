@@ -500,12 +500,11 @@ def write_package_xml(path, package, description):
     write_text(path, text)
 
 
-def write_package(out_dir, package, robot, header, links, joints, palette, description):
+def write_package(out_dir, package, robot, header, links, joints, description):
     root = os.path.join(out_dir, package)
     write_package_xml(os.path.join(root, "package.xml"), package, description)
     write_urdf(os.path.join(root, "urdf", robot + ".urdf"), robot, header, links, joints, package)
-    counts = {"visual": 0, "collision": 0}
-    return root, counts
+    return root
 
 
 def write_meshes(root, links, palette, detail):
@@ -835,13 +834,13 @@ MARKER_SIDE_M = 0.08
 def generate(out_dir, detail):
     counts = {}
     ur_header, ur_links, ur_joints = ur_description()
-    root, _ = write_package(out_dir, "telear_ur6", "ur6", ur_header, ur_links, ur_joints,
-                            UR_PALETTE, "A UR-type 6-DOF arm (UR5 DH parameters) with a "
+    root = write_package(out_dir, "telear_ur6", "ur6", ur_header, ur_links, ur_joints,
+                         "A UR-type 6-DOF arm (UR5 DH parameters) with a "
                             "parallel gripper, made by telear's scripts/generate_arms.py.")
     counts["ur6"] = write_meshes(root, ur_links, UR_PALETTE, detail)
     p7_header, p7_links, p7_joints = arm7_description()
-    root, _ = write_package(out_dir, "telear_arm7", "arm7", p7_header, p7_links, p7_joints,
-                            P7_PALETTE, "A Panda-type 7-DOF redundant arm with a two-finger "
+    root = write_package(out_dir, "telear_arm7", "arm7", p7_header, p7_links, p7_joints,
+                         "A Panda-type 7-DOF redundant arm with a two-finger "
                             "hand, made by telear's scripts/generate_arms.py.")
     counts["arm7"] = write_meshes(root, p7_links, P7_PALETTE, detail)
 
