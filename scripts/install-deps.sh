@@ -21,6 +21,8 @@ packages=(
   libimgui-dev xvfb xauth
   # tests and benchmarks (Orocos KDL is the benchmark baseline)
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
+  # tests: the shipped arms' check (tests/data/check_arms.py) reads the robot files
+  python3-yaml
   # tests: OpenCV's real stereo chessboard images (examples/data), ~95 MB, not needed to build
   opencv-doc
 )
