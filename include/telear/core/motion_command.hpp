@@ -119,7 +119,7 @@ struct MotionOptions {
   // Arms with more than six joints: the null-space preference of Cartesian commands
   // (ik_redundant.hpp; default: stay near q_current). Invalid options reject the command
   // (kInvalidInput, the message names the field).
-  RedundancyOptions redundancy;
+  RedundancyOptions redundancy = {};
 };
 
 // Applies `command` to q_current. q_current must be dof() finite values (else kInvalidInput);
