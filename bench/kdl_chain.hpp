@@ -24,6 +24,12 @@ namespace telear::bench {
 // Fails (with a message) when the model has no DH table or a prismatic joint.
 Result<KDL::Chain> kdl_chain_from_dh(const core::RobotModel& model);
 
+// Any revolute chain in telear's canonical form before_i * Rz(q_i + offset_i) * after_i (URDF
+// and modified-DH arms): a fixed segment for `before` where it is not the identity, then a
+// RotZ segment whose tip is `after`, and a fixed segment for the tool. KDL's tool frame (the
+// last segment's) then equals telear's T_base_tool.
+Result<KDL::Chain> kdl_chain_from_joints(const core::RobotModel& model);
+
 KDL::JntArray to_kdl(const Eigen::VectorXd& q);
 Eigen::VectorXd from_kdl(const KDL::JntArray& q);
 KDL::Frame to_kdl(const Eigen::Isometry3d& T);

@@ -98,7 +98,8 @@ Result<IkSolution> nearest_analytic(const RobotModel& model, const PumaGeometry&
 }
 
 Result<IkSolution> nearest_numeric(const RobotModel& model, const Eigen::Isometry3d& T_base_tool,
-                                   const Eigen::VectorXd& q_current) {
+                                   const Eigen::VectorXd& q_current,
+                                   const RedundancyOptions& redundancy) {
   // Motion commands want the pose exactly: ask for 1e-9 first, and settle for the solver's
   // default 1e-6 only where that fails (near singular targets, where convergence is slow).
   NumericIkOptions precise;
@@ -112,6 +113,12 @@ Result<IkSolution> nearest_numeric(const RobotModel& model, const Eigen::Isometr
   s.config = "numeric";
   s.q = r.q;
   s.within_limits = nearest_equivalent_within_limits(model, q_current, s.q);
+  if (model.dof() > 6 && s.within_limits) {
+    const Eigen::VectorXd& preferred =
+        redundancy.preference == NullSpacePreference::kRest ? redundancy.rest_q : q_current;
+    s.q = optimize_null_space(model, T_base_tool, s.q, preferred, redundancy).q;
+    s.config = "redundant";
+  }
   KinematicsData data(model);
   forward_kinematics(model, data, s.q);
   Jacobian J;
@@ -134,12 +141,19 @@ Result<IkSolution> nearest_numeric(const RobotModel& model, const Eigen::Isometr
 
 Result<IkSolution> solve_ik_nearest(const RobotModel& model, const Eigen::Isometry3d& T_base_tool,
                                     const Eigen::VectorXd& q_current) {
+  return solve_ik_nearest(model, T_base_tool, q_current, RedundancyOptions{});
+}
+
+Result<IkSolution> solve_ik_nearest(const RobotModel& model, const Eigen::Isometry3d& T_base_tool,
+                                    const Eigen::VectorXd& q_current,
+                                    const RedundancyOptions& redundancy) {
+  if (Status s = check_redundancy_options(model, redundancy); !s) return s.error();
   assert(q_current.size() == model.dof() && "solve_ik_nearest(): wrong joint vector size");
   if (!T_base_tool.matrix().allFinite()) return Error{"target pose is not finite"};
   if (auto geometry = puma_geometry(model)) {
     return nearest_analytic(model, *geometry, T_base_tool, q_current);
   }
-  return nearest_numeric(model, T_base_tool, q_current);
+  return nearest_numeric(model, T_base_tool, q_current, redundancy);
 }
 
 }  // namespace telear::core

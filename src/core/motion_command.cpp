@@ -158,7 +158,10 @@ MotionOutcome accept(const RobotModel& model, const Eigen::VectorXd& q_current,
 
 MotionOutcome move_to_pose(const RobotModel& model, const Eigen::VectorXd& q_current,
                            const Eigen::Isometry3d& T_target, const MotionOptions& options) {
-  auto ik = solve_ik_nearest(model, T_target, q_current);
+  if (Status s = check_redundancy_options(model, options.redundancy); !s) {
+    return invalid(q_current, s.error().message);
+  }
+  auto ik = solve_ik_nearest(model, T_target, q_current, options.redundancy);
   if (!ik) {
     return reject(q_current, RejectionKind::kUnreachable, ik.error().message);
   }

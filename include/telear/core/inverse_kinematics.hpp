@@ -10,11 +10,17 @@
 // default 1e-6 where that fails (slow convergence next to a singular target); revolute joints
 // are then moved to their 2*pi-equivalent nearest q_current within the limits, and `singular`
 // is set when the smallest singular value of the Jacobian there is below 1e-6.
+//
+// Redundant arms (more than six joints) then move that solution along the self-motion
+// manifold to the null-space preference of `redundancy` (ik_redundant.hpp: near q_current by
+// default, or near a rest pose, away from the joint limits), config "redundant". Six-joint arms
+// without a closed form can list all their branches with solve_ik_all (ik_branches.hpp).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "telear/core/ik_analytic.hpp"
+#include "telear/core/ik_redundant.hpp"
 #include "telear/core/result.hpp"
 #include "telear/core/robot_model.hpp"
 
@@ -25,5 +31,11 @@ namespace telear::core {
 // joint limits, and why. q_current must pass check_joint_vector.
 Result<IkSolution> solve_ik_nearest(const RobotModel& model, const Eigen::Isometry3d& T_base_tool,
                                     const Eigen::VectorXd& q_current);
+
+// The same with the redundancy resolution's options (used for dof > 6 only; an error naming
+// the field when they fail check_redundancy_options).
+Result<IkSolution> solve_ik_nearest(const RobotModel& model, const Eigen::Isometry3d& T_base_tool,
+                                    const Eigen::VectorXd& q_current,
+                                    const RedundancyOptions& redundancy);
 
 }  // namespace telear::core

@@ -42,6 +42,7 @@
 #include <string>
 #include <variant>
 
+#include "telear/core/ik_redundant.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_model.hpp"
 
@@ -115,6 +116,10 @@ struct MotionOptions {
   double singular_tolerance = 1e-4;  // "at a singularity" for reject_singular_cartesian
   double rigid_tolerance = 1e-6;     // orthonormality tolerance of a CartesianTarget
   double ik_tolerance = 1e-6;        // m and rad: FK(IK(T)) must match T this closely
+  // Arms with more than six joints: the null-space preference of Cartesian commands
+  // (ik_redundant.hpp; default: stay near q_current). Invalid options reject the command
+  // (kInvalidInput, the message names the field).
+  RedundancyOptions redundancy = {};
 };
 
 // Applies `command` to q_current. q_current must be dof() finite values (else kInvalidInput);

@@ -1,0 +1,200 @@
+#include "telear/core/ik_branches.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "telear/core/ik_numeric.hpp"
+#include "telear/core/joint_limits.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/motion_command.hpp"
+#include "telear/core/number_format.hpp"
+
+namespace telear::core {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// splitmix64: the seeds must be the same on every platform (std distributions are not).
+std::uint64_t next_random(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+double uniform01(std::uint64_t& state) {
+  return static_cast<double>(next_random(state) >> 11) * 0x1.0p-53;
+}
+
+// Into (-pi, pi].
+double wrap(double angle) {
+  double a = std::remainder(angle, kTwoPi);
+  if (a <= -kPi) a += kTwoPi;
+  return a;
+}
+
+// The model with every revolute joint turning freely in [-pi, pi] (a span of 2 pi: the
+// numeric solver wraps such joints instead of holding them at a limit).
+Result<RobotModel> free_model(const RobotModel& model) {
+  RobotModel::Description d;
+  d.name = model.name();
+  d.source = model.source();
+  d.joints = model.joints();
+  d.T_flange_tool = model.T_flange_tool();
+  d.dh = model.dh();
+  for (Joint& joint : d.joints) {
+    if (joint.type != JointType::kRevolute) continue;
+    joint.limits.lower = -kPi;
+    joint.limits.upper = kPi;
+  }
+  return RobotModel::create(std::move(d));
+}
+
+bool same_branch(const RobotModel& model, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                 double tolerance) {
+  for (int j = 0; j < model.dof(); ++j) {
+    const double d = model.joint(j).type == JointType::kRevolute ? wrap(a[j] - b[j]) : a[j] - b[j];
+    if (std::abs(d) > tolerance) return false;
+  }
+  return true;
+}
+
+Status positive(const char* field, double value) {
+  if (value > 0.0 && std::isfinite(value)) return Status::Ok();
+  return Error{std::string("IkBranchOptions::") + field + " must be positive and finite, got " +
+               format_number(value)};
+}
+
+}  // namespace
+
+Status check_ik_branch_options(const IkBranchOptions& o) {
+  if (o.attempts <= 0) {
+    return Error{"IkBranchOptions::attempts must be positive, got " + std::to_string(o.attempts)};
+  }
+  if (o.max_branches <= 0) {
+    return Error{"IkBranchOptions::max_branches must be positive, got " +
+                 std::to_string(o.max_branches)};
+  }
+  if (o.max_iterations <= 0) {
+    return Error{"IkBranchOptions::max_iterations must be positive, got " +
+                 std::to_string(o.max_iterations)};
+  }
+  for (const auto& [field, value] :
+       {std::pair{"position_tolerance_m", o.position_tolerance_m},
+        std::pair{"orientation_tolerance_rad", o.orientation_tolerance_rad},
+        std::pair{"distinct_tolerance_rad", o.distinct_tolerance_rad},
+        std::pair{"singular_threshold", o.singular_threshold}}) {
+    if (Status s = positive(field, value); !s) return s;
+  }
+  return Status::Ok();
+}
+
+Result<std::vector<IkSolution>> solve_ik_all(const RobotModel& model,
+                                             const Eigen::Isometry3d& T_base_tool,
+                                             const IkBranchOptions& options) {
+  if (Status s = check_ik_branch_options(options); !s) return s.error();
+  if (!T_base_tool.matrix().allFinite()) return Error{"solve_ik_all: target pose is not finite"};
+  if (model.dof() > 6) {
+    return Error{"solve_ik_all: " + model.name() + " has " + std::to_string(model.dof()) +
+                 " joints, so a reachable pose has a continuum of solutions, not branches; use "
+                 "solve_ik_nearest (null-space preference)"};
+  }
+  auto free = free_model(model);
+  if (!free) return free.error();
+  NumericIkOptions lm;
+  lm.max_iterations = options.max_iterations;
+  lm.max_restarts = 0;
+  lm.position_tolerance_m = options.position_tolerance_m;
+  lm.orientation_tolerance_rad = options.orientation_tolerance_rad;
+  NumericIkSolver solver(*free, lm);
+
+  const int n = model.dof();
+  std::uint64_t state = options.seed;
+  Eigen::VectorXd seed(n);
+  std::vector<Eigen::VectorXd> found;
+  double closest_m = std::numeric_limits<double>::infinity();
+  double closest_rad = std::numeric_limits<double>::infinity();
+  for (int attempt = 0;
+       attempt < options.attempts && static_cast<int>(found.size()) < options.max_branches;
+       ++attempt) {
+    for (int j = 0; j < n; ++j) {
+      const double lo = free->lower_limits()[j], hi = free->upper_limits()[j];
+      const bool finite = std::isfinite(lo) && std::isfinite(hi);
+      const double u = uniform01(state);
+      seed[j] = finite ? lo + (hi - lo) * u : -kPi + kTwoPi * u;
+    }
+    const NumericIkResult r = solver.solve(T_base_tool, seed);
+    if (!r.success) {
+      if (r.position_error_m + r.orientation_error_rad < closest_m + closest_rad) {
+        closest_m = r.position_error_m;
+        closest_rad = r.orientation_error_rad;
+      }
+      continue;
+    }
+    Eigen::VectorXd q = r.q;
+    for (int j = 0; j < n; ++j) {
+      if (model.joint(j).type == JointType::kRevolute) q[j] = wrap(q[j]);
+    }
+    const bool known = std::any_of(found.begin(), found.end(), [&](const Eigen::VectorXd& b) {
+      return same_branch(model, b, q, options.distinct_tolerance_rad);
+    });
+    if (!known) found.push_back(std::move(q));
+  }
+  if (found.empty()) {
+    return Error{"solve_ik_all: target unreachable: none of " + std::to_string(options.attempts) +
+                 " seeded attempts converged; the closest came within " +
+                 format_number(closest_m, "%.3g") + " m and " + format_number(closest_rad, "%.3g") +
+                 " rad"};
+  }
+  // A stable order: lexicographic on the wrapped joint values, values within the distinct
+  // tolerance counting as equal (branches share joints: the UR's four branches of one
+  // shoulder have the same q1 up to rounding, which must not decide their order).
+  const double tie = options.distinct_tolerance_rad;
+  std::sort(found.begin(), found.end(), [tie](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    for (Eigen::Index j = 0; j < a.size(); ++j) {
+      if (std::abs(a[j] - b[j]) > tie) return a[j] < b[j];
+    }
+    return false;
+  });
+  std::vector<IkSolution> out;
+  out.reserve(found.size());
+  KinematicsData data(model);
+  for (size_t i = 0; i < found.size(); ++i) {
+    IkSolution s;
+    // Appended, not "b" + to_string(i): GCC 12 warns falsely (-Wrestrict) on the latter.
+    s.config = "b";
+    s.config += std::to_string(i);
+    s.q = found[i];
+    s.within_limits = true;
+    for (int j = 0; j < n; ++j) {
+      if (model.joint(j).type != JointType::kRevolute) {
+        s.within_limits = s.within_limits && s.q[j] >= model.lower_limits()[j] &&
+                          s.q[j] <= model.upper_limits()[j];
+        continue;
+      }
+      // The equivalent within the limits nearest zero: the wrapped value when it is inside,
+      // else the lowest or highest inside equivalent, whichever is nearer zero.
+      const double lo = model.lower_limits()[j], hi = model.upper_limits()[j];
+      if (s.q[j] >= lo && s.q[j] <= hi) continue;
+      const auto low = angle_equivalent_within(s.q[j], lo, hi);
+      if (!low) {
+        s.within_limits = false;
+        continue;
+      }
+      double best = *low;
+      for (double v = *low; v <= hi; v += kTwoPi) {
+        if (std::abs(v) < std::abs(best)) best = v;
+      }
+      s.q[j] = best;
+    }
+    s.singular = jacobian_min_singular_value(model, data, s.q) < options.singular_threshold;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace telear::core
