@@ -195,14 +195,13 @@ Result<RobotDescription> from_robot_file(const std::string& path, const YAML::No
   RobotDescription d;
   d.source = path;
 
-  if (root["package_paths"] && !root["package_paths"].IsSequence()) {
-    return Error{where + "package_paths must be a list of directories"};
-  }
-  for (std::size_t i = 0; i < root["package_paths"].size(); ++i) {
-    auto p =
-        scalar_string(root["package_paths"][i], where + "package_paths[" + std::to_string(i) + "]");
-    if (!p) return p.error();
-    d.package_paths.push_back(absolute_from(dir, *p));
+  if (const YAML::Node paths = root["package_paths"]) {
+    if (!paths.IsSequence()) return Error{where + "package_paths must be a list of directories"};
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      auto p = scalar_string(paths[i], where + "package_paths[" + std::to_string(i) + "]");
+      if (!p) return p.error();
+      d.package_paths.push_back(absolute_from(dir, *p));
+    }
   }
 
   auto urdf_value = scalar_string(root["urdf"], where + "urdf");
