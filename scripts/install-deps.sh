@@ -19,8 +19,8 @@ packages=(
   libjpeg62-turbo-dev python3-grpcio python3-grpc-tools python3-protobuf
   # console: Dear ImGui (GLFW + OpenGL3 backends); Xvfb for window tests without a display
   libimgui-dev xvfb xauth
-  # tests and benchmarks (Orocos KDL is the benchmark baseline)
-  libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
+  # tests and benchmarks (Orocos KDL is the benchmark baseline; kdl_parser the URDF FK reference)
+  libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev libkdl-parser-dev
   # tests: the shipped arms' check (tests/data/check_arms.py) reads the robot files
   python3-yaml
   # tests: OpenCV's real stereo chessboard images (examples/data), ~95 MB, not needed to build
