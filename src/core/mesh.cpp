@@ -202,9 +202,7 @@ void append_sphere(Mesh& mesh, const Eigen::Vector3f& centre, float radius, int 
       mesh.add_vertex(centre + radius * d, d, colour);
     }
   }
-  const auto at = [&](int i, int j) {
-    return first + static_cast<std::uint32_t>(i * (n + 1) + j);
-  };
+  const auto at = [&](int i, int j) { return first + static_cast<std::uint32_t>(i * (n + 1) + j); };
   // Seen from outside, ring i + 1 is below ring i and column j + 1 right of column j, so
   // (a b c), (a c d) over a = (i, j), b = (i+1, j), c = (i+1, j+1), d = (i, j+1) are
   // counter-clockwise; the polar bands keep the one triangle that is not degenerate.

@@ -50,15 +50,16 @@ void set_feature_edges(core::Mesh& mesh, double angle_deg) {
   std::vector<std::uint64_t> order;  // first-seen order keeps the line list deterministic
   for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
     const std::uint32_t v[3] = {mesh.triangles[t], mesh.triangles[t + 1], mesh.triangles[t + 2]};
-    const Eigen::Vector3f n =
-        (position(mesh, v[1]) - position(mesh, v[0])).cross(position(mesh, v[2]) - position(mesh, v[0]));
+    const Eigen::Vector3f n = (position(mesh, v[1]) - position(mesh, v[0]))
+                                  .cross(position(mesh, v[2]) - position(mesh, v[0]));
     if (n.norm() <= 0.0f) continue;
     const Eigen::Vector3f unit = n.normalized();
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = v[k], b = v[(k + 1) % 3];
       const std::uint32_t wa = weld[a], wb = weld[b];
       if (wa == wb) continue;
-      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(wa, wb)) << 32) | std::max(wa, wb);
+      const std::uint64_t key =
+          (static_cast<std::uint64_t>(std::min(wa, wb)) << 32) | std::max(wa, wb);
       auto [it, inserted] = edges.try_emplace(key);
       EdgeUse& e = it->second;
       if (inserted) {

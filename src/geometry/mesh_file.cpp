@@ -28,8 +28,8 @@ std::string lower_extension(const std::string& path) {
 
 Eigen::Matrix4f to_eigen(const aiMatrix4x4& m) {
   Eigen::Matrix4f out;
-  out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
-      m.d3, m.d4;
+  out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3,
+      m.d4;
   return out;
 }
 
@@ -124,7 +124,8 @@ struct Builder {
 bool has_usable_normals(const aiMesh& m) {
   for (unsigned v = 0; v < m.mNumVertices; ++v) {
     const aiVector3D& n = m.mNormals[v];
-    if (!(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) || n.SquareLength() < 1e-12f) {
+    if (!(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) ||
+        n.SquareLength() < 1e-12f) {
       return false;
     }
   }
@@ -135,7 +136,8 @@ bool has_usable_normals(const aiMesh& m) {
 void repair_normals(core::Mesh& mesh) {
   for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
     core::MeshVertex* v[3];
-    for (int k = 0; k < 3; ++k) v[k] = &mesh.vertices[mesh.triangles[t + static_cast<std::size_t>(k)]];
+    for (int k = 0; k < 3; ++k)
+      v[k] = &mesh.vertices[mesh.triangles[t + static_cast<std::size_t>(k)]];
     const auto pos = [](const core::MeshVertex* x) {
       return Eigen::Vector3f(x->position[0], x->position[1], x->position[2]);
     };
@@ -175,7 +177,8 @@ bool is_supported_mesh_extension(const std::string& path) {
 }
 
 Result<core::Mesh> load_mesh_file(const std::string& path, const MeshLoadOptions& options) {
-  if (Status s = options.validate(); !s) return Error{"mesh file " + path + ": " + s.error().message};
+  if (Status s = options.validate(); !s)
+    return Error{"mesh file " + path + ": " + s.error().message};
   if (!is_supported_mesh_extension(path)) {
     return Error{"mesh file " + path + ": unsupported format '" + lower_extension(path) +
                  "' (supported: .stl, .dae, .obj)"};
@@ -195,7 +198,8 @@ Result<core::Mesh> load_mesh_file(const std::string& path, const MeshLoadOptions
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE,
                             static_cast<float>(options.feature_angle_deg));
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_ValidateDataStructure);
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_ValidateDataStructure);
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
     const std::string why = importer.GetErrorString();
     return Error{"mesh file " + path + " is not a readable mesh (" +
@@ -210,8 +214,11 @@ Result<core::Mesh> load_mesh_file(const std::string& path, const MeshLoadOptions
       m->mNormals = nullptr;
     }
   }
-  scene = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals);
-  if (!scene) return Error{"mesh file " + path + " is not a readable mesh (" + importer.GetErrorString() + ")"};
+  scene =
+      importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals);
+  if (!scene)
+    return Error{"mesh file " + path + " is not a readable mesh (" + importer.GetErrorString() +
+                 ")"};
   // The raw counts, before instancing multiplies them.
   std::size_t vertices = 0;
   for (unsigned k = 0; k < scene->mNumMeshes; ++k) vertices += scene->mMeshes[k]->mNumVertices;

@@ -14,7 +14,8 @@ MeshSearchPaths search_paths(const core::RobotDescription& d, const GeometryOpti
   MeshSearchPaths s;
   s.package_paths = o.package_paths;
   s.robot_package_paths = d.package_paths;
-  s.ros_package_path = o.ros_package_path ? *o.ros_package_path : ros_package_path_from_environment();
+  s.ros_package_path =
+      o.ros_package_path ? *o.ros_package_path : ros_package_path_from_environment();
   if (!d.urdf_path.empty()) s.base_dir = std::filesystem::path(d.urdf_path).parent_path().string();
   return s;
 }
@@ -29,9 +30,7 @@ std::string link_prefix(const core::RobotLink& link) {
 
 // Primitive sizes must be positive: a zero box would assert in core's mesh builders.
 Status check_primitive(const core::RobotLink& link, const GeometryElement& e) {
-  const auto bad = [&](const std::string& what) {
-    return Error{link_prefix(link) + what};
-  };
+  const auto bad = [&](const std::string& what) { return Error{link_prefix(link) + what}; };
   switch (e.kind) {
     case GeometryElement::Kind::kBox:
       if (!(e.box_size.minCoeff() > 0.0) || !e.box_size.allFinite()) {
@@ -44,7 +43,8 @@ Status check_primitive(const core::RobotLink& link, const GeometryElement& e) {
       }
       break;
     case GeometryElement::Kind::kSphere:
-      if (!(e.radius > 0.0) || !std::isfinite(e.radius)) return bad("sphere radius must be positive");
+      if (!(e.radius > 0.0) || !std::isfinite(e.radius))
+        return bad("sphere radius must be positive");
       break;
     case GeometryElement::Kind::kMesh:
       break;

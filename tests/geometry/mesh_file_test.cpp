@@ -56,8 +56,8 @@ TEST(MeshFileTest, BinaryStlCubeHasTwelveTrianglesTwelveFeatureEdgesAndDefaultGr
   EXPECT_EQ(mesh->triangle_count(), 12u);
   EXPECT_EQ(mesh->vertices.size(), 24u);  // 4 per face: corners shared within a flat face
   EXPECT_EQ(mesh->line_count(), 12u);     // the 6 face diagonals are flat: not drawn
-  EXPECT_TRUE(bounds(*mesh).isApprox(Eigen::AlignedBox3f(Eigen::Vector3f::Zero(),
-                                                         Eigen::Vector3f::Ones())));
+  EXPECT_TRUE(bounds(*mesh).isApprox(
+      Eigen::AlignedBox3f(Eigen::Vector3f::Zero(), Eigen::Vector3f::Ones())));
   expect_outward(*mesh, Eigen::Vector3f::Constant(0.5f));
   EXPECT_TRUE(colour(*mesh, 0).isApprox(kDefaultMeshColour));
 }
