@@ -7,7 +7,7 @@
 #   PREFIX/<libdir>/libtelear_*.a      every layer library (telear_library()) and telear_proto
 #   PREFIX/<libdir>/cmake/telear/      telearConfig.cmake, telearConfigVersion.cmake,
 #                                      telearTargets.cmake: find_package(telear) gives
-#                                      telear::core, ::vision, ::render, ::sim_robot, ::sim_rig,
+#                                      telear::core, ::geometry, ::vision, ::render, ::sim_robot, ::sim_rig,
 #                                      ::proto, ::net, ::session, ::console
 # bin/ and share/telear/data are fixed (not GNUInstallDirs' BINDIR / DATADIR) because
 # data_directory() in src/core/robot_loader.cpp looks for the one relative to the other.

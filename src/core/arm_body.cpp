@@ -70,10 +70,40 @@ Eigen::Isometry3f T_link_finger(const GripperSpec& gripper, int side, float open
   return T;
 }
 
+Eigen::Isometry3f T_link_moving_part(const std::vector<AttachmentStep>& steps,
+                                     const Gripper& gripper, float opening_m) {
+  const double f = gripper.fraction(opening_m);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  for (const AttachmentStep& step : steps) {
+    if (step.gripper_joint < 0) {
+      T = T * step.fixed;
+    } else {
+      assert(static_cast<std::size_t>(step.gripper_joint) < gripper.joints.size() &&
+             "T_link_moving_part(): gripper joint index out of range");
+      T = T * gripper.joints[static_cast<std::size_t>(step.gripper_joint)].transform(f);
+    }
+  }
+  return T.cast<float>();
+}
+
+float ArmBody::max_gripper_opening() const {
+  if (gripper) return gripper->max_opening;
+  if (gripper_joints) return static_cast<float>(gripper_joints->max_opening_m);
+  return 0.0f;
+}
+
+float ArmBody::default_gripper_opening() const {
+  if (gripper) return gripper->opening;
+  return 0.5f * max_gripper_opening();
+}
+
 Eigen::Isometry3f ArmBody::T_link_part(int part, float gripper_opening) const {
   const BodyPart& p = parts[static_cast<std::size_t>(part)];
-  if (p.finger_side == 0 || !gripper) return Eigen::Isometry3f::Identity();
-  return T_link_finger(*gripper, p.finger_side, gripper_opening);
+  if (p.finger_side != 0 && gripper) return T_link_finger(*gripper, p.finger_side, gripper_opening);
+  if (!p.steps.empty() && gripper_joints) {
+    return T_link_moving_part(p.steps, *gripper_joints, gripper_opening);
+  }
+  return Eigen::Isometry3f::Identity();
 }
 
 ArmBody build_arm_body(const BodyDescription& description, const ArmBodyOptions& options) {
@@ -87,6 +117,7 @@ ArmBody build_arm_body(const BodyDescription& description, const ArmBodyOptions&
     for (const ShapeSpec& shape : description.links[i]) {
       append_shape(part.mesh, shape, segments_of(shape, description, options));
     }
+    if (i < description.link_meshes.size()) part.mesh.append(description.link_meshes[i]);
     body.parts.push_back(std::move(part));
   }
   if (description.gripper) {
@@ -104,6 +135,21 @@ ArmBody build_arm_body(const BodyDescription& description, const ArmBodyOptions&
       append_box(finger.mesh, Eigen::Vector3f::Zero(), g.finger_size, g.colour);
       body.parts.push_back(std::move(finger));
     }
+  }
+  assert((description.link_meshes.empty() ||
+          description.link_meshes.size() == description.links.size()) &&
+         "build_arm_body(): link_meshes must be empty or one per link");
+  assert((description.moving_parts.empty() || description.gripper_joints) &&
+         "build_arm_body(): moving parts need the gripper joints that drive them");
+  body.gripper_joints = description.gripper_joints;
+  for (const MovingPartSpec& moving : description.moving_parts) {
+    assert(moving.link >= 0 && moving.link <= body.dof && "build_arm_body(): moving part frame");
+    BodyPart part;
+    part.name = moving.name;
+    part.link = moving.link;
+    part.steps = moving.steps;
+    part.mesh = moving.mesh;  // built once; the opening only moves T_link_moving_part
+    body.parts.push_back(std::move(part));
   }
   return body;
 }

@@ -6,14 +6,19 @@
 namespace telear::core {
 
 ArmBodyPose::ArmBodyPose(const RobotModel& model, const ArmBody& body)
-    : model_(&model), data_(model), gripper_(body.gripper) {
+    : model_(&model),
+      data_(model),
+      gripper_(body.gripper),
+      gripper_joints_(body.gripper_joints),
+      max_opening_(body.max_gripper_opening()) {
   assert(body.dof == model.dof() && "ArmBodyPose: the body was built for another robot");
   for (const BodyPart& part : body.parts) {
     part_link_.push_back(part.link);
     part_finger_side_.push_back(part.finger_side);
+    part_steps_.push_back(part.steps);
   }
   T_base_part_.assign(body.parts.size(), Eigen::Matrix4f::Identity());
-  opening_ = gripper_ ? gripper_->opening : 0.0f;
+  opening_ = body.default_gripper_opening();
   forward_kinematics(model, data_, data_.q);
   refresh_parts_from_link(0);
   dirty_first_ = 0;
@@ -35,8 +40,8 @@ void ArmBodyPose::set_joint(int joint, double value) {
 }
 
 void ArmBodyPose::set_gripper_opening(float opening_m) {
-  if (!gripper_) return;
-  const float clamped = std::clamp(opening_m, 0.0f, gripper_->max_opening);
+  if (!gripper_ && !gripper_joints_) return;
+  const float clamped = std::clamp(opening_m, 0.0f, max_opening_);
   if (clamped == opening_) return;
   opening_ = clamped;
   refresh_fingers();
@@ -58,8 +63,7 @@ void ArmBodyPose::refresh_parts_from_link(int first_link) {
     if (link < first_link) continue;
     Eigen::Matrix4f& M = T_base_part_[static_cast<std::size_t>(k)];
     M = data_.T_base_link[static_cast<std::size_t>(link)].matrix().cast<float>();
-    const int side = part_finger_side_[static_cast<std::size_t>(k)];
-    if (side != 0) M = M * T_link_finger(*gripper_, side, opening_).matrix();
+    if (moves_with_opening(k)) M = M * T_link_part(k);
     first = std::min(first, k);
     end = std::max(end, k + 1);
   }
@@ -69,16 +73,26 @@ void ArmBodyPose::refresh_parts_from_link(int first_link) {
 void ArmBodyPose::refresh_fingers() {
   int first = part_count(), end = 0;
   for (int k = 0; k < part_count(); ++k) {
-    const int side = part_finger_side_[static_cast<std::size_t>(k)];
-    if (side == 0) continue;
+    if (!moves_with_opening(k)) continue;
     const int link = part_link_[static_cast<std::size_t>(k)];
     T_base_part_[static_cast<std::size_t>(k)] =
-        data_.T_base_link[static_cast<std::size_t>(link)].matrix().cast<float>() *
-        T_link_finger(*gripper_, side, opening_).matrix();
+        data_.T_base_link[static_cast<std::size_t>(link)].matrix().cast<float>() * T_link_part(k);
     first = std::min(first, k);
     end = std::max(end, k + 1);
   }
   mark(first, end);
+}
+
+bool ArmBodyPose::moves_with_opening(int part) const {
+  const auto k = static_cast<std::size_t>(part);
+  return (part_finger_side_[k] != 0 && gripper_) || (!part_steps_[k].empty() && gripper_joints_);
+}
+
+Eigen::Matrix4f ArmBodyPose::T_link_part(int part) const {
+  const auto k = static_cast<std::size_t>(part);
+  if (part_finger_side_[k] != 0)
+    return T_link_finger(*gripper_, part_finger_side_[k], opening_).matrix();
+  return T_link_moving_part(part_steps_[k], *gripper_joints_, opening_).matrix();
 }
 
 void ArmBodyPose::mark(int first, int end) {

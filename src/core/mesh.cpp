@@ -186,6 +186,39 @@ void append_box(Mesh& mesh, const Eigen::Vector3f& centre, const Eigen::Vector3f
   append_tapered_box(mesh, p0, p1, xy, xy, Eigen::Vector3f::UnitY(), colour);
 }
 
+void append_sphere(Mesh& mesh, const Eigen::Vector3f& centre, float radius, int segments,
+                   const Eigen::Vector3f& colour) {
+  assert(segments >= kMinCylinderSegments && "append_sphere(): fewer than 3 segments");
+  assert(radius > 0.0f && "append_sphere(): radius must be positive");
+  const int n = segments, r = sphere_band_count(segments);
+  const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
+  // Vertex (i, j): ring i = 0..R from the +z pole, column j = 0..N (N is the seam again).
+  for (int i = 0; i <= r; ++i) {
+    const float theta = 0.5f * kTwoPi * static_cast<float>(i) / static_cast<float>(r);
+    for (int j = 0; j <= n; ++j) {
+      const float phi = kTwoPi * static_cast<float>(j % n) / static_cast<float>(n);
+      const Eigen::Vector3f d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                              std::cos(theta));
+      mesh.add_vertex(centre + radius * d, d, colour);
+    }
+  }
+  const auto at = [&](int i, int j) { return first + static_cast<std::uint32_t>(i * (n + 1) + j); };
+  // Seen from outside, ring i + 1 is below ring i and column j + 1 right of column j, so
+  // (a b c), (a c d) over a = (i, j), b = (i+1, j), c = (i+1, j+1), d = (i, j+1) are
+  // counter-clockwise; the polar bands keep the one triangle that is not degenerate.
+  for (int i = 0; i < r; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      if (i != r - 1) mesh.triangles.insert(mesh.triangles.end(), {a, b, c});
+      if (i != 0) mesh.triangles.insert(mesh.triangles.end(), {a, c, d});
+    }
+  }
+  for (int j = 0; j < n; ++j) mesh.lines.insert(mesh.lines.end(), {at(r / 2, j), at(r / 2, j + 1)});
+  for (int j : {0, n / 2}) {
+    for (int i = 0; i < r; ++i) mesh.lines.insert(mesh.lines.end(), {at(i, j), at(i + 1, j)});
+  }
+}
+
 void append_checker_floor(Mesh& mesh, float size, int tiles, const Eigen::Vector3f& colour_a,
                           const Eigen::Vector3f& colour_b) {
   assert(tiles >= 1 && size > 0.0f && "append_checker_floor(): empty floor");

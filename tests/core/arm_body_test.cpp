@@ -260,5 +260,58 @@ TEST(BodyFileTest, AMissingFileIsAnError) {
   EXPECT_THAT(d.error().message, HasSubstr("cannot open body file '/nonexistent/x.body.yaml'"));
 }
 
+// A URDF-style body on the PUMA's chain: a prebuilt mesh appended to link 6 and two moving
+// fingers driven by one revolute gripper joint and its mimic (multiplier -1).
+TEST_F(ArmBodyTest, MovingPartsFollowTheGripperJointsAndOnlyTheirMatricesChange) {
+  BodyDescription d;
+  d.links.resize(7);
+  d.link_meshes.resize(7);
+  append_box(d.link_meshes[6], Eigen::Vector3f::Zero(), {0.05f, 0.05f, 0.05f}, {1, 1, 1});
+  GripperJoint driven;
+  driven.type = JointType::kRevolute;
+  driven.before.translation() = Eigen::Vector3d(0, 0, 0.1);
+  driven.closed = 0.0;
+  driven.open = 0.5;
+  GripperJoint mimic = driven;
+  mimic.multiplier = -1.0;
+  mimic.mimics = "driven";
+  d.gripper_joints = Gripper{{driven, mimic}, 0.1};
+  for (int k : {0, 1}) {
+    MovingPartSpec part;
+    part.name = k == 0 ? "left" : "right";
+    part.link = 6;
+    AttachmentStep step;
+    step.gripper_joint = k;
+    AttachmentStep tip;
+    tip.fixed.translation() = Eigen::Vector3d(0.05, 0, 0);
+    part.steps = {step, tip};
+    append_box(part.mesh, Eigen::Vector3f::Zero(), {0.01f, 0.01f, 0.04f}, {1, 0, 0});
+    d.moving_parts.push_back(part);
+  }
+  const ArmBody body = build_arm_body(d);
+  ASSERT_EQ(body.part_count(), 9);
+  EXPECT_EQ(body.parts[6].mesh.triangle_count(), static_cast<std::size_t>(kBoxTriangleCount));
+  EXPECT_TRUE(body.has_gripper());
+  EXPECT_FLOAT_EQ(body.max_gripper_opening(), 0.1f);
+
+  ArmBodyPose pose(*model, body);
+  pose.clear_changes();
+  pose.set_gripper_opening(0.1f);  // fraction 1: the joints at +0.5 and -0.5 rad
+  EXPECT_EQ(pose.changed().first, 7);
+  EXPECT_EQ(pose.changed().count, 2);
+  const Eigen::Matrix4f T6 = pose.kinematics().T_base_link[6].matrix().cast<float>();
+  for (int k : {0, 1}) {
+    const double angle = k == 0 ? 0.5 : -0.5;
+    const Eigen::Isometry3d expected = Eigen::Translation3d(0, 0, 0.1) *
+                                       Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()) *
+                                       Eigen::Translation3d(0.05, 0, 0);
+    EXPECT_TRUE(pose.T_base_part(7 + k).isApprox(T6 * expected.matrix().cast<float>(), 1e-5f)) << k;
+    EXPECT_TRUE(body.T_link_part(7 + k, 0.1f).isApprox(expected.cast<float>(), 1e-5f)) << k;
+  }
+  pose.clear_changes();
+  pose.set_gripper_opening(0.2f);  // clamped to the maximum it is already at: nothing moves
+  EXPECT_TRUE(pose.changed().empty());
+}
+
 }  // namespace
 }  // namespace telear::core

@@ -11,8 +11,15 @@
 //   parts[i]       link i = 1..n, rigidly attached to frame i (T_base_link[i]),
 //   parts[n+1..]   the gripper's two fingers, attached to the gripper's link with an offset
 //                  that depends on the opening: the opening moves the fingers' matrices,
-//                  it does not rebuild their meshes.
+//                  it does not rebuild their meshes;
+//   then           the moving parts (a URDF robot's finger links): a prebuilt mesh on frame
+//                  `link` whose pose in that frame is the product of its attachment steps,
+//                  fixed transforms and gripper joints evaluated at the opening fraction
+//                  (core::Gripper, robot_description.hpp):
+//                    T_link_part(w) = steps[0](f) * steps[1](f) * ...,  f = fraction(w).
 // A link with no shapes has an empty mesh (drawn as nothing) so that indices stay aligned.
+// A link's part holds its primitives followed by its prebuilt mesh (link_meshes), if any:
+// a URDF robot's visuals of every link riding on that frame, merged by the geometry layer.
 //
 // Where the shapes come from: a body file beside the robot (data/robots/NAME.body.yaml,
 // format in docs/rendering.md) describes per link the primitives (cylinder, tapered prism,
@@ -28,6 +35,7 @@
 
 #include "telear/core/mesh.hpp"
 #include "telear/core/result.hpp"
+#include "telear/core/robot_description.hpp"
 #include "telear/core/robot_model.hpp"
 
 namespace telear::core {
@@ -64,12 +72,24 @@ struct GripperSpec {
   Eigen::Vector3f colour{0.35f, 0.35f, 0.38f};
 };
 
-// The declarative body: what the body file holds.
+// A prebuilt mesh that moves with the gripper opening (a URDF finger link), in its own frame.
+struct MovingPartSpec {
+  std::string name;                   // the URDF link's name
+  int link = 0;                       // the chain frame it rides on, 0..n
+  std::vector<AttachmentStep> steps;  // frame -> part; gripper steps index gripper_joints
+  Mesh mesh;
+};
+
+// The declarative body: what the body file holds, or what the geometry layer built from a
+// URDF's visuals (prebuilt meshes, moving parts and the joints that drive them).
 struct BodyDescription {
   std::string source;                         // file it came from, or "default"
   int default_segments = 16;                  // cylinders without their own count
   std::vector<std::vector<ShapeSpec>> links;  // n + 1 entries: link 0 (base) .. link n
   std::optional<GripperSpec> gripper;
+  std::vector<Mesh> link_meshes;             // empty, or n + 1 entries appended to the links
+  std::vector<MovingPartSpec> moving_parts;  // after the fingers, in this order
+  std::optional<Gripper> gripper_joints;     // drives moving_parts' gripper steps
 };
 
 // Build-time choices (the CLI's --segments, the benchmark's 8 / 50 segments).
@@ -78,28 +98,41 @@ struct ArmBodyOptions {
 };
 
 struct BodyPart {
-  std::string name;     // "link3", "finger_left" ...
-  int link = 0;         // the frame the part moves with: 0 (base) .. n
-  int finger_side = 0;  // -1 / +1 for a gripper finger, 0 for a link
-  Mesh mesh;            // in the part's own frame
+  std::string name;                   // "link3", "finger_left", a URDF link name ...
+  int link = 0;                       // the frame the part moves with: 0 (base) .. n
+  int finger_side = 0;                // -1 / +1 for a gripper finger, 0 for a link
+  std::vector<AttachmentStep> steps;  // a moving part: frame -> part (empty otherwise)
+  Mesh mesh;                          // in the part's own frame
+  bool moves_with_opening() const { return finger_side != 0 || !steps.empty(); }
 };
 
 struct ArmBody {
   int dof = 0;
   std::vector<BodyPart> parts;  // see the header comment for the order
   std::optional<GripperSpec> gripper;
+  std::optional<Gripper> gripper_joints;  // drives the moving parts' gripper steps
 
   int link_part_count() const { return dof + 1; }
   int part_count() const { return static_cast<int>(parts.size()); }
   std::size_t triangle_count() const;
   std::size_t line_count() const;
+  bool has_gripper() const { return gripper.has_value() || gripper_joints.has_value(); }
+  // The largest opening (m): the primitive gripper's, else the URDF gripper's; 0 without one.
+  float max_gripper_opening() const;
+  // The opening a new pose starts at: the primitive gripper's default, else half the maximum.
+  float default_gripper_opening() const;
   // Pose of part `part` in its link's frame at the given gripper opening (identity for a
-  // link part). The opening is clamped to [0, max_opening].
+  // link part). The opening is clamped to [0, max_gripper_opening()].
   Eigen::Isometry3f T_link_part(int part, float gripper_opening) const;
 };
 
 // Pose of finger `side` (-1 / +1) in the gripper's link frame at `opening` (clamped).
 Eigen::Isometry3f T_link_finger(const GripperSpec& gripper, int side, float opening);
+
+// Pose of a moving part in its frame: the steps' product with the gripper joints at the
+// opening (m, turned into a fraction by `gripper`, which clamps it).
+Eigen::Isometry3f T_link_moving_part(const std::vector<AttachmentStep>& steps,
+                                     const Gripper& gripper, float opening_m);
 
 // Builds the meshes. The description must be valid (parse_body_yaml validates files).
 ArmBody build_arm_body(const BodyDescription& description, const ArmBodyOptions& options = {});

@@ -39,7 +39,8 @@ class ArmBodyPose {
   void set_configuration(const Eigen::VectorXd& q);
   // Sets one joint (0-based) and re-computes frames joint+1..n.
   void set_joint(int joint, double value);
-  // Clamped to [0, max_opening]; moves only the finger parts. No-op without a gripper.
+  // Clamped to [0, max opening]; moves only the parts that move with the opening (fingers,
+  // moving parts): their matrices, never their vertices. No-op without a gripper.
   void set_gripper_opening(float opening_m);
 
   const KinematicsData& kinematics() const { return data_; }
@@ -60,13 +61,18 @@ class ArmBodyPose {
   void refresh_parts_from_link(int first_link);
   void refresh_fingers();
   void mark(int first, int end);
+  bool moves_with_opening(int part) const;
+  Eigen::Matrix4f T_link_part(int part) const;
 
   const RobotModel* model_;
   KinematicsData data_;
   std::vector<int> part_link_;
   std::vector<int> part_finger_side_;
+  std::vector<std::vector<AttachmentStep>> part_steps_;
   std::vector<Eigen::Matrix4f> T_base_part_;
   std::optional<GripperSpec> gripper_;
+  std::optional<Gripper> gripper_joints_;
+  float max_opening_ = 0.0f;
   float opening_ = 0.0f;
   int dirty_first_ = 0;
   int dirty_end_ = 0;

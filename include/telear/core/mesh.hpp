@@ -16,7 +16,10 @@
 // Triangle and line counts (documented formulas, checked by the tests):
 //   cylinder of N segments : 2N (wall strip) + N + N (two cap fans) = 4N triangles,
 //                            3N lines (two rims of N, N wall generators);
-//   box / tapered prism    : 12 triangles, 12 lines (24 vertices: flat face normals).
+//   box / tapered prism    : 12 triangles, 12 lines (24 vertices: flat face normals);
+//   sphere of N segments   : R = max(2, N / 2) latitude bands; 2 N (R - 1) triangles (one
+//                            per segment in the two polar bands, two elsewhere),
+//                            N + 2 R lines (a ring near the equator and two meridians).
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -82,6 +85,21 @@ void append_tapered_box(Mesh& mesh, const Eigen::Vector3f& p0, const Eigen::Vect
 // An axis-aligned box of the given full size, centred at `centre`.
 void append_box(Mesh& mesh, const Eigen::Vector3f& centre, const Eigen::Vector3f& size,
                 const Eigen::Vector3f& colour);
+
+constexpr int sphere_band_count(int segments) {
+  return segments / 2 < 2 ? 2 : segments / 2;
+}
+constexpr int sphere_triangle_count(int segments) {
+  return 2 * segments * (sphere_band_count(segments) - 1);
+}
+constexpr int sphere_line_count(int segments) {
+  return segments + 2 * sphere_band_count(segments);
+}
+
+// A UV sphere about `centre` (radius > 0, segments >= 3 around the z axis), smooth normals;
+// (R + 1) (N + 1) vertices, the seam and the poles duplicated per column.
+void append_sphere(Mesh& mesh, const Eigen::Vector3f& centre, float radius, int segments,
+                   const Eigen::Vector3f& colour);
 
 // A flat square on z = 0 of edge `size` centred at the origin, normal +z, in tiles x tiles
 // squares alternating two colours (a checkerboard gives the eye a depth cue); lines: the

@@ -1,0 +1,221 @@
+// Mesh files through assimp: counts, bounds after scale and node transforms, colours, the
+// feature-edge wire-frame, the limits and every error message. The files are written here.
+
+#include "telear/geometry/mesh_file.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "mesh_test_files.hpp"
+#include "telear/geometry/feature_edges.hpp"
+
+namespace telear::geometry {
+namespace {
+
+using ::testing::HasSubstr;
+using namespace test_files;
+
+Eigen::Vector3f position(const core::Mesh& m, std::uint32_t i) {
+  const core::MeshVertex& v = m.vertices[i];
+  return {v.position[0], v.position[1], v.position[2]};
+}
+
+Eigen::Vector3f colour(const core::Mesh& m, std::uint32_t i) {
+  const core::MeshVertex& v = m.vertices[i];
+  return {v.colour[0], v.colour[1], v.colour[2]};
+}
+
+Eigen::AlignedBox3f bounds(const core::Mesh& m) {
+  Eigen::AlignedBox3f box;
+  for (std::uint32_t i = 0; i < m.vertices.size(); ++i) box.extend(position(m, i));
+  return box;
+}
+
+// Every triangle's winding normal points away from `centre` and agrees with its vertices'
+// normals (the file's or the generated ones).
+void expect_outward(const core::Mesh& m, const Eigen::Vector3f& centre) {
+  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+    const std::uint32_t* v = &m.triangles[3 * t];
+    const Eigen::Vector3f a = position(m, v[0]), b = position(m, v[1]), c = position(m, v[2]);
+    const Eigen::Vector3f n = (b - a).cross(c - a);
+    EXPECT_GT(n.dot((a + b + c) / 3.0f - centre), 0.0f) << "triangle " << t;
+    for (int k = 0; k < 3; ++k) {
+      const core::MeshVertex& x = m.vertices[v[k]];
+      const Eigen::Vector3f vn(x.normal[0], x.normal[1], x.normal[2]);
+      EXPECT_NEAR(vn.norm(), 1.0f, 1e-4f);
+      EXPECT_GT(vn.dot(n), 0.0f) << "triangle " << t << " vertex " << k;
+    }
+  }
+}
+
+TEST(MeshFileTest, BinaryStlCubeHasTwelveTrianglesTwelveFeatureEdgesAndDefaultGrey) {
+  TempDir dir;
+  const std::string path = dir.write("cube.stl", binary_stl_cube());
+  auto mesh = load_mesh_file(path);
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  EXPECT_EQ(mesh->triangle_count(), 12u);
+  EXPECT_EQ(mesh->vertices.size(), 24u);  // 4 per face: corners shared within a flat face
+  EXPECT_EQ(mesh->line_count(), 12u);     // the 6 face diagonals are flat: not drawn
+  EXPECT_TRUE(bounds(*mesh).isApprox(
+      Eigen::AlignedBox3f(Eigen::Vector3f::Zero(), Eigen::Vector3f::Ones())));
+  expect_outward(*mesh, Eigen::Vector3f::Constant(0.5f));
+  EXPECT_TRUE(colour(*mesh, 0).isApprox(kDefaultMeshColour));
+}
+
+TEST(MeshFileTest, ScaleStretchesTheBoundsAndAMirrorKeepsTheWindingOutward) {
+  TempDir dir;
+  const std::string path = dir.write("cube.stl", binary_stl_cube());
+  MeshLoadOptions options;
+  options.scale = {2.0, 3.0, 0.5};
+  auto mesh = load_mesh_file(path, options);
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  EXPECT_TRUE(bounds(*mesh).max().isApprox(Eigen::Vector3f(2.0f, 3.0f, 0.5f)));
+  expect_outward(*mesh, Eigen::Vector3f(1.0f, 1.5f, 0.25f));
+
+  options.scale = {-1.0, 1.0, 1.0};
+  auto mirrored = load_mesh_file(path, options);
+  ASSERT_TRUE(mirrored) << mirrored.error().message;
+  EXPECT_TRUE(bounds(*mirrored).min().isApprox(Eigen::Vector3f(-1.0f, 0.0f, 0.0f)));
+  expect_outward(*mirrored, Eigen::Vector3f(-0.5f, 0.5f, 0.5f));
+}
+
+TEST(MeshFileTest, UrdfRgbaOverridesTheDefaultColour) {
+  TempDir dir;
+  MeshLoadOptions options;
+  options.rgba = Eigen::Vector4f(0.9f, 0.1f, 0.2f, 1.0f);
+  auto mesh = load_mesh_file(dir.write("cube.stl", binary_stl_cube()), options);
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  for (std::uint32_t i = 0; i < mesh->vertices.size(); ++i) {
+    EXPECT_TRUE(colour(*mesh, i).isApprox(Eigen::Vector3f(0.9f, 0.1f, 0.2f)));
+  }
+}
+
+TEST(MeshFileTest, AsciiStlWithoutNormalsGetsFlatOutwardNormals) {
+  TempDir dir;
+  auto mesh = load_mesh_file(dir.write("tetra.STL", ascii_stl_tetrahedron()));
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  EXPECT_EQ(mesh->triangle_count(), 4u);
+  EXPECT_EQ(mesh->line_count(), 6u);  // every dihedral angle of this tetrahedron is > 30 deg
+  expect_outward(*mesh, Eigen::Vector3f::Constant(0.25f));
+}
+
+TEST(MeshFileTest, ObjTakesItsMaterialColourUnlessTheUrdfGivesOne) {
+  TempDir dir;
+  dir.write("paint.mtl", mtl_paint({0.2f, 0.4f, 0.6f}));
+  const std::string path = dir.write("square.obj", obj_square("paint.mtl"));
+  auto mesh = load_mesh_file(path);
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  EXPECT_EQ(mesh->triangle_count(), 2u);
+  EXPECT_EQ(mesh->line_count(), 4u);  // the boundary; the diagonal is flat
+  EXPECT_TRUE(colour(*mesh, 0).isApprox(Eigen::Vector3f(0.2f, 0.4f, 0.6f), 1e-5f));
+
+  MeshLoadOptions options;
+  options.rgba = Eigen::Vector4f(1.0f, 0.5f, 0.0f, 1.0f);
+  auto painted = load_mesh_file(path, options);
+  ASSERT_TRUE(painted) << painted.error().message;
+  EXPECT_TRUE(colour(*painted, 0).isApprox(Eigen::Vector3f(1.0f, 0.5f, 0.0f)));
+}
+
+TEST(MeshFileTest, ColladaAppliesNodeTransformsAsWrittenAndItsMaterial) {
+  TempDir dir;
+  const Eigen::Vector3f t(0.1f, 0.2f, 0.3f);
+  auto mesh = load_mesh_file(dir.write("tri.dae", collada_triangle(t, {0.8f, 0.3f, 0.1f})));
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  EXPECT_EQ(mesh->triangle_count(), 1u);
+  // translate * scale(2): the unit triangle doubled, then moved; Z_UP is not turned to Y_UP.
+  const Eigen::AlignedBox3f box = bounds(*mesh);
+  EXPECT_TRUE(box.min().isApprox(t, 1e-5f)) << box.min().transpose();
+  EXPECT_TRUE(box.max().isApprox(t + Eigen::Vector3f(2.0f, 2.0f, 0.0f), 1e-5f))
+      << box.max().transpose();
+  EXPECT_TRUE(colour(*mesh, 0).isApprox(Eigen::Vector3f(0.8f, 0.3f, 0.1f), 1e-5f));
+}
+
+TEST(MeshFileTest, FeatureEdgesFollowTheAngle) {
+  // Two triangles folded by 20 deg along their shared edge: a crease only below 20 deg.
+  core::Mesh m;
+  const float a = 20.0f * static_cast<float>(M_PI) / 180.0f;
+  const Eigen::Vector3f n(0, 0, 1), c(1, 1, 1);
+  m.add_vertex({0, 0, 0}, n, c);
+  m.add_vertex({1, 0, 0}, n, c);
+  m.add_vertex({0, 1, 0}, n, c);
+  m.add_vertex({-std::cos(a), 0, std::sin(a)}, n, c);
+  m.triangles = {0, 1, 2, 0, 2, 3};
+  set_feature_edges(m, 30.0);
+  EXPECT_EQ(m.line_count(), 4u);  // the boundary only
+  set_feature_edges(m, 10.0);
+  EXPECT_EQ(m.line_count(), 5u);  // and the fold
+}
+
+TEST(MeshFileTest, AFileOverTheSizeLimitIsRefusedBeforeReading) {
+  TempDir dir;
+  const std::string path = dir.write("cube.stl", binary_stl_cube());
+  MeshLoadOptions options;
+  options.limits.max_file_bytes = 100;
+  auto mesh = load_mesh_file(path, options);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message,
+            "mesh file " + path + " is 684 bytes, over the limit of 100 bytes");
+}
+
+TEST(MeshFileTest, TooManyVerticesOrTrianglesNameTheCountAndLimit) {
+  TempDir dir;
+  const std::string path = dir.write("cube.stl", binary_stl_cube());
+  MeshLoadOptions options;
+  options.limits.max_vertices = 10;
+  auto mesh = load_mesh_file(path, options);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message, "mesh file " + path + ": 24 vertices exceed the limit of 10");
+  options.limits.max_vertices = 100;
+  options.limits.max_triangles = 11;
+  mesh = load_mesh_file(path, options);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message, "mesh file " + path + ": 12 triangles exceed the limit of 11");
+}
+
+TEST(MeshFileTest, MissingUnsupportedAndCorruptFilesAreErrors) {
+  TempDir dir;
+  const std::string missing = (dir.path() / "none.stl").string();
+  auto mesh = load_mesh_file(missing);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message, "mesh file " + missing + " does not exist");
+
+  const std::string ply = dir.write("part.3ds", "3ds");
+  mesh = load_mesh_file(ply);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message,
+            "mesh file " + ply + ": unsupported format '.3ds' (supported: .stl, .dae, .obj)");
+
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"junk.stl", "no mesh"},
+                                   {"junk.dae", "<COLLADA><library_geometries>"},
+                                   {"empty.obj", ""}}) {
+    const std::string path = dir.write(name, text);
+    mesh = load_mesh_file(path);
+    ASSERT_FALSE(mesh) << name;
+    EXPECT_THAT(mesh.error().message, HasSubstr("mesh file " + path)) << name;
+    EXPECT_THAT(mesh.error().message, ::testing::AnyOf(HasSubstr("is not a readable mesh"),
+                                                       HasSubstr("holds no triangles")))
+        << name;
+  }
+}
+
+TEST(MeshFileTest, InvalidOptionsNameTheField) {
+  TempDir dir;
+  MeshLoadOptions options;
+  options.scale = {1.0, 0.0, 1.0};
+  auto mesh = load_mesh_file(dir.write("cube.stl", binary_stl_cube()), options);
+  ASSERT_FALSE(mesh);
+  EXPECT_THAT(mesh.error().message, HasSubstr("mesh scale must be finite and non-zero"));
+}
+
+TEST(PrimitiveMeshTest, SphereCountsFollowTheFormulaAndAreWoundOutwards) {
+  for (int n : {3, 8, 24}) {
+    core::Mesh m;
+    core::append_sphere(m, {0.1f, 0.2f, 0.3f}, 0.5f, n, {1, 1, 1});
+    EXPECT_EQ(static_cast<int>(m.triangle_count()), core::sphere_triangle_count(n)) << n;
+    EXPECT_EQ(static_cast<int>(m.line_count()), core::sphere_line_count(n)) << n;
+    expect_outward(m, {0.1f, 0.2f, 0.3f});
+  }
+}
+
+}  // namespace
+}  // namespace telear::geometry

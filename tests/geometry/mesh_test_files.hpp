@@ -1,0 +1,37 @@
+#pragma once
+// Small mesh files written by the tests into a temporary directory (the project's own test
+// data: a cube, a tetrahedron, a textured quad, a COLLADA triangle with a node transform).
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <string>
+
+namespace telear::geometry::test_files {
+
+// A fresh empty directory under the system temp dir, removed with the object.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  // Writes `text` to path()/relative (creating directories) and returns the full path.
+  std::string write(const std::string& relative, const std::string& text) const;
+
+ private:
+  std::filesystem::path path_;
+};
+
+// The unit cube [0, 1]^3 as a binary STL: 12 triangles with their face normals (684 bytes).
+std::string binary_stl_cube();
+// A tetrahedron (0,0,0) (1,0,0) (0,1,0) (0,0,1) as an ASCII STL: 4 triangles.
+std::string ascii_stl_tetrahedron();
+// One square [0, 1]^2 at z = 0 whose material `paint` (in `mtl_name`) has diffuse colour kd.
+std::string obj_square(const std::string& mtl_name);
+std::string mtl_paint(const Eigen::Vector3f& kd);
+// One triangle (0,0,0) (1,0,0) (0,1,0) under a node translated by `t` and scaled by 2, with a
+// material of diffuse colour kd; up_axis Z_UP.
+std::string collada_triangle(const Eigen::Vector3f& t, const Eigen::Vector3f& kd);
+
+}  // namespace telear::geometry::test_files
