@@ -5,6 +5,8 @@
 
 #include "telear/core/robot_description.hpp"
 
+#include "telear/core/resource_uri.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -86,33 +88,6 @@ Result<std::string> scalar_string(const YAML::Node& node, const std::string& wha
   return node.Scalar();
 }
 
-// `package://PKG/rest`: the first directory PKG under package_paths, then ROS_PACKAGE_PATH.
-Result<std::string> resolve_package_uri(const std::string& uri,
-                                        const std::vector<std::string>& package_paths,
-                                        const std::string& what) {
-  const std::string rest = uri.substr(std::string("package://").size());
-  const auto slash = rest.find('/');
-  const std::string package = rest.substr(0, slash);
-  const std::string inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
-  if (package.empty()) return Error{what + " '" + uri + "' names no package"};
-  std::vector<std::string> roots = package_paths;
-  if (const char* ros = std::getenv("ROS_PACKAGE_PATH"); ros != nullptr) {
-    std::stringstream entries(ros);
-    for (std::string entry; std::getline(entries, entry, ':');) {
-      if (!entry.empty()) roots.push_back(entry);
-    }
-  }
-  std::error_code ec;
-  for (const std::string& root : roots) {
-    const fs::path dir = fs::path(root) / package;
-    if (fs::is_directory(dir, ec)) return (dir / inside).lexically_normal().string();
-  }
-  std::string searched;
-  for (const auto& r : roots) searched += (searched.empty() ? "" : ", ") + r;
-  return Error{what + " '" + uri + "': no directory '" + package + "' in package_paths or " +
-               "ROS_PACKAGE_PATH (searched: " + (searched.empty() ? "nothing" : searched) + ")"};
-}
-
 // The companion files of a DH table or a plain URDF (companion_file.hpp).
 Status add_companions(RobotDescription& d, bool body, bool marker) {
   if (body && d.body_file.empty()) d.body_file = find_companion_file(*d.model, ".body.yaml");
@@ -172,7 +147,9 @@ Result<RobotDescription> from_dh_table(const std::string& path, const std::strin
 
 // The robot file (docs/robot-files.md, "Robot file").
 Result<RobotDescription> from_robot_file(const std::string& path, const YAML::Node& root,
-                                         const std::string& spec_tip, bool companions) {
+                                         const std::string& spec_tip,
+                                         const std::vector<std::string>& spec_package_paths,
+                                         bool companions) {
   const std::string where = "robot file '" + path + "': ";
   const fs::path dir = fs::path(path).parent_path();
   static const std::vector<std::string> kKeys = {"name",
@@ -208,8 +185,13 @@ Result<RobotDescription> from_robot_file(const std::string& path, const YAML::No
   if (!urdf_value) return urdf_value.error();
   std::string urdf_path = *urdf_value;
   if (urdf_path.rfind("package://", 0) == 0) {
-    auto resolved = resolve_package_uri(urdf_path, d.package_paths, where + "urdf");
-    if (!resolved) return resolved.error();
+    // The same search as the URDF's meshes (core/resource_uri.hpp).
+    ResourceSearchPaths search;
+    search.package_paths = spec_package_paths;
+    search.robot_package_paths = d.package_paths;
+    search.ros_package_path = ros_package_path_from_environment();
+    auto resolved = resolve_resource_uri(urdf_path, search, "urdf");
+    if (!resolved) return Error{where + resolved.error().message};
     urdf_path = *resolved;
   } else {
     if (urdf_path.rfind("file://", 0) == 0) urdf_path = urdf_path.substr(7);
@@ -370,7 +352,7 @@ Result<RobotDescription> load_robot_description_impl(const RobotSpec& spec, bool
     auto root = load_yaml_file(path, "robot file '" + path + "': ");
     if (root && root->IsMap() && root.value()["urdf"]) {
       try {
-        return from_robot_file(path, *root, spec.tip, companions);
+        return from_robot_file(path, *root, spec.tip, spec.package_paths, companions);
       } catch (const YAML::Exception& e) {
         return Error{"robot file '" + path + "': " + describe_yaml_error(e)};
       }

@@ -3,19 +3,19 @@
 #include <cmath>
 #include <filesystem>
 
-#include "telear/geometry/mesh_uri.hpp"
+#include "telear/core/resource_uri.hpp"
 
 namespace telear::geometry {
 namespace {
 
 using core::GeometryElement;
 
-MeshSearchPaths search_paths(const core::RobotDescription& d, const GeometryOptions& o) {
-  MeshSearchPaths s;
+core::ResourceSearchPaths search_paths(const core::RobotDescription& d, const GeometryOptions& o) {
+  core::ResourceSearchPaths s;
   s.package_paths = o.package_paths;
   s.robot_package_paths = d.package_paths;
   s.ros_package_path =
-      o.ros_package_path ? *o.ros_package_path : ros_package_path_from_environment();
+      o.ros_package_path ? *o.ros_package_path : core::ros_package_path_from_environment();
   if (!d.urdf_path.empty()) s.base_dir = std::filesystem::path(d.urdf_path).parent_path().string();
   return s;
 }
@@ -58,8 +58,9 @@ struct Resolved {
   std::string not_found;  // the message when path is empty
 };
 
-Resolved resolve(const core::RobotLink& link, const GeometryElement& e, const MeshSearchPaths& s) {
-  Result<std::string> path = resolve_mesh_uri(e.mesh_uri, s);
+Resolved resolve(const core::RobotLink& link, const GeometryElement& e,
+                 const core::ResourceSearchPaths& s) {
+  Result<std::string> path = core::resolve_resource_uri(e.mesh_uri, s);
   if (path) return {*path, {}};
   return {std::nullopt, link_prefix(link) + path.error().message};
 }
@@ -94,7 +95,7 @@ core::Mesh stand_in(const core::RobotLink& link, const GeometryElement& visual,
 }
 
 // Every visual of `link` as one mesh in the link's frame.
-Result<core::Mesh> visual_mesh(const core::RobotLink& link, const MeshSearchPaths& search,
+Result<core::Mesh> visual_mesh(const core::RobotLink& link, const core::ResourceSearchPaths& search,
                                const GeometryOptions& o, std::vector<std::string>& warnings) {
   core::Mesh out;
   for (const GeometryElement& e : link.visuals) {
@@ -189,7 +190,7 @@ Result<RobotBody> body_for(const core::RobotDescription& d, const GeometryOption
   }
 
   const int n = d.model->dof();
-  const MeshSearchPaths search = search_paths(d, o);
+  const core::ResourceSearchPaths search = search_paths(d, o);
   core::BodyDescription& b = out.body;
   b.source = d.urdf_path.empty() ? d.source : d.urdf_path;
   b.default_segments = o.segments;
@@ -222,7 +223,7 @@ Result<RobotCollisionGeometry> collision_geometry_for(const core::RobotDescripti
                                                       const GeometryOptions& o) {
   if (Status s = o.validate(); !s) return s.error();
   RobotCollisionGeometry out;
-  const MeshSearchPaths search = search_paths(d, o);
+  const core::ResourceSearchPaths search = search_paths(d, o);
   for (std::size_t i = 0; i < d.links.size(); ++i) {
     const core::RobotLink& link = d.links[i];
     LinkCollision lc;

@@ -115,8 +115,13 @@ TEST(RobotFile, ResolvesPackageUrisAndRelativePaths) {
   ASSERT_FALSE(lost);
   EXPECT_EQ(lost.error().message,
             "robot file '" + (dir / "ros.yaml").string() +
-                "': urdf 'package://my_arm/urdf/arm.urdf': no directory 'my_arm' in "
-                "package_paths or ROS_PACKAGE_PATH (searched: nothing)");
+                "': urdf 'package://my_arm/urdf/arm.urdf' not found (no package search path; "
+                "set ROS_PACKAGE_PATH or pass --package-path DIR)");
+  // --package-path (RobotSpec::package_paths) is searched too, before anything else.
+  auto via_option =
+      load_robot_description({(dir / "ros.yaml").string(), "", {(dir / "pkgs").string()}});
+  ASSERT_TRUE(via_option) << via_option.error().message;
+  EXPECT_EQ(via_option->urdf_path, via_ros->urdf_path);
 }
 
 TEST(RobotFile, ErrorsNameTheFileAndTheKey) {

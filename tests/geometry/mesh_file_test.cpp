@@ -6,7 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "mesh_test_files.hpp"
+#include "test_util/mesh_test_files.hpp"
 #include "telear/geometry/feature_edges.hpp"
 
 namespace telear::geometry {

@@ -7,7 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "mesh_test_files.hpp"
+#include "test_util/mesh_test_files.hpp"
 #include "telear/core/arm_body_pose.hpp"
 
 namespace telear::geometry {

@@ -37,9 +37,9 @@ struct GeometryElement {
   Eigen::Vector3d box_size = Eigen::Vector3d::Zero();                 // m, full size
   double radius = 0.0;                                                // cylinder, sphere (m)
   double length = 0.0;                                                // cylinder (m), along z
-  std::string mesh_uri;                       // as written: package://, file://, relative
-  Eigen::Vector3d scale = Eigen::Vector3d::Ones();                    // mesh
-  std::optional<Eigen::Vector4f> rgba;        // URDF material colour (0..1), if any
+  std::string mesh_uri;                             // as written: package://, file://, relative
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();  // mesh
+  std::optional<Eigen::Vector4f> rgba;              // URDF material colour (0..1), if any
   std::string material_name;
 };
 
@@ -51,7 +51,7 @@ struct AttachmentStep {
 
 struct RobotLink {
   std::string name;
-  int frame = 0;  // chain frame 0..n this link rides on
+  int frame = 0;                      // chain frame 0..n this link rides on
   std::vector<AttachmentStep> steps;  // frame -> link; empty: the link IS the frame
   std::vector<GeometryElement> visuals;
   std::vector<GeometryElement> collisions;
@@ -83,17 +83,17 @@ struct Gripper {
 };
 
 struct RobotDescription {
-  RobotModelPtr model;                   // the chain root -> tip
+  RobotModelPtr model;  // the chain root -> tip
   std::string name;
-  std::string source;                    // the file given (robot file, URDF or DH table)
-  std::string urdf_path;                 // empty for a DH robot
-  std::string urdf_text;                 // empty for a DH robot
-  std::string root_link, tip_link;       // URDF link names (empty for a DH robot)
-  std::vector<RobotLink> links;          // every URDF link
+  std::string source;               // the file given (robot file, URDF or DH table)
+  std::string urdf_path;            // empty for a DH robot
+  std::string urdf_text;            // empty for a DH robot
+  std::string root_link, tip_link;  // URDF link names (empty for a DH robot)
+  std::vector<RobotLink> links;     // every URDF link
   std::optional<Gripper> gripper;
   std::vector<std::string> package_paths;  // from the robot file, absolute
-  std::string body_file;                 // body override (absolute), empty: from the URDF
-  std::optional<MarkerMount> marker;     // from the robot file or NAME.marker.yaml
+  std::string body_file;                   // body override (absolute), empty: from the URDF
+  std::optional<MarkerMount> marker;       // from the robot file or NAME.marker.yaml
   const RobotLink* link(const std::string& name) const;
   // T_frame_link for link `index` at the gripper opening fraction (identity steps: I).
   Eigen::Isometry3d T_frame_link(std::size_t index, double gripper_fraction) const;
@@ -103,6 +103,9 @@ struct RobotDescription {
 struct RobotSpec {
   std::string name_or_path;  // shipped name, robot file (.yaml with `urdf:`), DH table, .urdf
   std::string tip;           // tip link; empty: the robot file's, else the single leaf
+  // --package-path: searched first for package:// URIs (core/resource_uri.hpp), then the
+  // robot file's package_paths, then ROS_PACKAGE_PATH.
+  std::vector<std::string> package_paths;
 };
 
 // Loads any of the forms above. Errors name the file and what is wrong; a tree with several

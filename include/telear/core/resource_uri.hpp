@@ -1,5 +1,6 @@
 #pragma once
-// Where a URDF's mesh file lies: resolving `filename` URIs to paths.
+// Where a robot's resource lies (its URDF from a robot file, a URDF's mesh files): resolving
+// ROS resource URIs to paths, without needing ROS.
 //
 // Accepted forms:
 //   package://PKG/REL   REL inside the package directory of PKG (search below)
@@ -24,9 +25,9 @@
 
 #include "telear/core/result.hpp"
 
-namespace telear::geometry {
+namespace telear::core {
 
-struct MeshSearchPaths {
+struct ResourceSearchPaths {
   std::vector<std::string> package_paths;        // the caller's --package-path, in order
   std::vector<std::string> robot_package_paths;  // the robot file's package_paths
   std::vector<std::string> ros_package_path;     // ROS_PACKAGE_PATH's entries
@@ -41,10 +42,12 @@ std::vector<std::string> ros_package_path_from_environment();
 
 // The package's directories in search order (every match, first is ROS's choice).
 std::vector<std::string> find_package_dirs(const std::string& package,
-                                           const MeshSearchPaths& search);
+                                           const ResourceSearchPaths& search);
 
 // The absolute path of an existing file for `uri`, or an error naming the URI, why and, for
 // package://, every place looked.
-Result<std::string> resolve_mesh_uri(const std::string& uri, const MeshSearchPaths& search);
+// `what` names the resource in messages ("mesh", "urdf").
+Result<std::string> resolve_resource_uri(const std::string& uri, const ResourceSearchPaths& search,
+                                         const std::string& what = "mesh");
 
-}  // namespace telear::geometry
+}  // namespace telear::core

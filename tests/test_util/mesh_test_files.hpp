@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-namespace telear::geometry::test_files {
+namespace telear::test_files {
 
 // A fresh empty directory under the system temp dir, removed with the object.
 class TempDir {
@@ -34,4 +34,4 @@ std::string mtl_paint(const Eigen::Vector3f& kd);
 // material of diffuse colour kd; up_axis Z_UP.
 std::string collada_triangle(const Eigen::Vector3f& t, const Eigen::Vector3f& kd);
 
-}  // namespace telear::geometry::test_files
+}  // namespace telear::test_files

@@ -1,4 +1,4 @@
-#include "telear/geometry/mesh_uri.hpp"
+#include "telear/core/resource_uri.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <system_error>
 
-namespace telear::geometry {
+namespace telear::core {
 namespace {
 
 namespace fs = std::filesystem;
@@ -58,16 +58,17 @@ std::string join(const std::vector<std::string>& items) {
   return s;
 }
 
-std::vector<std::string> all_dirs(const MeshSearchPaths& search) {
+std::vector<std::string> all_dirs(const ResourceSearchPaths& search) {
   std::vector<std::string> dirs = search.package_paths;
   dirs.insert(dirs.end(), search.robot_package_paths.begin(), search.robot_package_paths.end());
   dirs.insert(dirs.end(), search.ros_package_path.begin(), search.ros_package_path.end());
   return dirs;
 }
 
-Result<std::string> existing(const std::string& uri, const fs::path& path) {
+Result<std::string> existing(const std::string& what, const std::string& uri,
+                             const fs::path& path) {
   if (is_file(path)) return fs::absolute(path).lexically_normal().string();
-  return Error{"mesh '" + uri + "' not found: " + path.string() + " does not exist"};
+  return Error{what + " '" + uri + "' not found: " + path.string() + " does not exist"};
 }
 
 }  // namespace
@@ -89,7 +90,7 @@ std::vector<std::string> ros_package_path_from_environment() {
 }
 
 std::vector<std::string> find_package_dirs(const std::string& package,
-                                           const MeshSearchPaths& search) {
+                                           const ResourceSearchPaths& search) {
   std::vector<fs::path> found;
   for (const std::string& d : all_dirs(search)) {
     const fs::path dir = fs::path(d).lexically_normal();
@@ -106,14 +107,15 @@ std::vector<std::string> find_package_dirs(const std::string& package,
   return out;
 }
 
-Result<std::string> resolve_mesh_uri(const std::string& uri, const MeshSearchPaths& search) {
+Result<std::string> resolve_resource_uri(const std::string& uri, const ResourceSearchPaths& search,
+                                         const std::string& what) {
   const std::string kPackage = "package://", kFile = "file://";
-  if (uri.empty()) return Error{"mesh filename is empty"};
+  if (uri.empty()) return Error{what + " filename is empty"};
   if (uri.rfind(kPackage, 0) == 0) {
     const std::string rest = uri.substr(kPackage.size());
     const std::size_t slash = rest.find('/');
     if (slash == 0 || slash == std::string::npos || slash + 1 == rest.size()) {
-      return Error{"mesh '" + uri + "' is not a package URI of the form package://PKG/PATH"};
+      return Error{what + " '" + uri + "' is not a package URI of the form package://PKG/PATH"};
     }
     const std::string package = rest.substr(0, slash), relative = rest.substr(slash + 1);
     const std::vector<std::string> dirs = find_package_dirs(package, search);
@@ -130,25 +132,26 @@ Result<std::string> resolve_mesh_uri(const std::string& uri, const MeshSearchPat
       }
     }
     if (looked.empty()) {
-      return Error{"mesh '" + uri + "' not found (no package search path; " + kPackageHint + ")"};
+      return Error{what + " '" + uri + "' not found (no package search path; " + kPackageHint +
+                   ")"};
     }
-    return Error{"mesh '" + uri + "' not found (looked in " + join(looked) + "; " + kPackageHint +
-                 ")"};
+    return Error{what + " '" + uri + "' not found (looked in " + join(looked) + "; " +
+                 kPackageHint + ")"};
   }
   if (uri.rfind(kFile, 0) == 0) {
     const fs::path path = uri.substr(kFile.size());
     if (!path.is_absolute()) {
-      return Error{"mesh '" + uri + "' is not an absolute file:// URI (file:///PATH)"};
+      return Error{what + " '" + uri + "' is not an absolute file:// URI (file:///PATH)"};
     }
-    return existing(uri, path);
+    return existing(what, uri, path);
   }
   if (const std::size_t scheme = uri.find("://"); scheme != std::string::npos) {
-    return Error{"mesh '" + uri + "' has the unsupported scheme '" + uri.substr(0, scheme) +
+    return Error{what + " '" + uri + "' has the unsupported scheme '" + uri.substr(0, scheme) +
                  "' (use package://, file:// or a path)"};
   }
   const fs::path path(uri);
-  if (path.is_absolute()) return existing(uri, path);
-  return existing(uri, fs::path(search.base_dir.empty() ? "." : search.base_dir) / path);
+  if (path.is_absolute()) return existing(what, uri, path);
+  return existing(what, uri, fs::path(search.base_dir.empty() ? "." : search.base_dir) / path);
 }
 
-}  // namespace telear::geometry
+}  // namespace telear::core

@@ -1,4 +1,4 @@
-#include "mesh_test_files.hpp"
+#include "test_util/mesh_test_files.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <vector>
 
-namespace telear::geometry::test_files {
+namespace telear::test_files {
 namespace fs = std::filesystem;
 
 TempDir::TempDir() {
@@ -148,4 +148,4 @@ std::string collada_triangle(const Eigen::Vector3f& t, const Eigen::Vector3f& kd
   return s.str();
 }
 
-}  // namespace telear::geometry::test_files
+}  // namespace telear::test_files
