@@ -1,5 +1,7 @@
 #include "apps/sim_frame_command.hpp"
 
+#include "telear/sim/rig_robot.hpp"
+
 #include "apps/cli_parsing.hpp"
 #include "telear/core/angles.hpp"
 #include "telear/core/arm_body.hpp"
@@ -23,9 +25,9 @@ int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostrea
   }
   auto rig = sim::load_stereo_rig(options.rig);
   if (!rig) return fail(rig.error().message, 2);
-  auto model = core::load_robot(rig->robot);
-  if (!model) return fail("rig '" + options.rig + "': robot: " + model.error().message, 2);
-  const core::RobotModel& robot = **model;
+  auto loaded = sim::load_rig_robot(*rig);
+  if (!loaded) return fail(loaded.error().message, 2);
+  const core::RobotModel& robot = *loaded->model();
   Eigen::VectorXd q;
   if (auto named = robot.named_configuration(options.q)) {
     q = *named;
@@ -35,15 +37,14 @@ int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostrea
     q = to_vector(*values);
     if (options.degrees) q = q.unaryExpr([](double v) { return core::radians_from_degrees(v); });
   }
-  auto body = rig->body_file.empty() ? core::body_description_for(robot)
-                                     : load_body_yaml_file(rig->body_file, robot);
-  if (!body) return fail(body.error().message, 2);
+  const core::BodyDescription* body = &loaded->body;
 
   auto context = render::create_headless_context();
   if (!context) return fail(context.error().message, 1);
   sim::SceneOptions scene_options;
   scene_options.seed = options.seed;
   scene_options.noise_sigma = options.noise;
+  scene_options.marker = loaded->description.marker;
   auto scene = sim::SceneRenderer::create(*rig, robot, *body, scene_options);
   if (!scene) return fail(scene.error().message, 1);
   scene->set_configuration(q);

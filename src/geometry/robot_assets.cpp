@@ -9,8 +9,7 @@ Result<core::MarkerMount> RobotAssets::marker() const {
                description.name + ".marker.yaml beside it (docs/registration.md)"};
 }
 
-Result<RobotAssets> load_robot_assets(const core::RobotSpec& spec,
-                                      const GeometryOptions& options) {
+Result<RobotAssets> load_robot_assets(const core::RobotSpec& spec, const GeometryOptions& options) {
   auto description = core::load_robot_description(spec);
   if (!description) return description.error();
   auto body = body_for(*description, options);

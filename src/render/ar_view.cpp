@@ -8,12 +8,6 @@ namespace telear::render {
 
 namespace {
 
-float gripper_opening_m(const core::ArmBody& body, double opening) {
-  if (!body.gripper) return 0.0f;
-  const double clamped = std::clamp(opening, 0.0, 1.0);
-  return static_cast<float>(clamped) * body.gripper->max_opening;
-}
-
 bool frame_fits(const core::Image* frame, const vision::CameraModel& camera) {
   return frame != nullptr && frame->width == camera.width && frame->height == camera.height &&
          frame->channels == 3;
@@ -76,12 +70,12 @@ const OffscreenTarget& ArView::composed() const {
 
 void ArView::render(const ArViewInput& input) {
   ghost_pose_->set_configuration(input.ghost_q);
-  ghost_pose_->set_gripper_opening(gripper_opening_m(body_, input.ghost_gripper));
+  ghost_pose_->set_gripper_opening(body_.gripper_opening_m(input.ghost_gripper));
   ghost_.update(*ghost_pose_);
   const bool draw_reported = input.reported_q.size() == model_->dof();
   if (draw_reported) {
     reported_pose_->set_configuration(input.reported_q);
-    reported_pose_->set_gripper_opening(gripper_opening_m(body_, input.reported_gripper));
+    reported_pose_->set_gripper_opening(body_.gripper_opening_m(input.reported_gripper));
     reported_.update(*reported_pose_);
   }
   const bool video_ok = input.mode == ViewMode::kAr && frame_fits(input.left, cameras_.left) &&

@@ -1,5 +1,7 @@
 #include "telear/sim/calibration_capture.hpp"
 
+#include "telear/sim/rig_robot.hpp"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -65,11 +67,10 @@ Result<CalibrationCapture> capture_calibration_views(const CalibrationCaptureOpt
   if (!pattern) return Error{"--pattern: " + pattern.error().message};
   auto rig = load_stereo_rig(options.rig_file);
   if (!rig) return rig.error();
-  auto model = core::load_robot(rig->robot);
-  if (!model) return Error{"rig '" + options.rig_file + "': robot: " + model.error().message};
-  auto body = rig->body_file.empty() ? core::body_description_for(**model)
-                                     : load_body_yaml_file(rig->body_file, **model);
-  if (!body) return body.error();
+  auto robot = load_rig_robot(*rig);
+  if (!robot) return robot.error();
+  const core::RobotModelPtr model = robot->model();
+  const core::BodyDescription* body = &robot->body;
   const CalibrationTarget target = make_calibration_target(*pattern);
   auto poses =
       calibration_target_poses(rig->cameras, rig->T_base_rig, target, options.views, options.seed);
@@ -90,9 +91,12 @@ Result<CalibrationCapture> capture_calibration_views(const CalibrationCaptureOpt
   scene_options.supersample = options.supersample;
   scene_options.show_robot = options.show_scene;
   scene_options.show_environment = options.show_scene;
-  auto scene = SceneRenderer::create(*rig, **model, *body, scene_options);
+  scene_options.marker = robot->description.marker;
+  auto scene = SceneRenderer::create(*rig, *model, *body, scene_options);
   if (!scene) return scene.error();
-  if (auto qn = (*model)->named_configuration("qn")) scene->set_configuration(*qn);
+  // The arm folded out of the way of the calibration target: the PUMA's nominal pose qn, else
+  // the arm's rest pose.
+  scene->set_configuration(model->named_configuration("qn").value_or(rest_configuration(*model)));
 
   CalibrationCapture capture;
   std::ostringstream views_yaml;

@@ -1,5 +1,7 @@
 #include "telear/sim/marker_observations.hpp"
 
+#include "telear/sim/rig_robot.hpp"
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -70,11 +72,10 @@ Result<MarkerObservations> simulate_marker_observations(const MarkerObservations
   if (Status s = options.validate(); !s) return s.error();
   auto rig = load_stereo_rig(options.rig_file);
   if (!rig) return Error{"--rig: " + rig.error().message};
-  auto model = core::load_robot(options.robot);
-  if (!model) return Error{"--robot: " + model.error().message};
-  auto body = rig->body_file.empty() ? core::body_description_for(**model)
-                                     : load_body_yaml_file(rig->body_file, **model);
-  if (!body) return Error{"--rig: " + body.error().message};
+  auto loaded = load_rig_robot(*rig, {options.robot});
+  if (!loaded) return Error{"--robot: " + loaded.error().message};
+  const core::RobotModelPtr model = loaded->model();
+  const core::BodyDescription* body = &loaded->body;
 
   auto context = render::create_headless_context();
   if (!context) return context.error();
@@ -82,12 +83,13 @@ Result<MarkerObservations> simulate_marker_observations(const MarkerObservations
   scene_options.seed = options.seed;
   scene_options.noise_sigma = options.noise_grey;
   scene_options.supersample = options.supersample;
-  auto scene = SceneRenderer::create(*rig, **model, *body, scene_options);
+  scene_options.marker = loaded->description.marker;
+  auto scene = SceneRenderer::create(*rig, *model, *body, scene_options);
   if (!scene) return scene.error();
   if (!scene->marker()) return Error{"the scene has no marker on the gripper"};
   const ArucoMarker& marker = *scene->marker();
 
-  const core::RobotModel& robot = **model;
+  const core::RobotModel& robot = *model;
   std::mt19937_64 rng(options.seed);
 
   MarkerObservations result;

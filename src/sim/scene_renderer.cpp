@@ -209,6 +209,7 @@ std::array<Eigen::Vector3d, 4> SceneRenderer::marker_corners_base() const {
 }
 
 Eigen::Isometry3d SceneRenderer::T_base_grip() const {
+  // A URDF arm's tip is its tool centre point between the fingers (robot file `tip:`).
   if (!body_.gripper) return T_base_flange();
   const auto& gripper = *body_.gripper;
   Eigen::Isometry3d T = pose_->kinematics().T_base_link[gripper.link];
@@ -217,8 +218,7 @@ Eigen::Isometry3d SceneRenderer::T_base_grip() const {
 }
 
 double SceneRenderer::gripper_opening_m(double opening) const {
-  if (!body_.gripper) return 0.0;
-  return std::clamp(opening, 0.0, 1.0) * body_.gripper->max_opening;
+  return body_.gripper_opening_m(opening);
 }
 
 void SceneRenderer::set_object_pose(const Eigen::Isometry3d& T_base_object) {

@@ -1,5 +1,7 @@
 #include "telear/sim/sim_rig_source.hpp"
 
+#include "telear/sim/rig_robot.hpp"
+
 #include "telear/core/arm_body.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/render/egl_context.hpp"
@@ -42,18 +44,14 @@ Result<std::unique_ptr<SimRigSource>> SimRigSource::create(SimRigSourceOptions o
   if (options.rig.empty()) options.rig = default_rig_file();
   auto rig = sim::load_stereo_rig(options.rig);
   if (!rig) return rig.error();
-  auto model = core::load_robot(rig->robot);
-  if (!model) return Error{"rig '" + options.rig + "': robot: " + model.error().message};
-  auto body = rig->body_file.empty() ? core::body_description_for(**model)
-                                     : load_body_yaml_file(rig->body_file, **model);
-  if (!body) return body.error();
+  auto robot = load_rig_robot(*rig);
+  if (!robot) return robot.error();
+  if (robot->description.marker) rig->marker = robot->description.marker;
 
   std::unique_ptr<SimRigSource> source(new SimRigSource());
   source->options_ = std::move(options);
-  source->loaded_ = std::make_unique<Loaded>(Loaded{*rig, *model, *body});
-  const core::RobotModel& robot = *source->loaded_->model;
-  source->last_state_.q =
-      robot.named_configuration("qr").value_or(Eigen::VectorXd::Zero(robot.dof()));
+  source->loaded_ = std::make_unique<Loaded>(Loaded{*rig, robot->model(), robot->body});
+  source->last_state_.q = rest_configuration(*source->loaded_->model);
   source->last_state_.gripper = 0.5;
   source->pacer_ = std::make_unique<vision::FramePacer>(source->options_.fps);
   return source;

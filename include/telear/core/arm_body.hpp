@@ -121,6 +121,15 @@ struct ArmBody {
   float max_gripper_opening() const;
   // The opening a new pose starts at: the primitive gripper's default, else half the maximum.
   float default_gripper_opening() const;
+  // The opening (m) of a robot state's gripper fraction 0 (closed) .. 1 (open), clamped; 0
+  // without a gripper. The wire and the robot report fractions, the body draws metres.
+  float gripper_opening_m(double fraction) const {
+    if (!has_gripper()) return 0.0f;
+    return static_cast<float>(fraction < 0.0   ? 0.0
+                              : fraction > 1.0 ? 1.0
+                                               : fraction) *
+           max_gripper_opening();
+  }
   // Pose of part `part` in its link's frame at the given gripper opening (identity for a
   // link part). The opening is clamped to [0, max_gripper_opening()].
   Eigen::Isometry3f T_link_part(int part, float gripper_opening) const;
