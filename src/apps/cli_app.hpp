@@ -12,6 +12,7 @@
 #include <ostream>
 #include <vector>
 
+#include "apps/robot_arguments.hpp"
 #include "telear/core/image_size.hpp"
 
 namespace CLI {
@@ -36,6 +37,10 @@ void add_calibration_commands(CLI::App& app, Commands& commands);  // calibrate,
 void add_sim_commands(CLI::App& app, Commands& commands);  // sim capture | frame | observations
 void add_console_command(CLI::App& app, Commands& commands);
 void add_bench_commands(CLI::App& app, Commands& commands);  // bench render | kin | stream
+
+// --robot, --tip, --package-path (repeatable) and, when the command draws the arm,
+// --missing-meshes: the same four options on every command that takes a robot.
+void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_meshes);
 
 // The one WIDTHxHEIGHT validator (core::parse_image_size) for every option that takes a
 // size; with `list`, comma-separated sizes. Refused: "--resolution: '20x10' is outside ...".

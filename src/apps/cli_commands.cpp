@@ -54,10 +54,7 @@ void add_kin_commands(CLI::App& app, Commands& commands) {
   KinOptions& kin = *options;
   CLI::App* kin_app = app.add_subcommand("kin", "the arm's geometric model: FK, IK, limits");
   kin_app->require_subcommand(1);
-  auto add_robot = [&kin](CLI::App* sub) {
-    sub->add_option("--robot", kin.robot, "shipped robot name or .yaml / .urdf file")
-        ->capture_default_str();
-  };
+  auto add_robot = [&kin](CLI::App* sub) { add_robot_arguments(sub, kin, false); };
   CLI::App* kin_info = kin_app->add_subcommand("info", "joints, limits, named configurations");
   add_robot(kin_info);
   kin_info->add_flag("--json", kin.json, "print JSON");
@@ -96,8 +93,7 @@ void add_render_command(CLI::App& app, Commands& commands) {
   RenderOptions& render = *options;
   CLI::App* render_app =
       app.add_subcommand("render", "draw the arm through a camera, on a video frame, to PNG");
-  render_app->add_option("--robot", render.robot, "shipped robot name or .yaml / .urdf file")
-      ->capture_default_str();
+  add_robot_arguments(render_app, render, true);
   render_app
       ->add_option("--q", render.q, "joint values q1,...,qn (rad, or deg with --deg) or a name")
       ->required();
@@ -176,8 +172,7 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
       ->add_option("--rig", register_options.rig,
                    "stereo camera file with R, T (telear calibrate's output)")
       ->required();
-  register_app->add_option("--robot", register_options.robot, "shipped robot name or file")
-      ->capture_default_str();
+  add_robot_arguments(register_app, register_options, false);
   register_app
       ->add_option("--observations", register_options.observations,
                    "observations YAML (telear sim observations)")
@@ -197,8 +192,7 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
       ->required();
   eval_app->add_option("--estimate", eval_options.estimate, "registered stereo camera file")
       ->required();
-  eval_app->add_option("--robot", eval_options.robot, "shipped robot name or file")
-      ->capture_default_str();
+  add_robot_arguments(eval_app, eval_options, true);
   eval_app->add_option("--json", eval_options.json, "also write the table as JSON to FILE");
   eval_app
       ->add_option("--configurations", eval_options.configurations,
@@ -273,8 +267,7 @@ void add_sim_commands(CLI::App& app, Commands& commands) {
                               "rendered stereo images at random configurations");
   sim_observations_app->add_option("--rig", sim_observations.rig, "rig file (data/rigs/*.yaml)")
       ->capture_default_str();
-  sim_observations_app->add_option("--robot", sim_observations.robot, "shipped robot name or file")
-      ->capture_default_str();
+  add_robot_arguments(sim_observations_app, sim_observations, true);
   sim_observations_app
       ->add_option("--configs", sim_observations.configs, "configurations to render (1..500)")
       ->capture_default_str();

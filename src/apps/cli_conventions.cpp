@@ -26,6 +26,22 @@ constexpr core::ImageSize kMaxWindow{8192, 8192};
 
 // [SECTION] console (docs/console.md)
 
+void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_meshes) {
+  app->add_option("--robot", arguments.robot,
+                  "shipped robot name, robot file (.yaml), DH table (.yaml) or URDF (.urdf)")
+      ->capture_default_str();
+  app->add_option("--tip", arguments.tip, "tip link of a URDF whose tree has several leaves");
+  app->add_option("--package-path", arguments.package_paths,
+                  "directory searched first for package:// URIs (repeatable; then the robot "
+                  "file's package_paths, then ROS_PACKAGE_PATH)");
+  if (draws_meshes) {
+    app->add_option("--missing-meshes", arguments.missing_meshes,
+                    "a mesh that cannot be found: error, or primitives (a stand-in + warning)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"error", "primitives"}));
+  }
+}
+
 void add_console_command(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<console::ConsoleOptions>();
   console::ConsoleOptions& console = *options;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "telear/core/arm_body.hpp"
-#include "telear/core/robot_loader.hpp"
+#include "telear/geometry/robot_assets.hpp"
 #include "telear/vision/accuracy_check.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/camera_file.hpp"
@@ -50,17 +50,18 @@ int run_eval(const EvalOptions& options, std::ostream& out, std::ostream& err) {
   if (!truth) return fail(err, truth.error().message);
   auto estimate = vision::load_registered_pair(options.estimate, "--estimate");
   if (!estimate) return fail(err, estimate.error().message);
-  auto model = core::load_robot(options.robot);
-  if (!model) return fail(err, "--robot: " + model.error().message);
-  auto description = core::body_description_for(**model);
-  if (!description) return fail(err, "--robot: " + description.error().message);
-  const core::ArmBody body = core::build_arm_body(*description);
+  auto geometry = options.geometry_options();
+  if (!geometry) return fail(err, geometry.error().message);
+  auto robot = geometry::load_robot_assets(options.robot_spec(), *geometry);
+  if (!robot) return fail(err, "--robot: " + robot.error().message);
+  const core::RobotModelPtr model = robot->model();
+  const core::ArmBody body = core::build_arm_body(robot->body);
 
   vision::AccuracyOptions accuracy_options;
   accuracy_options.configurations = options.configurations;
   accuracy_options.spacing_m = options.spacing_m;
   const vision::AccuracyReport report =
-      vision::evaluate_accuracy(**model, body, *truth, *estimate, accuracy_options);
+      vision::evaluate_accuracy(*model, body, *truth, *estimate, accuracy_options);
 
   out << "accuracy of '" << options.estimate << "' against '" << options.truth << "'\n";
   for (const auto* eye : {&report.left, &report.right}) {

@@ -16,12 +16,13 @@
 #include <iosfwd>
 #include <string>
 
+#include "apps/robot_arguments.hpp"
+
 namespace telear::cli {
 
-struct EvalOptions {
+struct EvalOptions : RobotArguments {
   std::string truth;
   std::string estimate;
-  std::string robot = "puma560";
   std::string json;         // report to write; empty: none
   int configurations = 60;  // random arm configurations of the overlay (plus the named ones)
   double spacing_m = 0.01;  // sample spacing along the body's edges

@@ -10,6 +10,7 @@
 #include "apps/cli_parsing.hpp"
 #include "telear/core/angles.hpp"
 #include "telear/core/ik_analytic.hpp"
+#include "telear/core/ik_branches.hpp"
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
@@ -165,7 +166,7 @@ void print_ik_round_trip(const core::RobotModel& model, const core::PumaGeometry
 }  // namespace
 
 int run_kin_info(const KinOptions& options, std::ostream& out, std::ostream& err) {
-  auto loaded = core::load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot_spec());
   if (!loaded) {
     err << "telear kin info: " << loaded.error().message << "\n";
     return 2;
@@ -224,7 +225,7 @@ int run_kin_info(const KinOptions& options, std::ostream& out, std::ostream& err
 }
 
 int run_kin_fk(const KinOptions& options, std::ostream& out, std::ostream& err) {
-  auto loaded = core::load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot_spec());
   if (!loaded) {
     err << "telear kin fk: " << loaded.error().message << "\n";
     return 2;
@@ -265,7 +266,7 @@ int run_kin_fk(const KinOptions& options, std::ostream& out, std::ostream& err) 
 
 int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) {
   const char* who = "telear kin ik: ";
-  auto loaded = core::load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot_spec());
   if (!loaded) {
     err << who << loaded.error().message << "\n";
     return 2;
@@ -295,13 +296,29 @@ int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) 
           << "\n";
       return 2;
     }
-    // Cold start from the zero configuration (clamped into the limits by the solver).
-    auto solution = core::solve_ik_nearest(model, T, Eigen::VectorXd::Zero(model.dof()));
-    if (!solution) {
-      err << who << solution.error().message << "\n";
+    if (model.dof() == 6) {
+      // Every solution branch, found by seeded restarts (core/ik_branches.hpp), listed like
+      // the PUMA's eight; those outside the limits are listed and marked.
+      auto branches = core::solve_ik_all(model, T);
+      if (!branches) {
+        err << who << branches.error().message << "\n";
+        return 1;
+      }
+      result.solutions = std::move(branches).value();
+    } else {
+      // A redundant arm has infinitely many: the one nearest the zero configuration (clamped
+      // into the limits), following the null-space preference (core/ik_redundant.hpp).
+      auto solution = core::solve_ik_nearest(model, T, Eigen::VectorXd::Zero(model.dof()));
+      if (!solution) {
+        err << who << solution.error().message << "\n";
+        return 1;
+      }
+      result.solutions.push_back(std::move(solution).value());
+    }
+    if (result.solutions.empty()) {
+      err << who << "no solution found for the pose (unreachable?)\n";
       return 1;
     }
-    result.solutions.push_back(std::move(solution).value());
     if (result.solutions.front().singular) {
       result.status = core::IkStatus::kSingular;
       result.message = "near a singularity (smallest Jacobian singular value below 1e-6)";
@@ -348,7 +365,7 @@ int run_kin_ik(const KinOptions& options, std::ostream& out, std::ostream& err) 
 }
 
 int run_kin_demo(const KinOptions& options, std::ostream& out, std::ostream& err) {
-  auto loaded = core::load_robot(options.robot);
+  auto loaded = core::load_robot(options.robot_spec());
   if (!loaded) {
     err << "telear kin demo: " << loaded.error().message << "\n";
     return 2;

@@ -33,8 +33,7 @@ void add_robot_server_command(CLI::App& app, Commands& commands) {
                              "state readable without a token (default) or not");
   robot_server_app->add_option("--tls-cert", robot_server.tls_cert, "TLS certificate (PEM)");
   robot_server_app->add_option("--tls-key", robot_server.tls_key, "TLS private key (PEM)");
-  robot_server_app->add_option("--robot", robot_server.robot, "shipped robot name or file")
-      ->capture_default_str();
+  add_robot_arguments(robot_server_app, robot_server, false);
   robot_server_app
       ->add_option("--heartbeat-ms", robot_server.heartbeat_ms,
                    "default lease heartbeat period: a lease not renewed within it stops the arm")

@@ -51,7 +51,7 @@ int run_register(const RegisterOptions& options, std::ostream& out, std::ostream
   auto T_right_left = vision::stereo_pair_geometry(options.rig, *cameras);
   if (!T_right_left) return fail(err, "--rig: " + T_right_left.error().message);
 
-  auto model = core::load_robot(options.robot);
+  auto model = core::load_robot(options.robot_spec());
   if (!model) return fail(err, "--robot: " + model.error().message);
   auto observations = vision::load_observations_file(options.observations);
   if (!observations) return fail(err, "--observations: " + observations.error().message);

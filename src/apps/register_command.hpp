@@ -18,11 +18,12 @@
 #include <iosfwd>
 #include <string>
 
+#include "apps/robot_arguments.hpp"
+
 namespace telear::cli {
 
-struct RegisterOptions {
-  std::string rig;  // stereo camera file (calibration output)
-  std::string robot = "puma560";
+struct RegisterOptions : RobotArguments {
+  std::string rig;           // stereo camera file (calibration output)
   std::string observations;  // observations YAML (telear/vision/observations_file.hpp)
   std::string output;        // camera file to write (may equal --rig)
   int max_iterations = 100;  // Levenberg-Marquardt

@@ -13,7 +13,7 @@
 #include "telear/core/arm_body.hpp"
 #include "telear/core/arm_body_pose.hpp"
 #include "telear/core/kinematics.hpp"
-#include "telear/core/robot_loader.hpp"
+#include "telear/geometry/robot_assets.hpp"
 #include "telear/render/arm_renderer.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/image_io.hpp"
@@ -182,9 +182,14 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   core::BodyDescription description;
   try {
     check_options(options);
-    auto loaded = core::load_robot(options.robot);
+    auto geometry = options.geometry_options();
+    if (!geometry) throw Failure{geometry.error().message};
+    auto loaded = geometry::load_robot_assets(options.robot_spec(), *geometry);
     if (!loaded) throw Failure{loaded.error().message};
-    model = *loaded;
+    for (const std::string& warning : loaded->warnings)
+      err << prefix << "warning: " << warning << "\n";
+    model = loaded->model();
+    description = std::move(loaded->body);
     q = joints_from_options(*model, options);
     backgrounds = backgrounds_from_options(options);
     const int default_width = backgrounds.empty() ? options.width : backgrounds[0].width;
@@ -215,9 +220,6 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
             "separate"};
       }
     }
-    auto body = core::body_description_for(*model);
-    if (!body) throw Failure{body.error().message};
-    description = std::move(body.value());
   } catch (const Failure& f) {
     err << prefix << f.message << "\n";
     return kBadInput;

@@ -14,10 +14,11 @@
 #include <optional>
 #include <string>
 
+#include "apps/robot_arguments.hpp"
+
 namespace telear::cli {
 
-struct RenderOptions {
-  std::string robot = "puma560";
+struct RenderOptions : RobotArguments {
   std::string q;  // joint values q1,...,qn (rad, or deg with degrees) or a name
   bool degrees = false;
   std::string camera;  // camera file (mono or stereo), or left.yaml,right.yaml; empty: default

@@ -6,28 +6,14 @@
 #include <sstream>
 
 #include "apps/cli_parsing.hpp"
-#include "telear/core/robot_loader.hpp"
+#include "telear/core/robot_description.hpp"
 #include "telear/net/robot_server.hpp"
 #include "telear/net/server_log.hpp"
 #include "telear/sim/sim_robot_driver.hpp"
 
 namespace telear::cli {
 
-namespace {
-
-// The robot's URDF text for GetInfo: the model file itself when it is a URDF, else a URDF
-// beside it with the same name (data/robots/puma560.yaml -> puma560.urdf); empty when none.
-std::string find_urdf_text(const core::RobotModel& model) {
-  std::filesystem::path path = model.source();
-  if (path.extension() != ".urdf") path.replace_extension(".urdf");
-  std::ifstream in(path);
-  if (!in) return "";
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,
                      std::ostream& err) {
@@ -36,13 +22,15 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
     err << "telear robot-server: " << log_level.error().message << "\n";
     return 2;
   }
-  auto model = core::load_robot(options.robot);
-  if (!model) {
-    err << "telear robot-server: " << model.error().message << "\n";
+  auto description = core::load_robot_description(options.robot_spec());
+  if (!description) {
+    err << "telear robot-server: " << description.error().message << "\n";
     return 1;
   }
+  const core::RobotModelPtr* model = &description->model;
   sim::SimRobotDriverOptions driver_options;
-  driver_options.urdf = find_urdf_text(**model);
+  driver_options.urdf = core::urdf_text_for_clients(*description);
+  driver_options.tip_link = description->tip_link;
   if (!options.initial_q.empty()) {
     if (auto named = (*model)->named_configuration(options.initial_q)) {
       driver_options.robot.initial_q = *named;

@@ -9,14 +9,15 @@
 #include <ostream>
 #include <string>
 
+#include "apps/robot_arguments.hpp"
+
 namespace telear::cli {
 
-struct RobotServerCommandOptions {
+struct RobotServerCommandOptions : RobotArguments {
   std::string listen = "127.0.0.1:50051";
   std::string token_file;
   bool allow_observers = true;
   std::string tls_cert, tls_key;
-  std::string robot = "puma560";
   int heartbeat_ms = 250;          // default lease heartbeat period
   std::string initial_q;           // joint values or a named configuration; empty: zero
   std::string log_level = "info";  // trace | debug | info | warn | error | off

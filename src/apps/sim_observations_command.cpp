@@ -23,6 +23,10 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
   sim::MarkerObservationsOptions simulation;
   simulation.rig_file = options.rig;
   simulation.robot = options.robot;
+  simulation.tip = options.tip;
+  auto geometry = options.geometry_options();
+  if (!geometry) return fail(err, geometry.error().message);
+  simulation.geometry = *geometry;
   simulation.configurations = options.configs;
   simulation.seed = options.seed;
   simulation.noise_grey = options.noise;

@@ -15,18 +15,19 @@
 #include <iosfwd>
 #include <string>
 
+#include "apps/robot_arguments.hpp"
+
 #include "telear/sim/stereo_rig.hpp"
 
 namespace telear::cli {
 
-struct SimObservationsOptions {
+struct SimObservationsOptions : RobotArguments {
   std::string rig = sim::default_rig_file();  // the shipped rig
-  std::string robot = "puma560";  // the kinematics of the observations (and of the scene)
-  int configs = 20;               // configurations to render (1..500)
-  std::string output;             // observations YAML to write
-  std::uint64_t seed = 1;         // configurations and sensor noise
-  double noise = 1.0;             // sensor noise, grey levels (Gaussian sigma)
-  int supersample = 4;            // anti-aliasing factor per axis
+  int configs = 20;                           // configurations to render (1..500)
+  std::string output;                         // observations YAML to write
+  std::uint64_t seed = 1;                     // configurations and sensor noise
+  double noise = 1.0;                         // sensor noise, grey levels (Gaussian sigma)
+  int supersample = 4;                        // anti-aliasing factor per axis
   double max_view_angle_deg = 55.0;
   double margin_px = 20.0;
 };

@@ -13,6 +13,7 @@
 #include <cassert>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -377,6 +378,17 @@ Result<RobotModelPtr> load_robot(const RobotSpec& spec) {
 
 Result<RobotModelPtr> load_robot(const std::string& name_or_path) {
   return load_robot(RobotSpec{name_or_path, ""});
+}
+
+std::string urdf_text_for_clients(const RobotDescription& description) {
+  if (!description.urdf_text.empty()) return description.urdf_text;
+  fs::path path = description.source;
+  path.replace_extension(".urdf");
+  std::ifstream in(path);
+  if (!in) return "";
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace telear::core

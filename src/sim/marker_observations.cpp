@@ -72,7 +72,8 @@ Result<MarkerObservations> simulate_marker_observations(const MarkerObservations
   if (Status s = options.validate(); !s) return s.error();
   auto rig = load_stereo_rig(options.rig_file);
   if (!rig) return Error{"--rig: " + rig.error().message};
-  auto loaded = load_rig_robot(*rig, {options.robot});
+  auto loaded = load_rig_robot(*rig, {options.robot, options.tip, options.geometry.package_paths},
+                               options.geometry);
   if (!loaded) return Error{"--robot: " + loaded.error().message};
   const core::RobotModelPtr model = loaded->model();
   const core::BodyDescription* body = &loaded->body;

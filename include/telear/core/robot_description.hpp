@@ -99,6 +99,11 @@ struct RobotDescription {
   Eigen::Isometry3d T_frame_link(std::size_t index, double gripper_fraction) const;
 };
 
+// The URDF a robot server hands its clients (GetInfo) so they can draw the same arm: the
+// robot's own URDF text, or for a DH table the URDF of the same arm beside it
+// (data/robots/puma560.yaml -> puma560.urdf); empty when there is none.
+std::string urdf_text_for_clients(const RobotDescription& description);
+
 // What a command's --robot / --tip say.
 struct RobotSpec {
   std::string name_or_path;  // shipped name, robot file (.yaml with `urdf:`), DH table, .urdf

@@ -20,17 +20,20 @@
 #include <string>
 
 #include "telear/core/result.hpp"
+#include "telear/geometry/robot_geometry.hpp"
 #include "telear/vision/observations_file.hpp"
 
 namespace telear::sim {
 
 struct MarkerObservationsOptions {
-  std::string rig_file;           // sim::load_stereo_rig's YAML
-  std::string robot = "puma560";  // the kinematics of the observations (and of the scene)
-  int configurations = 20;        // configurations to render, 1..500
-  std::uint64_t seed = 1;         // configurations and sensor noise
-  double noise_grey = 1.0;        // sensor noise, grey levels (Gaussian sigma), 0..50
-  int supersample = 4;            // anti-aliasing factor per axis, 1..8
+  std::string rig_file;                // sim::load_stereo_rig's YAML
+  std::string robot = "puma560";       // the kinematics of the observations (and of the scene)
+  std::string tip;                     // the robot's tip link when its URDF has several leaves
+  geometry::GeometryOptions geometry;  // --package-path, --missing-meshes
+  int configurations = 20;             // configurations to render, 1..500
+  std::uint64_t seed = 1;              // configurations and sensor noise
+  double noise_grey = 1.0;             // sensor noise, grey levels (Gaussian sigma), 0..50
+  int supersample = 4;                 // anti-aliasing factor per axis, 1..8
   double max_view_angle_deg = 55.0;
   double margin_px = 20.0;
 
