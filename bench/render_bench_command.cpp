@@ -278,8 +278,11 @@ Result<MeshArm> generate_mesh_arm(const std::string& name, int detail) {
   arm.directory = std::move(directory.value());
   arm.command = std::string(kPython) + " " + script + " --detail " + std::to_string(detail) +
                 " --out " + arm.directory.path();
-  // Paths come from the build (script) and mkdtemp (no quotes or spaces in our prefix), the
-  // detail is an int: nothing of the user's reaches the shell but the temp base, quoted here.
+  // Paths come from the build (script) and mkdtemp under $TMPDIR, the detail is an int; both
+  // paths are single-quoted for the shell, so one holding a quote is refused.
+  if ((script + arm.directory.path()).find('\'') != std::string::npos) {
+    return Error{"--mesh-arm: cannot quote a path holding ' for the shell: " + arm.command};
+  }
   const std::string shell = std::string(kPython) + " '" + script + "' --detail " +
                             std::to_string(detail) + " --out '" + arm.directory.path() + "' 2>&1";
   FILE* pipe = popen(shell.c_str(), "r");
