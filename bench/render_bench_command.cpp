@@ -2,7 +2,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include <stdlib.h>
 #include <time.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <optional>
 
 #include <chrono>
 #include <cmath>
@@ -15,6 +23,7 @@
 #include "telear/core/arm_body_pose.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/geometry/robot_assets.hpp"
 #include "telear/render/arm_renderer.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/offscreen_target.hpp"
@@ -34,7 +43,7 @@ std::vector<RenderBenchCase> render_bench_cases() {
       auto add = [&](std::string name, bool arm, bool cube, int segments, bool wire,
                      std::string seed) {
         cases.push_back(
-            {where + ", " + name, arm, cube, segments, wire, video, stereo, std::move(seed)});
+            {where + ", " + name, arm, cube, segments, wire, video, stereo, std::move(seed), ""});
       };
       const std::string stereo_video_seed = video && stereo ? "11.3-11.5 fps" : "";
       add("no drawing", false, false, 8, false,
@@ -48,6 +57,19 @@ std::vector<RenderBenchCase> render_bench_cases() {
     }
   }
   return cases;
+}
+
+std::string generate_arms_script() {
+  return TELEAR_GENERATE_ARMS_SCRIPT;
+}
+
+RenderBenchCase mesh_arm_case(const std::string& name, const std::string& robot_file) {
+  RenderBenchCase c{"video, mesh " + name, true, false, 0, false, true, true, "", robot_file};
+  return c;
+}
+
+std::string mesh_arm_baseline_case() {
+  return "video, arm, 8 seg";
 }
 
 struct RenderBenchScene::Impl {
@@ -78,14 +100,25 @@ Result<std::unique_ptr<RenderBenchScene>> RenderBenchScene::create(const RenderB
   m.c = c;
   m.width = width;
   m.height = height;
-  auto model = core::load_robot("puma560");
-  if (!model) return model.error();
-  m.model = *model;
-  auto description = core::body_description_for(*m.model);
-  if (!description) return description.error();
-  m.body = core::build_arm_body(*description, {.segments_override = c.segments});
+  if (c.robot_file.empty()) {
+    auto model = core::load_robot("puma560");
+    if (!model) return model.error();
+    m.model = *model;
+    auto description = core::body_description_for(*m.model);
+    if (!description) return description.error();
+    m.body = core::build_arm_body(*description, {.segments_override = c.segments});
+    m.q0 = *m.model->named_configuration("qn");
+  } else {
+    core::RobotSpec spec;
+    spec.name_or_path = c.robot_file;
+    auto assets = geometry::load_robot_assets(spec);
+    if (!assets) return assets.error();
+    m.model = assets->model();
+    m.body = core::build_arm_body(assets->body);
+    // The generated arms' "ready": the gripper down above the table, in the cameras' view.
+    m.q0 = m.model->named_configuration("ready").value_or(Eigen::VectorXd::Zero(m.model->dof()));
+  }
   m.pose = std::make_unique<core::ArmBodyPose>(*m.model, m.body);
-  m.q0 = *m.model->named_configuration("qn");
   auto arm = ArmRenderer::create(m.body);
   if (!arm) return arm.error();
   m.arm = std::move(arm.value());
@@ -128,6 +161,9 @@ void RenderBenchScene::frame() {
   Eigen::VectorXd q = m.q0;
   for (int i = 0; i < q.size(); ++i) q[i] += 0.3 * std::sin(t + i);
   m.pose->set_configuration(q);
+  if (!m.c.robot_file.empty() && m.body.has_gripper()) {
+    m.pose->set_gripper_opening(m.body.max_gripper_opening() * float(0.5 + 0.4 * std::sin(t)));
+  }
   m.arm.update(*m.pose);
 
   if (m.c.video) {
@@ -155,12 +191,24 @@ void RenderBenchScene::frame() {
   }
 }
 
+std::size_t RenderBenchScene::triangle_count() const {
+  return impl_->arm.triangle_count();
+}
+
+std::size_t RenderBenchScene::vertex_count() const {
+  std::size_t n = 0;
+  for (const core::BodyPart& part : impl_->body.parts) n += part.mesh.vertices.size();
+  return n;
+}
+
 std::vector<unsigned char> RenderBenchScene::last_image() {
   if (!impl_->c.video) impl_->target.read_pixels(3, impl_->readback.data());
   return impl_->readback;
 }
 
 namespace {
+
+constexpr const char* kPython = "/usr/bin/python3";
 
 struct Measured {
   RenderBenchCase c;
@@ -173,6 +221,85 @@ struct Measured {
   double fps() const { return seconds > 0 ? static_cast<double>(frames) / seconds : 0.0; }
   double ms() const { return frames > 0 ? 1000.0 * seconds / static_cast<double>(frames) : 0.0; }
 };
+
+// A temporary directory, removed with everything in it when this goes out of scope.
+class TemporaryDirectory {
+ public:
+  static Result<TemporaryDirectory> create(const std::string& prefix) {
+    std::error_code ec;
+    const std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+    if (ec) return Error{"no temporary directory: " + ec.message()};
+    std::string pattern = (base / (prefix + "XXXXXX")).string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      return Error{"cannot create a directory like " + pattern + ": " + std::strerror(errno)};
+    }
+    TemporaryDirectory d;
+    d.path_ = pattern;
+    return d;
+  }
+  TemporaryDirectory() = default;
+  TemporaryDirectory(TemporaryDirectory&& other) noexcept : path_(std::move(other.path_)) {
+    other.path_.clear();
+  }
+  TemporaryDirectory& operator=(TemporaryDirectory&& other) noexcept {
+    std::swap(path_, other.path_);
+    return *this;
+  }
+  ~TemporaryDirectory() {
+    if (path_.empty()) return;
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// The mesh arm of --mesh-arm: the generator's command line, where it wrote the arm, and the
+// generator's own report (its triangle counts).
+struct MeshArm {
+  TemporaryDirectory directory;
+  std::string command;
+  std::string robot_file;
+  std::string generator_output;
+};
+
+// Runs scripts/generate_arms.py --detail D --out TMPDIR and returns the robot file of `name`.
+Result<MeshArm> generate_mesh_arm(const std::string& name, int detail) {
+  const std::string script = generate_arms_script();
+  if (!std::filesystem::is_regular_file(script)) {
+    return Error{"--mesh-arm: the generator " + script +
+                 " is not there (it is in telear's source tree, not installed)"};
+  }
+  auto directory = TemporaryDirectory::create("telear-bench-render-");
+  if (!directory) return Error{"--mesh-arm: " + directory.error().message};
+  MeshArm arm;
+  arm.directory = std::move(directory.value());
+  arm.command = std::string(kPython) + " " + script + " --detail " + std::to_string(detail) +
+                " --out " + arm.directory.path();
+  // Paths come from the build (script) and mkdtemp under $TMPDIR, the detail is an int; both
+  // paths are single-quoted for the shell, so one holding a quote is refused.
+  if ((script + arm.directory.path()).find('\'') != std::string::npos) {
+    return Error{"--mesh-arm: cannot quote a path holding ' for the shell: " + arm.command};
+  }
+  const std::string shell = std::string(kPython) + " '" + script + "' --detail " +
+                            std::to_string(detail) + " --out '" + arm.directory.path() + "' 2>&1";
+  FILE* pipe = popen(shell.c_str(), "r");
+  if (pipe == nullptr) return Error{"--mesh-arm: cannot run " + arm.command};
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) arm.generator_output += buffer;
+  const int status = pclose(pipe);
+  while (!arm.generator_output.empty() &&
+         std::isspace(static_cast<unsigned char>(arm.generator_output.back()))) {
+    arm.generator_output.pop_back();
+  }
+  if (status != 0) {
+    return Error{"--mesh-arm: " + arm.command + " failed: " + arm.generator_output};
+  }
+  arm.robot_file = arm.directory.path() + "/" + name + ".yaml";
+  return arm;
+}
 
 // CPU time of the whole process: on a loaded machine wall-clock rates fall while the work
 // per frame does not, so both are reported.
@@ -193,6 +320,11 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
     err << "telear bench render: --width and --height must be in [16, 4096]\n";
     return 2;
   }
+  if (!options.mesh_arm.empty() && options.mesh_arm != "ur6" && options.mesh_arm != "arm7") {
+    err << "telear bench render: --mesh-arm must be ur6 or arm7, got '" << options.mesh_arm
+        << "'\n";
+    return 2;
+  }
   auto context = create_headless_context();
   if (!context) {
     err << "telear bench render: " << context.error().message << "\n";
@@ -200,13 +332,43 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
   }
   const std::string device = (*context)->description();
 
-  std::vector<Measured> results;
+  // The cases to run: the seed's (filtered by --only), and with --mesh-arm the mesh arm and
+  // the PUMA case it is compared with, whatever --only says.
+  std::vector<RenderBenchCase> cases;
+  std::optional<MeshArm> mesh_arm;
+  const auto selected = [&](const std::string& name) {
+    return options.only.empty() || name.find(options.only) != std::string::npos;
+  };
+  const bool with_mesh_arm = !options.mesh_arm.empty();
   for (const RenderBenchCase& c : render_bench_cases()) {
-    if (!options.only.empty() && c.name.find(options.only) == std::string::npos) continue;
+    const bool baseline =
+        with_mesh_arm && c.video && c.stereo && c.name == mesh_arm_baseline_case();
+    if (selected(c.name) || baseline) cases.push_back(c);
+  }
+  if (with_mesh_arm) {
+    auto generated = generate_mesh_arm(options.mesh_arm, options.mesh_detail);
+    if (!generated) {
+      err << "telear bench render: " << generated.error().message << "\n";
+      return 1;
+    }
+    mesh_arm.emplace(std::move(generated.value()));
+    if (!options.json) {
+      out << "mesh arm: generated with " << mesh_arm->command << " (removed after the run)\n";
+    }
+    cases.push_back(mesh_arm_case(options.mesh_arm, mesh_arm->robot_file));
+  }
+
+  std::vector<Measured> results;
+  std::size_t mesh_triangles = 0, mesh_vertices = 0;
+  for (const RenderBenchCase& c : cases) {
     auto scene = RenderBenchScene::create(c, options.width, options.height);
     if (!scene) {
       err << "telear bench render: " << c.name << ": " << scene.error().message << "\n";
       return 1;
+    }
+    if (!c.robot_file.empty()) {
+      mesh_triangles = (*scene)->triangle_count();
+      mesh_vertices = (*scene)->vertex_count();
     }
     for (int i = 0; i < 10; ++i) (*scene)->frame();  // warm-up: shaders, caches
     Measured m{c};
@@ -225,11 +387,24 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
     return 2;
   }
 
+  // The mesh arm beside the PUMA's case of the same frame (stereo, video, read-back).
+  const Measured* mesh = nullptr;
+  const Measured* puma = nullptr;
+  for (const Measured& m : results) {
+    if (!m.c.robot_file.empty()) mesh = &m;
+    if (m.c.robot_file.empty() && m.c.video && m.c.stereo && m.c.name == mesh_arm_baseline_case())
+      puma = &m;
+  }
+  const double ratio = mesh && puma && puma->fps() > 0 ? mesh->fps() / puma->fps() : 0.0;
+  double load[3] = {0, 0, 0};
+  const bool has_load = getloadavg(load, 3) == 3;
+
   if (options.json) {
     nlohmann::json j;
     j["device"] = device;
     j["width"] = options.width;
     j["height"] = options.height;
+    if (has_load) j["load_average"] = {load[0], load[1], load[2]};
     for (const Measured& m : results) {
       j["cases"].push_back({{"name", m.c.name},
                             {"view", m.c.stereo ? "stereo" : "mono"},
@@ -239,13 +414,29 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
                             {"cpu_ms_per_frame", m.cpu_ms()},
                             {"seed", m.c.seed}});
     }
+    if (mesh && puma) {
+      j["mesh_arm"] = {{"robot", options.mesh_arm},
+                       {"detail", options.mesh_detail},
+                       {"triangles", mesh_triangles},
+                       {"vertices", mesh_vertices},
+                       {"generator", mesh_arm->command},
+                       {"fps", mesh->fps()},
+                       {"baseline", mesh_arm_baseline_case() + ", stereo"},
+                       {"baseline_fps", puma->fps()},
+                       {"ratio_to_baseline", ratio}};
+    }
     out << j.dump(2) << "\n";
     return 0;
   }
   out << "telear bench render: " << options.width << "x" << options.height << " per view, "
       << core::format_fixed(options.seconds, 1) << " s per case\n"
-      << "device: " << device << "\n"
-      << "seed: Pentium 4 2 GHz, Direct3D, 2006 (REFERENCES.md)\n\n"
+      << "device: " << device << "\n";
+  if (has_load) {
+    out << "load average: " << core::format_fixed(load[0], 2) << " "
+        << core::format_fixed(load[1], 2) << " " << core::format_fixed(load[2], 2)
+        << " (1, 5, 15 min)\n";
+  }
+  out << "seed: Pentium 4 2 GHz, Direct3D, 2006 (REFERENCES.md)\n\n"
       << "| case | view | fps | ms/frame | CPU ms/frame | seed |\n"
       << "|---|---|---:|---:|---:|---|\n";
   for (const Measured& m : results) {
@@ -253,6 +444,14 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
         << core::format_fixed(m.fps(), 0) << " | " << core::format_fixed(m.ms(), 3) << " | "
         << core::format_fixed(m.cpu_ms(), 3) << " | " << (m.c.seed.empty() ? "-" : m.c.seed)
         << " |\n";
+  }
+  if (mesh && puma) {
+    out << "\nmesh arm " << options.mesh_arm << ": " << mesh_triangles << " triangles, "
+        << mesh_vertices << " vertices (generate_arms.py --detail " << options.mesh_detail
+        << "), stereo AR frame at " << core::format_fixed(mesh->fps(), 0)
+        << " fps = " << core::format_fixed(ratio, 2) << " x the PUMA's '"
+        << mesh_arm_baseline_case() << "' stereo (" << core::format_fixed(puma->fps(), 0)
+        << " fps)\n";
   }
   return 0;
 }

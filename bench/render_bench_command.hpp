@@ -10,9 +10,16 @@
 // Every frame moves the arm (all joints), so every part's matrix is uploaded, and ends with
 // glFinish (graphics only) or the read-back (video), so a frame is complete when timed.
 //
+// --mesh-arm NAME (ur6 or arm7) adds one case beyond the seed's: a URDF arm of dense meshes
+// (scripts/generate_arms.py --detail 64: >= 100k triangles) in the full stereo AR frame
+// (two video uploads, two arm renders, the read-back), generated at the start of the run into
+// a temporary directory (removed at the end) and reported with its ratio to the PUMA's
+// "video, arm, 8 seg" stereo case; both run whatever --only says (--only mesh: just these).
+//
 // RenderBenchScene is the workload shared by this command and bench/render_bench.cpp
 // (Google Benchmark).
 
+#include <cstddef>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -32,6 +39,9 @@ struct RenderBenchCase {
   bool stereo = false;  // two views side by side
   // The seed's figure for this row (REFERENCES.md), as text; empty when it has none.
   std::string seed;
+  // A robot file (e.g. a generated arm7.yaml) whose URDF meshes are drawn instead of the
+  // PUMA 560's primitive body (segments is then unused); empty: the PUMA.
+  std::string robot_file;
 };
 
 // The rows of the table, in order.
@@ -45,6 +55,9 @@ class RenderBenchScene {
   ~RenderBenchScene();
   // Renders one complete frame (see the header comment).
   void frame();
+  // Triangles and vertices of the arm drawn per view.
+  std::size_t triangle_count() const;
+  std::size_t vertex_count() const;
   // The last frame's read-back (video cases), or a read-back made now (other cases).
   std::vector<unsigned char> last_image();
 
@@ -60,7 +73,18 @@ struct RenderBenchOptions {
   int height = 480;
   std::string only;  // run only the cases whose name contains this text
   bool json = false;
+  std::string mesh_arm;  // "ur6" or "arm7": add the mesh-arm case; empty: none
+  int mesh_detail = 64;  // generate_arms.py --detail (segments around a surface of revolution)
 };
+
+// The generator of the mesh arms (the source tree's scripts/generate_arms.py, run with
+// /usr/bin/python3); not installed with telear.
+std::string generate_arms_script();
+
+// The case added by --mesh-arm NAME, drawing `robot_file`, and the PUMA case it is compared
+// with.
+RenderBenchCase mesh_arm_case(const std::string& name, const std::string& robot_file);
+std::string mesh_arm_baseline_case();
 
 int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::ostream& err);
 

@@ -95,6 +95,13 @@ void add_bench_commands(CLI::App& app, Commands& commands) {
   bench_render->add_option("--only", bench_render_options.only,
                            "run only the cases whose name contains this text");
   bench_render->add_flag("--json", bench_render_options.json, "print JSON");
+  bench_render->add_option("--mesh-arm", bench_render_options.mesh_arm,
+                           "also a URDF mesh arm (ur6 or arm7, generated with dense meshes) in "
+                           "the stereo AR frame, against the PUMA's 8-segment case");
+  bench_render
+      ->add_option("--mesh-detail", bench_render_options.mesh_detail,
+                   "generate_arms.py --detail of the mesh arm (64: > 100k triangles)")
+      ->capture_default_str();
   auto kin_options = std::make_shared<BenchKinOptions>();
   BenchKinOptions& bench_kin_options = *kin_options;
   CLI::App* bench_kin =

@@ -6,12 +6,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace telear::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 TEST(RenderBenchCommandTest, CasesCoverTheSeedsTables) {
   const auto cases = render_bench_cases();
@@ -49,6 +52,63 @@ TEST(RenderBenchCommandTest, JsonHasOneEntryPerCase) {
   ASSERT_EQ(run_bench_render(options, out, err), 0) << err.str();
   EXPECT_THAT(out.str(), HasSubstr("\"cpu_ms_per_frame\""));
   EXPECT_THAT(out.str(), HasSubstr("\"name\": \"video, no drawing\""));
+}
+
+// --mesh-arm: the arm is generated into a temporary directory (said in the output, removed
+// afterwards), drawn from its URDF meshes, and set beside the PUMA's case of the same frame,
+// which runs although --only selects none of the seed's cases.
+TEST(RenderBenchCommandTest, MeshArmIsGeneratedDrawnAndComparedWithThePuma) {
+  RenderBenchOptions options;
+  options.seconds = 0.02;
+  options.width = 64;
+  options.height = 48;
+  options.only = "mesh";
+  options.mesh_arm = "ur6";
+  options.mesh_detail = 8;  // small meshes: this checks the plumbing, not the speed
+  std::ostringstream out, err;
+  ASSERT_EQ(run_bench_render(options, out, err), 0) << err.str();
+  const std::string text = out.str();
+  EXPECT_THAT(text, HasSubstr("generate_arms.py --detail 8 --out "));
+  EXPECT_THAT(text, HasSubstr("| video, arm, 8 seg | stereo |"));
+  EXPECT_THAT(text, HasSubstr("| video, mesh ur6 | stereo |"));
+  EXPECT_THAT(text, Not(HasSubstr("| graphics,")));
+  EXPECT_THAT(text, HasSubstr("mesh arm ur6: "));
+  EXPECT_THAT(text, HasSubstr("x the PUMA's 'video, arm, 8 seg' stereo"));
+  EXPECT_THAT(text, HasSubstr("load average: "));
+  // The temporary directory named after --out is gone.
+  const std::size_t at = text.find("--out ") + 6;
+  const std::string directory = text.substr(at, text.find(' ', at) - at);
+  ASSERT_FALSE(directory.empty());
+  EXPECT_FALSE(std::filesystem::exists(directory)) << directory;
+
+  // The JSON form carries the ratio and the mesh's size (more triangles at higher detail).
+  options.json = true;
+  std::ostringstream json_out;
+  ASSERT_EQ(run_bench_render(options, json_out, err), 0) << err.str();
+  const nlohmann::json j = nlohmann::json::parse(json_out.str());
+  ASSERT_TRUE(j.contains("mesh_arm"));
+  EXPECT_EQ(j["mesh_arm"]["robot"], "ur6");
+  EXPECT_GT(j["mesh_arm"]["triangles"].get<long>(), 1000);
+  EXPECT_GT(j["mesh_arm"]["ratio_to_baseline"].get<double>(), 0.0);
+  EXPECT_EQ(j["cases"].size(), 2u);
+}
+
+TEST(RenderBenchCommandTest, MeshArmErrorsNameTheProblem) {
+  std::ostringstream out, err;
+  RenderBenchOptions unknown;
+  unknown.mesh_arm = "puma560";
+  EXPECT_EQ(run_bench_render(unknown, out, err), 2);
+  EXPECT_EQ(err.str(), "telear bench render: --mesh-arm must be ur6 or arm7, got 'puma560'\n");
+  err.str("");
+  RenderBenchOptions bad_detail;
+  bad_detail.seconds = 0.01;
+  bad_detail.width = 16;
+  bad_detail.height = 16;
+  bad_detail.mesh_arm = "arm7";
+  bad_detail.mesh_detail = 2;
+  EXPECT_EQ(run_bench_render(bad_detail, out, err), 1);
+  EXPECT_THAT(err.str(), HasSubstr("telear bench render: --mesh-arm: /usr/bin/python3 "));
+  EXPECT_THAT(err.str(), HasSubstr("failed: generate_arms.py: --detail must be in 6..256, got 2"));
 }
 
 TEST(RenderBenchCommandTest, BadArgumentsGetOneClearLine) {
