@@ -39,8 +39,10 @@ void add_console_command(CLI::App& app, Commands& commands);
 void add_bench_commands(CLI::App& app, Commands& commands);  // bench render | kin | stream
 
 // --robot, --tip, --package-path (repeatable) and, when the command draws the arm,
-// --missing-meshes: the same four options on every command that takes a robot.
-void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_meshes);
+// --missing-meshes: the same four options on every command that takes a robot. The console,
+// whose --robot is the robot server's address, names the arm with `robot_option` "--arm".
+void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_meshes,
+                         const std::string& robot_option = "--robot");
 
 // The one WIDTHxHEIGHT validator (core::parse_image_size) for every option that takes a
 // size; with `list`, comma-separated sizes. Refused: "--resolution: '20x10' is outside ...".

@@ -26,8 +26,9 @@ constexpr core::ImageSize kMaxWindow{8192, 8192};
 
 // [SECTION] console (docs/console.md)
 
-void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_meshes) {
-  app->add_option("--robot", arguments.robot,
+void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_meshes,
+                         const std::string& robot_option) {
+  app->add_option(robot_option, arguments.robot,
                   "shipped robot name, robot file (.yaml), DH table (.yaml) or URDF (.urdf)")
       ->capture_default_str();
   app->add_option("--tip", arguments.tip, "tip link of a URDF whose tree has several leaves");
@@ -43,14 +44,19 @@ void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_me
 }
 
 void add_console_command(CLI::App& app, Commands& commands) {
-  auto options = std::make_shared<console::ConsoleOptions>();
-  console::ConsoleOptions& console = *options;
+  struct ConsoleArguments {
+    console::ConsoleOptions console;
+    RobotArguments arm;
+  };
+  auto arguments = std::make_shared<ConsoleArguments>();
+  console::ConsoleOptions& console = arguments->console;
   CLI::App* console_app = app.add_subcommand(
       "console", "the operator console: stereo AR view, ghost, plan, real robot (Dear ImGui)");
   console_app->add_option("--robot", console.robot, "robot server HOST:PORT (none: embedded sim)");
   console_app->add_option("--vision", console.vision,
                           "vision server HOST:PORT (none: embedded sim)");
   console_app->add_option("--token-file", console.token_file, "file whose first line is the token");
+  add_robot_arguments(console_app, arguments->arm, /*draws_meshes=*/true, "--arm");
   console_app->add_option("--calibration", console.calibration, "registered stereo camera file");
   console_app->add_option("--workspace", console.workspace,
                           "the scene drawn in the views (default: the robot's shipped workspace)");
@@ -60,9 +66,10 @@ void add_console_command(CLI::App& app, Commands& commands) {
   console_app
       ->add_option_function<std::string>(
           "--size",
-          [options](const std::string& text) {
+          [arguments](const std::string& text) {
             const auto size = core::parse_image_size(text, kMinWindow, kMaxWindow);
-            if (size) options->width = size->width, options->height = size->height;
+            if (size)
+              arguments->console.width = size->width, arguments->console.height = size->height;
           },
           "window size WIDTHxHEIGHT (default 1600x1000)")
       ->check(image_size_validator(kMinWindow, kMaxWindow));
@@ -73,8 +80,10 @@ void add_console_command(CLI::App& app, Commands& commands) {
   console_app->add_option("--frames", console.frames, "stop after N frames (screenshot: 60)");
   console_app->add_option("--script", console.script, "replay UI actions (docs/console.md)");
 
-  commands.push_back(
-      {console_app, [options] { return run_console(*options, std::cout, std::cerr); }});
+  commands.push_back({console_app, [arguments] {
+                        return run_console(arguments->console, arguments->arm, std::cout,
+                                           std::cerr);
+                      }});
 }
 
 // [SECTION] bench (one subcommand per benchmark: render, kin, stream)

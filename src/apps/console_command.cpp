@@ -4,8 +4,16 @@
 
 namespace telear::cli {
 
-int run_console(const console::ConsoleOptions& given, std::ostream& out, std::ostream& err) {
+int run_console(const console::ConsoleOptions& given, const RobotArguments& arm, std::ostream& out,
+                std::ostream& err) {
   console::ConsoleOptions options = given;
+  options.arm = arm.robot_spec();
+  auto geometry = arm.geometry_options();
+  if (!geometry) {
+    err << "telear console: " << geometry.error().message << "\n";
+    return 2;
+  }
+  options.geometry = *geometry;
   if (options.frames < 0) {
     err << "telear console: --frames must be >= 0\n";
     return 2;

@@ -6,10 +6,14 @@
 
 #include <ostream>
 
+#include "apps/robot_arguments.hpp"
 #include "telear/console/console_options.hpp"
 
 namespace telear::cli {
 
-int run_console(const console::ConsoleOptions& options, std::ostream& out, std::ostream& err);
+// `arm`: --arm (the console's --robot is the server's address), --tip, --package-path,
+// --missing-meshes.
+int run_console(const console::ConsoleOptions& options, const RobotArguments& arm,
+                std::ostream& out, std::ostream& err);
 
 }  // namespace telear::cli

@@ -31,6 +31,7 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   }
   demo.width = size->width;
   demo.height = size->height;
+  demo.robot = options.robot;
   demo.out_dir = options.out;
   demo.cache_dir = options.cache;
   demo.delay_ms = options.delay_ms;

@@ -20,6 +20,7 @@
 namespace telear::cli {
 
 struct DemoOptions {
+  std::string robot = "puma560";  // a shipped robot with a rig (data/rigs/NAME_rig.yaml)
   std::string out = "out/demo";
   std::string cache;  // empty: <out>/cache
   std::string resolution = "640x480";

@@ -27,8 +27,8 @@
 #include "telear/core/arm_body.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/marker_mount.hpp"
-#include "telear/core/robot_loader.hpp"
 #include "telear/core/workspace.hpp"
+#include "telear/geometry/robot_assets.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/framebuffer_readback.hpp"
@@ -166,14 +166,13 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   if (!resolution) return Error{"--resolution: " + resolution.error().message};
   const auto [width, height] = *resolution;
 
-  auto model = core::load_robot(options.robot_model);
-  if (!model) return model.error();
-  impl->model = *model;
-  auto body = core::body_description_for(**model);
-  if (!body) return body.error();
-  impl->body = *body;
+  auto arm = geometry::load_robot_assets(options.arm, options.geometry);
+  if (!arm) return arm.error();
+  for (const std::string& warning : arm->warnings) log << "telear console: " << warning << "\n";
+  impl->model = arm->model();
+  impl->body = arm->body;
   const std::string workspace_file = options.workspace.empty()
-                                         ? core::default_workspace_file((*model)->name())
+                                         ? core::default_workspace_file(arm->description.name)
                                          : options.workspace;
   if (!options.workspace.empty() || std::filesystem::exists(workspace_file)) {
     auto workspace = core::load_workspace_file(workspace_file);
@@ -199,6 +198,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   if (embedded) {
     session::EmbeddedServersOptions server_options;
     server_options.calibration_file = calibration_file;
+    if (Status s = session::serve_robot(server_options, arm->description); !s) return s.error();
     auto servers = session::EmbeddedServers::create(m.model, server_options);
     if (!servers) return servers.error();
     app->servers_ = std::move(*servers);
@@ -244,7 +244,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   m.cameras.right = vision::resized_camera(cameras->right, width, height);
   m.session_options.cameras = m.cameras;
   // The registration marker, when the robot has one (the live overlay check needs it).
-  if (auto marker = core::marker_mount_for(*m.model)) {
+  if (auto marker = arm->marker()) {
     m.session_options.marker = session::GripperMarker{marker->id, marker->corners_flange()};
   }
   std::snprintf(app->ui_.robot_address, sizeof app->ui_.robot_address, "%s", robot.address.c_str());

@@ -8,7 +8,7 @@
 #include <system_error>
 
 #include "telear/core/arm_body.hpp"
-#include "telear/core/robot_loader.hpp"
+#include "telear/geometry/robot_assets.hpp"
 #include "telear/sim/calibration_capture.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/vision/accuracy_check.hpp"
@@ -77,15 +77,14 @@ Status register_robot(const core::RobotModel& model, const std::string& stereo_f
 }
 
 // Step 5: the estimate against the truth -> eval.json.
-Status evaluate(const core::RobotModel& model, const std::string& truth_file,
-                const std::string& estimate_file, const std::string& output) {
+Status evaluate(const core::RobotModel& model, const core::BodyDescription& description,
+                const std::string& truth_file, const std::string& estimate_file,
+                const std::string& output) {
   auto truth = vision::load_registered_pair(truth_file, "truth");
   if (!truth) return truth.error();
   auto estimate = vision::load_registered_pair(estimate_file, "estimate");
   if (!estimate) return estimate.error();
-  auto description = core::body_description_for(model);
-  if (!description) return description.error();
-  const core::ArmBody body = core::build_arm_body(*description);
+  const core::ArmBody body = core::build_arm_body(description);
   const vision::AccuracyReport report = vision::evaluate_accuracy(model, body, *truth, *estimate);
   return vision::write_files_atomically(
       {{output, vision::accuracy_report_json(report, vision::accuracy_checks(report))}});
@@ -168,8 +167,9 @@ Result<CalibrationPipelineResult> run_calibration_pipeline(
                                      "': " + (ec ? ec.message() : "not a directory"));
     }
     fs::remove(key_file, ec);
-    auto model = core::load_robot(options.robot);
-    if (!model) return step_error("register", model.error().message);
+    auto robot = geometry::load_robot_assets({options.robot, {}, {}});
+    if (!robot) return step_error("register", robot.error().message);
+    const core::RobotModelPtr model = robot->model();
 
     sim::CalibrationCaptureOptions capture_options;
     capture_options.rig_file = options.rig_file;
@@ -202,11 +202,13 @@ Result<CalibrationPipelineResult> run_calibration_pipeline(
     }
 
     if (Status s =
-            register_robot(**model, stereo_file, observed->observations, result.registered_file);
+            register_robot(*model, stereo_file, observed->observations, result.registered_file);
         !s) {
       return step_error("register", s.error().message);
     }
-    if (Status s = evaluate(**model, capture->truth_file, result.registered_file, eval_file); !s) {
+    if (Status s =
+            evaluate(*model, robot->body, capture->truth_file, result.registered_file, eval_file);
+        !s) {
       return step_error("evaluate", s.error().message);
     }
     if (Status s = vision::write_files_atomically({{key_file, key.str()}}); !s) {

@@ -45,6 +45,7 @@ double jog_ratio(const net::CommandBytes& bytes) {
 std::string demo_report_json(const DemoFacts& facts) {
   const Recording& r = facts.recording;
   nlohmann::json report;
+  report["robot"] = {{"name", facts.robot}, {"dof", facts.dof}, {"tip_link", facts.tip_link}};
   report["calibration"] = nlohmann::json::parse(facts.calibration_json, nullptr, false);
   report["calibration_cached"] = facts.calibration_cached;
   nlohmann::json overlay;
@@ -108,7 +109,9 @@ std::string demo_report_markdown(const DemoFacts& facts) {
   std::string md =
       "# telear demo report\n\n"
       "Pick-and-place rehearsed on the ghost over the simulated stereo video, previewed, "
-      "executed on the simulated robot as one trajectory and monitored.\n\n"
+      "executed on the simulated robot (" +
+      facts.robot + ", " + std::to_string(facts.dof) +
+      " joints) as one trajectory and monitored.\n\n"
       "| | left | right |\n|---|---|---|\n";
   const nlohmann::json eval = nlohmann::json::parse(facts.calibration_json, nullptr, false);
   if (eval.is_object() && eval.contains("left") && eval.contains("right")) {

@@ -10,6 +10,7 @@
 #include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/workspace.hpp"
+#include "telear/geometry/robot_assets.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/session/calibration_pipeline.hpp"
@@ -17,7 +18,6 @@
 #include "telear/session/embedded_servers.hpp"
 #include "telear/session/session.hpp"
 #include "telear/session/session_recorder.hpp"
-#include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/camera_file.hpp"
 
 namespace telear::session {
@@ -62,7 +62,14 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   step(1, "calibrating the simulated stereo rig and registering the robot");
   CalibrationPipelineOptions pipeline;
-  pipeline.rig_file = options.rig_file.empty() ? sim::default_rig_file() : options.rig_file;
+  auto robot = geometry::load_robot_assets({options.robot, {}, {}});
+  if (!robot) return robot.error();
+  const core::RobotModelPtr model = robot->model();
+  EmbeddedServersOptions server_options;
+  server_options.rig = options.rig_file;
+  if (Status s = serve_robot(server_options, robot->description); !s) return s.error();
+  pipeline.rig_file = server_options.rig;
+  pipeline.robot = options.robot;
   pipeline.cache_dir = options.cache_dir.empty() ? options.out_dir + "/cache" : options.cache_dir;
   pipeline.seed = options.seed;
   auto calibration = run_calibration_pipeline(pipeline);
@@ -74,20 +81,20 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
     return Error{"cannot load the registered calibration: " +
                  (camera_file ? std::string("not a stereo file") : camera_file.error().message)};
   }
-  auto model_or = core::load_robot("puma560");
-  if (!model_or) return model_or.error();
-  const core::RobotModelPtr model = *model_or;
 
   step(2, "starting the simulated robot server and vision server on loopback");
-  EmbeddedServersOptions server_options;
   server_options.calibration_file = calibration->registered_file;
   server_options.seed = options.seed;
   server_options.fps = options.camera_fps;
-  // A ready pose away from the wrist singularity of qr (q5 = 0).
-  Eigen::VectorXd ready_deg(6);
-  ready_deg << 0.0, 30.0, -120.0, 0.0, -45.0, 0.0;
-  server_options.initial_q =
-      ready_deg.unaryExpr([](double d) { return core::radians_from_degrees(d); });
+  if (auto ready = model->named_configuration("ready")) {
+    server_options.initial_q = *ready;
+  } else {
+    // The PUMA: a ready pose away from the wrist singularity of qr (q5 = 0).
+    Eigen::VectorXd ready_deg(6);
+    ready_deg << 0.0, 30.0, -120.0, 0.0, -45.0, 0.0;
+    server_options.initial_q =
+        ready_deg.unaryExpr([](double d) { return core::radians_from_degrees(d); });
+  }
   auto servers = EmbeddedServers::create(model, server_options);
   if (!servers) return servers.error();
   note("robot server " + (*servers)->robot_address() + ", vision server " +
@@ -109,10 +116,10 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   session_options.cameras = cameras;
   // The marker from the robot's marker file, the box from the operator's workspace file (the
   // same scene the simulated rig renders).
-  auto marker = core::marker_mount_for(*model);
+  auto marker = robot->marker();
   if (!marker) return marker.error();
   session_options.marker = GripperMarker{marker->id, marker->corners_flange()};
-  auto workspace = core::load_workspace_file(core::default_workspace_file(model->name()));
+  auto workspace = core::load_workspace_file(core::default_workspace_file(robot->description.name));
   if (!workspace) return workspace.error();
   const core::WorkspaceObject* graspable = workspace->first_graspable();
   if (!graspable) return Error{"the workspace " + workspace->source + " has nothing to pick"};
@@ -124,9 +131,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   auto context = render::create_headless_context();
   if (!context) return Error{"no OpenGL context: " + context.error().message};
-  auto body = core::body_description_for(*model);
-  if (!body) return body.error();
-  const core::ArmBody arm_body = core::build_arm_body(*body);
+  const core::ArmBody arm_body = core::build_arm_body(robot->body);
   std::vector<render::SceneObject> objects = {render::make_floor(3.0f, 12)};
   for (render::SceneObject& o : render::workspace_scene_objects(*workspace)) {
     objects.push_back(std::move(o));
@@ -152,6 +157,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   step(7, "writing the report");
   DemoFacts facts;
+  facts.robot = robot->description.name;
+  facts.dof = model->dof();
+  facts.tip_link = robot->description.tip_link;
   facts.calibration_json = calibration->evaluation.json;
   facts.calibration_cached = calibration->cached;
   facts.recording = recorder.recording();

@@ -1,11 +1,29 @@
 #include "telear/session/embedded_servers.hpp"
 
+#include <filesystem>
+#include <system_error>
+
 #include "telear/core/robot_loader.hpp"
 #include "telear/net/random_token.hpp"
+#include "telear/sim/rig_robot.hpp"
 #include "telear/sim/sim_rig_source.hpp"
 #include "telear/sim/stereo_rig.hpp"
 
 namespace telear::session {
+
+Status serve_robot(EmbeddedServersOptions& options, const core::RobotDescription& description) {
+  options.urdf = core::urdf_text_for_clients(description);
+  options.tip_link = description.tip_link;
+  if (!options.rig.empty()) return Status::Ok();
+  const std::string rig = sim::default_rig_file(description.name);
+  std::error_code ec;
+  if (!std::filesystem::exists(rig, ec)) {
+    return Error{"the robot '" + description.name + "' has no simulated rig " + rig +
+                 " (shipped: puma560, ur6, arm7; docs/simulation.md says how to add one)"};
+  }
+  options.rig = rig;
+  return Status::Ok();
+}
 
 EmbeddedServers::~EmbeddedServers() {
   stop();
@@ -26,8 +44,10 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   sim::SimRobotDriverOptions driver_options;
   driver_options.robot.initial_q = options.initial_q;
   if (driver_options.robot.initial_q.size() == 0) {
-    if (auto qr = model->named_configuration("qr")) driver_options.robot.initial_q = *qr;
+    driver_options.robot.initial_q = sim::rest_configuration(*model);
   }
+  driver_options.urdf = options.urdf;
+  driver_options.tip_link = options.tip_link;
   auto driver = sim::SimRobotDriver::create(model, driver_options);
   if (!driver) return Error{"embedded robot server: " + driver.error().message};
   servers->driver_ = driver->get();

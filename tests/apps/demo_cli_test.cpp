@@ -62,6 +62,33 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
   fs::remove_all(dir);
 }
 
+// Issue 12: the same workflow with a shipped URDF arm: the 7-DOF arm with its mimic-joint
+// gripper is calibrated, registered from its own marker, rehearsed (redundant IK), executed
+// and monitored on its own simulated rig.
+TEST(DemoCli, TheSevenJointUrdfArmRunsTheSameWorkflow) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("demo_arm7_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string d = dir.string();
+  const auto r = run_telear("demo --robot arm7 --out " + d +
+                            " --resolution 320x240 --delay-ms 0 --fps 10 --no-video");
+  ASSERT_EQ(r.exit_code, 0) << r.out << "\n" << r.err;
+  std::ifstream in(d + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["robot"]["name"], "arm7");
+  EXPECT_EQ(report["robot"]["dof"], 7);
+  EXPECT_EQ(report["robot"]["tip_link"], "tcp");
+  EXPECT_EQ(report["execution"]["result"], "completed");
+  EXPECT_LT(report["execution"]["max_error_rad"].get<double>(),
+            report["execution"]["tolerance_rad"].get<double>());
+  EXPECT_TRUE(report["calibration"]["pass"].get<bool>());
+  for (const char* eye : {"left", "right"}) {
+    EXPECT_LT(report["calibration"][eye]["registration_mm"].get<double>(), 1.0) << eye;
+    // The marker the rig renders on the arm's flange is found in the live video.
+    EXPECT_GT(report["overlay_error_live"][eye]["checks"].get<int>(), 0) << eye;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(DemoCli, BadOptionsAreRefusedWithTheReason) {
   auto r = run_telear("demo --resolution 20x10 --out " + ::testing::TempDir() + "demo_bad");
   EXPECT_EQ(r.exit_code, 2);
@@ -71,6 +98,11 @@ TEST(DemoCli, BadOptionsAreRefusedWithTheReason) {
   r = run_telear("demo --delay-ms -5 --out " + ::testing::TempDir() + "demo_bad");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--delay-ms -5 is outside 0..5000"), std::string::npos) << r.err;
+  // A robot without a simulated rig: the demo cannot film it, and says so before any work.
+  r = run_telear("demo --robot " + std::string(TELEAR_TEST_FILES_DIR) +
+                 "/urdf/fixed_chain.urdf --out " + ::testing::TempDir() + "demo_bad");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("has no simulated rig"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "telear/console/console_actions.hpp"
+#include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
 
 namespace telear::console {
@@ -151,6 +152,75 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
            app.session().in_control();
   }));
   app.session().disconnect();
+}
+
+// Issue 12: `telear console --arm ur6`: the ghost is the URDF arm drawn from its meshes, the
+// embedded servers simulate the same arm on its own rig and serve its URDF and tip, and a
+// Cartesian jog of the ghost in the tool frame is planned and executed on it.
+TEST(ConsoleApp, AUrdfArmIsJoggedPlannedAndExecuted) {
+  const fs::path dir = fs::temp_directory_path() / "telear_console_arm_test";
+  fs::create_directories(dir);
+  const std::string script = (dir / "plan.txt").string();
+  std::ofstream(script) << "wait-until connected 30\n"
+                           "wait-until in-control 10\n"
+                           "ghost reset\n"
+                           "plan add 0 start\n"
+                           "ghost cartesian tool z 40mm\n"
+                           "ghost cartesian base y -30mm\n"
+                           "ghost gripper close\n"
+                           "plan add 0.5 end\n"
+                           "validate\n"
+                           "execute\n"
+                           "wait-until idle 30\n"
+                           "screenshot " +
+                               (dir / "arm.png").string() + "\n";
+  ConsoleOptions options;
+  options.arm = {"ur6", "", {}};
+  options.headless = true;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.resolution = "320x240";
+  options.script = script;
+  options.frames = 1000000;
+  std::ostringstream log;
+  auto created = ConsoleApp::create(options, log);
+  ASSERT_TRUE(created) << created.error().message;
+  ConsoleApp& app = **created;
+  session::Session& session = app.session();
+  ASSERT_TRUE(run_until(app, 60, [&] { return app.script().finished(); })) << log.str();
+  EXPECT_EQ(app.script().failures(), 0) << log.str();
+  EXPECT_EQ(session.model().dof(), 6);
+  EXPECT_EQ(session.model().name(), "ur6");
+
+  // The plan's second waypoint is the start moved 40 mm along the tool's z, then 30 mm along
+  // the base's -y: the Cartesian jog of the URDF arm's ghost.
+  ASSERT_EQ(session.plan().size(), 2u);
+  const core::RobotModel& model = session.model();
+  const Eigen::Isometry3d T0 = core::tool_pose(model, session.plan().waypoint(0).q);
+  const Eigen::Isometry3d T1 = core::tool_pose(model, session.plan().waypoint(1).q);
+  const Eigen::Vector3d expected =
+      T0.translation() + 0.04 * T0.linear().col(2) + Eigen::Vector3d(0, -0.03, 0);
+  EXPECT_LT((T1.translation() - expected).norm(), 1e-4) << T1.translation().transpose();
+  EXPECT_EQ(session.last_execution_result(), "completed");
+  ASSERT_TRUE(session.view().real);
+  EXPECT_LT(
+      (session.view().real->state.q - session.plan().waypoints().back().q).cwiseAbs().maxCoeff(),
+      0.01);
+
+  // The robot server describes the arm it runs, so a remote client can draw it.
+  auto info = session.robot().get_info();
+  ASSERT_TRUE(info) << info.error().message;
+  EXPECT_EQ(info->tip_link, "tcp");
+  EXPECT_THAT(info->urdf, HasSubstr("<robot"));
+
+  // The ghost (the URDF arm's meshes, tinted) is drawn over the video.
+  const core::Image& image = app.last_image();
+  ASSERT_EQ(image.width, kWidth);
+  const Stats view = region_stats(image, 10, 80, static_cast<int>(kWidth * 0.69) - 10,
+                                  static_cast<int>(kHeight * 0.58) - 10);
+  EXPECT_GT(view.stddev, 20.0);
+  EXPECT_GT(view.cyan, 200);
+  session.disconnect();
 }
 
 }  // namespace

@@ -3,6 +3,9 @@
 
 #include <string>
 
+#include "telear/core/robot_description.hpp"
+#include "telear/geometry/robot_geometry.hpp"
+
 namespace telear::console {
 
 struct ConsoleOptions {
@@ -11,7 +14,10 @@ struct ConsoleOptions {
   std::string vision;       // HOST:PORT
   std::string token_file;   // first line: the bearer token
   std::string calibration;  // registered stereo camera file; empty: see docs/console.md
-  std::string robot_model = "puma560";
+  // The arm drawn as the ghost (--arm, --tip, --package-path, --missing-meshes): the same
+  // robot the robot server runs; the embedded servers simulate it.
+  core::RobotSpec arm{"puma560", {}, {}};
+  geometry::GeometryOptions geometry;
   // The operator's copy of the scene (drawn in the AR and VR views); empty: the robot's
   // shipped workspace (core::default_workspace_file), none when it has no such file.
   std::string workspace;

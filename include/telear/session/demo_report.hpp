@@ -2,16 +2,17 @@
 // The demo's report (docs/demo.md, "Outputs"): report.json (machine-readable) and report.md
 // (the same figures as tables), from what the demo measured.
 //
-// report.json's keys: calibration (eval.json, include/telear/vision/accuracy_check.hpp),
-// calibration_cached, overlay_error_live.{left,right}.{rms_px_mean, max_px, checks,
-// marker_not_found, last_miss}, video.{resolution, camera_fps, frames_shown, display_ticks,
-// fps_shown, latency.<stage>.{p50_ms, p99_ms, samples}, bytes_per_s}, bytes.{
-// plan_then_send_measured, plan_then_send, jog_100hz, jog_messages, ratio}, execution.{result,
-// max_error_rad, max_error_joint (1-based), rms_error_rad, samples, tolerance_rad,
-// plan_duration_s, waypoints}, display.{ar_to_vr, vr_to_ar, injected_delay_ms, switches},
-// outputs.{video, video_codec, video_warning, video_frames, key_frames}, seconds.
-// Latency stages: the keys of net::kLatencyStages (include/telear/net/latency_stages.hpp),
-// capture_to_encode, encode, send_queue, network, decode, total (nearest-rank percentiles).
+// report.json's keys: robot.{name, dof, tip_link}, calibration (eval.json,
+// include/telear/vision/accuracy_check.hpp), calibration_cached,
+// overlay_error_live.{left,right}.{rms_px_mean, max_px, checks, marker_not_found, last_miss},
+// video.{resolution, camera_fps, frames_shown, display_ticks, fps_shown, latency.<stage>.{p50_ms,
+// p99_ms, samples}, bytes_per_s}, bytes.{ plan_then_send_measured, plan_then_send, jog_100hz,
+// jog_messages, ratio}, execution.{result, max_error_rad, max_error_joint (1-based), rms_error_rad,
+// samples, tolerance_rad, plan_duration_s, waypoints}, display.{ar_to_vr, vr_to_ar,
+// injected_delay_ms, switches}, outputs.{video, video_codec, video_warning, video_frames,
+// key_frames}, seconds. Latency stages: the keys of net::kLatencyStages
+// (include/telear/net/latency_stages.hpp), capture_to_encode, encode, send_queue, network, decode,
+// total (nearest-rank percentiles).
 
 #include <optional>
 #include <string>
@@ -26,6 +27,9 @@
 namespace telear::session {
 
 struct DemoFacts {
+  std::string robot;  // the robot file's name (puma560, ur6, arm7)
+  int dof = 0;
+  std::string tip_link;          // empty for a DH robot
   std::string calibration_json;  // eval.json's text
   bool calibration_cached = false;
   Recording recording;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "telear/core/result.hpp"
+#include "telear/core/robot_description.hpp"
 #include "telear/core/robot_model.hpp"
 #include "telear/net/robot_client.hpp"
 #include "telear/net/robot_server.hpp"
@@ -27,12 +28,19 @@ struct EmbeddedServersOptions {
   std::string rig;               // empty: sim::default_rig_file()
   std::string calibration_file;  // served by GetCameraInfo; empty: none
   std::string token;             // empty: a random one
-  Eigen::VectorXd initial_q;     // empty: the model's "qr" (or zeros)
-  double fps = 30.0;             // the simulated cameras' frame rate
-  int supersample = 1;           // the video's anti-aliasing (1 is fastest)
-  double noise_sigma = 1.0;      // grey levels
+  Eigen::VectorXd initial_q;     // empty: sim::rest_configuration (qr, ready, home or zeros)
+  std::string urdf;              // served by GetInfo with tip_link (a client draws the arm)
+  std::string tip_link;
+  double fps = 30.0;         // the simulated cameras' frame rate
+  int supersample = 1;       // the video's anti-aliasing (1 is fastest)
+  double noise_sigma = 1.0;  // grey levels
   std::uint64_t seed = 1;
 };
+
+// Options that serve this robot: its URDF and tip on GetInfo (so that a client draws the same
+// arm) and, unless `rig` is set, its shipped simulated rig (data/rigs/NAME_rig.yaml). An
+// error naming the robot when it has no rig.
+Status serve_robot(EmbeddedServersOptions& options, const core::RobotDescription& description);
 
 class EmbeddedServers {
  public:
