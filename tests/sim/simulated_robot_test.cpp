@@ -14,6 +14,7 @@
 
 #include "telear/core/angles.hpp"
 #include "telear/core/kinematics.hpp"
+#include "telear/core/robot_description.hpp"
 #include "telear/sim/servo_thread.hpp"
 #include "test_util/test_util.hpp"
 
@@ -248,6 +249,45 @@ TEST_F(SimulatedRobotTest, CartesianJogMovesTheToolByTheIncrement) {
   const Eigen::Isometry3d T1 = core::tool_pose(*model, robot->state().q);
   EXPECT_LT((T1.translation() - T0.translation() - Eigen::Vector3d(0, 0, 0.01)).norm(), 1e-6);
   EXPECT_LT((T1.linear() - T0.linear()).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+// Issue 12: the real (simulated) arm of every shipped URDF arm jogs in the base, wrist and
+// tool frames like the PUMA: the tool moves by the increment, expressed in that frame, within
+// the velocity and acceleration limits (the 7-DOF arm through its redundancy resolution).
+TEST_F(SimulatedRobotTest, CartesianJogsOfTheShippedUrdfArmsInEveryFrame) {
+  for (const char* name : {"ur6", "arm7"}) {
+    auto description = core::load_robot_description({name, "", {}});
+    ASSERT_TRUE(description) << description.error().message;
+    model = description->model;
+    const auto ready = model->named_configuration("ready");
+    ASSERT_TRUE(ready) << name;
+    for (const core::MotionFrame frame :
+         {core::MotionFrame::kBase, core::MotionFrame::kWrist, core::MotionFrame::kTool}) {
+      auto robot = make_at(*ready);
+      const Eigen::Isometry3d T0 = core::tool_pose(*model, *ready);
+      const Eigen::Vector3d step(0.01, -0.005, 0.008);
+      auto outcome =
+          robot->jog(core::CartesianIncrement{frame, step, {0, 0, 0}}, robot->time() + 2.0);
+      ASSERT_TRUE(outcome.ok()) << name << ": " << outcome.error().message;
+      MotionWatch watch(*model);
+      run_for(*robot, 1.5, std::ref(watch));
+      const Eigen::Isometry3d T1 = core::tool_pose(*model, robot->state().q);
+      // The step in base axes, in the flange's axes (wrist) or in the tool's (tool), at the
+      // start: a pure translation keeps the orientation.
+      core::KinematicsData data(*model);
+      core::forward_kinematics(*model, data, *ready);
+      const Eigen::Matrix3d axes = frame == core::MotionFrame::kBase ? Eigen::Matrix3d::Identity()
+                                   : frame == core::MotionFrame::kWrist
+                                       ? Eigen::Matrix3d(data.T_base_link.back().linear())
+                                       : Eigen::Matrix3d(T0.linear());
+      const Eigen::Vector3d expected = axes * step;
+      EXPECT_LT((T1.translation() - T0.translation() - expected).norm(), 1e-6)
+          << name << " frame " << static_cast<int>(frame);
+      EXPECT_LT((T1.linear() - T0.linear()).cwiseAbs().maxCoeff(), 1e-6) << name;
+      EXPECT_TRUE(watch.within_limits) << name;
+      EXPECT_LE(watch.velocity_ratio, 1.0 + 1e-9) << name;
+    }
+  }
 }
 
 TEST_F(SimulatedRobotTest, ARejectedJogNeverMovesTheArm) {
