@@ -7,6 +7,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "telear/core/angles.hpp"
+
 namespace telear::geometry {
 namespace {
 
@@ -45,7 +47,7 @@ void set_feature_edges(core::Mesh& mesh, double angle_deg) {
     weld[i] = grid.emplace(key, static_cast<std::uint32_t>(grid.size())).first->second;
   }
 
-  const float cos_limit = static_cast<float>(std::cos(angle_deg * M_PI / 180.0));
+  const float cos_limit = static_cast<float>(std::cos(core::radians_from_degrees(angle_deg)));
   std::unordered_map<std::uint64_t, EdgeUse> edges;
   std::vector<std::uint64_t> order;  // first-seen order keeps the line list deterministic
   for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
