@@ -31,27 +31,6 @@ Result<KDL::Chain> kdl_chain_from_dh(const core::RobotModel& model) {
   return chain;
 }
 
-Result<KDL::Chain> kdl_chain_from_joints(const core::RobotModel& model) {
-  KDL::Chain chain;
-  for (int i = 0; i < model.dof(); ++i) {
-    const core::Joint& joint = model.joint(i);
-    if (joint.type != core::JointType::kRevolute) {
-      return Error{"robot '" + model.name() + "': joint " + std::to_string(i + 1) +
-                   " is prismatic; the KDL baseline supports revolute joints only"};
-    }
-    if (!joint.before_is_identity) {
-      chain.addSegment(
-          KDL::Segment(joint.name + "_origin", KDL::Joint(KDL::Joint::None), to_kdl(joint.before)));
-    }
-    chain.addSegment(KDL::Segment(joint.name,
-                                  KDL::Joint(joint.name, KDL::Joint::RotZ, 1.0, joint.offset),
-                                  to_kdl(joint.after)));
-  }
-  chain.addSegment(
-      KDL::Segment("tool", KDL::Joint(KDL::Joint::None), to_kdl(model.T_flange_tool())));
-  return chain;
-}
-
 Result<KDL::Chain> kdl_chain_from_urdf(const core::RobotDescription& description) {
   if (description.urdf_text.empty()) {
     return Error{"robot '" + description.name + "' has no URDF (a DH table)"};

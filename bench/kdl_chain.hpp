@@ -27,12 +27,6 @@ namespace telear::bench {
 // Fails (with a message) when the model has no DH table or a prismatic joint.
 Result<KDL::Chain> kdl_chain_from_dh(const core::RobotModel& model);
 
-// Any revolute chain in telear's canonical form before_i * Rz(q_i + offset_i) * after_i (URDF
-// and modified-DH arms): a fixed segment for `before` where it is not the identity, then a
-// RotZ segment whose tip is `after`, and a fixed segment for the tool. KDL's tool frame (the
-// last segment's) then equals telear's T_base_tool.
-Result<KDL::Chain> kdl_chain_from_joints(const core::RobotModel& model);
-
 // A URDF robot: kdl_parser's tree of description.urdf_text, and its chain from root_link to
 // tip_link (fixed joints become segments with a None joint). Fails (with a message) for a DH
 // robot (no URDF), a URDF kdl_parser rejects, or a chain whose joint count is not dof().
