@@ -2,6 +2,10 @@
 
 #include <kdl/joint.hpp>
 #include <kdl/segment.hpp>
+#include <kdl/tree.hpp>
+#ifdef TELEAR_HAVE_KDL_PARSER
+#include <kdl_parser/kdl_parser.hpp>
+#endif
 
 namespace telear::bench {
 
@@ -27,25 +31,34 @@ Result<KDL::Chain> kdl_chain_from_dh(const core::RobotModel& model) {
   return chain;
 }
 
-Result<KDL::Chain> kdl_chain_from_joints(const core::RobotModel& model) {
-  KDL::Chain chain;
-  for (int i = 0; i < model.dof(); ++i) {
-    const core::Joint& joint = model.joint(i);
-    if (joint.type != core::JointType::kRevolute) {
-      return Error{"robot '" + model.name() + "': joint " + std::to_string(i + 1) +
-                   " is prismatic; the KDL baseline supports revolute joints only"};
-    }
-    if (!joint.before_is_identity) {
-      chain.addSegment(
-          KDL::Segment(joint.name + "_origin", KDL::Joint(KDL::Joint::None), to_kdl(joint.before)));
-    }
-    chain.addSegment(KDL::Segment(joint.name,
-                                  KDL::Joint(joint.name, KDL::Joint::RotZ, 1.0, joint.offset),
-                                  to_kdl(joint.after)));
+Result<KDL::Chain> kdl_chain_from_urdf(const core::RobotDescription& description) {
+  if (description.urdf_text.empty()) {
+    return Error{"robot '" + description.name + "' has no URDF (a DH table)"};
   }
-  chain.addSegment(
-      KDL::Segment("tool", KDL::Joint(KDL::Joint::None), to_kdl(model.T_flange_tool())));
+#ifndef TELEAR_HAVE_KDL_PARSER
+  return Error{"robot '" + description.name +
+               "' is a URDF robot: its KDL baseline needs kdl_parser (libkdl-parser-dev), which "
+               "this build did not find"};
+#else
+  KDL::Tree tree;
+  if (!kdl_parser::treeFromString(description.urdf_text, tree)) {
+    return Error{"kdl_parser could not read the URDF of robot '" + description.name + "' (" +
+                 description.urdf_path + ")"};
+  }
+  KDL::Chain chain;
+  if (!tree.getChain(description.root_link, description.tip_link, chain)) {
+    return Error{"kdl_parser's tree of '" + description.urdf_path + "' has no chain from '" +
+                 description.root_link + "' to '" + description.tip_link + "'"};
+  }
+  const int joints = static_cast<int>(chain.getNrOfJoints());
+  if (joints != description.model->dof()) {
+    // Mimic or gripper joints on the chain: KDL would count them as independent joints.
+    return Error{"KDL's chain from '" + description.root_link + "' to '" + description.tip_link +
+                 "' has " + std::to_string(joints) + " joints, telear's " +
+                 std::to_string(description.model->dof())};
+  }
   return chain;
+#endif
 }
 
 KDL::JntArray to_kdl(const Eigen::VectorXd& q) {

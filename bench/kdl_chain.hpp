@@ -1,6 +1,8 @@
 #pragma once
 // The Orocos KDL baseline of the kinematics benchmarks: the same arm as a telear RobotModel,
-// built as a KDL::Chain from the model's standard-DH table.
+// built as a KDL::Chain from the model's standard-DH table, or, for a URDF robot, by KDL's own
+// URDF parser (kdl_parser) from the same URDF text, so that the baseline shares no parsing or
+// chaining code with telear.
 //
 // Each DH row i becomes one KDL segment whose joint rotates about z by q_i + offset_i and
 // whose tip frame is KDL::Frame::DH(a, alpha, d, 0) = Tz(d) Tx(a) Rx(alpha), so that the
@@ -17,6 +19,7 @@
 #include <kdl/jntarray.hpp>
 
 #include "telear/core/result.hpp"
+#include "telear/core/robot_description.hpp"
 #include "telear/core/robot_model.hpp"
 
 namespace telear::bench {
@@ -24,11 +27,10 @@ namespace telear::bench {
 // Fails (with a message) when the model has no DH table or a prismatic joint.
 Result<KDL::Chain> kdl_chain_from_dh(const core::RobotModel& model);
 
-// Any revolute chain in telear's canonical form before_i * Rz(q_i + offset_i) * after_i (URDF
-// and modified-DH arms): a fixed segment for `before` where it is not the identity, then a
-// RotZ segment whose tip is `after`, and a fixed segment for the tool. KDL's tool frame (the
-// last segment's) then equals telear's T_base_tool.
-Result<KDL::Chain> kdl_chain_from_joints(const core::RobotModel& model);
+// A URDF robot: kdl_parser's tree of description.urdf_text, and its chain from root_link to
+// tip_link (fixed joints become segments with a None joint). Fails (with a message) for a DH
+// robot (no URDF), a URDF kdl_parser rejects, or a chain whose joint count is not dof().
+Result<KDL::Chain> kdl_chain_from_urdf(const core::RobotDescription& description);
 
 KDL::JntArray to_kdl(const Eigen::VectorXd& q);
 Eigen::VectorXd from_kdl(const KDL::JntArray& q);

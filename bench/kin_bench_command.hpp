@@ -4,12 +4,18 @@
 //
 //   operation | telear | KDL | KDL / telear | target | met
 //
-// for forward kinematics (all frames), incremental FK (the wrist joint changed), the
-// Jacobian, analytic IK (all 8 solutions) and numeric IK over `poses` random reachable
-// targets (solved %, mean and p99 time; cold start from q = 0 and seeded near the answer).
+// for any robot --robot names (a DH table, a robot file or a URDF, with --tip and
+// --package-path as every command that takes --robot): forward kinematics (all frames),
+// incremental FK (the wrist joint changed), the Jacobian, and inverse kinematics over `poses`
+// random reachable targets (solved %, mean and p99 time; cold start and seeded near the
+// answer), each against KDL's ChainIkSolverPos_LMA from the same seeds. Which telear IK rows
+// depend on the arm: the PUMA's closed form (all 8 solutions) and its numeric IK; a 6-joint
+// arm without a closed form: numeric IK and every branch (solve_ik_all); a redundant arm:
+// numeric IK alone and with the null-space preference (solve_ik_nearest). The KDL chain of a
+// DH robot is built from its table, that of a URDF robot by kdl_parser from the same URDF text.
 // Times are thread CPU time, so that a busy shared machine inflates them less; the ratios are
-// the figures to compare across machines. Two sanity checks of the baseline are printed
-// too: KDL's FK against telear's, and the analytic IK round trip.
+// the figures to compare across machines. Sanity checks of the baseline are printed too:
+// KDL's FK against telear's, and the analytic IK round trip.
 //
 // Built only with TELEAR_BUILD_BENCH (KDL is a benchmark-only dependency); main.cpp reports
 // its absence otherwise.
@@ -17,12 +23,14 @@
 #include <iosfwd>
 #include <string>
 
+#include "apps/robot_arguments.hpp"
+
 namespace telear::cli {
 
-struct BenchKinOptions {
-  std::string robot = "puma560";  // needs a DH table (the KDL chain is built from it)
-  int poses = 10000;              // numeric IK targets (and FK sanity-check configurations)
-  std::string json;               // also write the table as JSON to this file; empty: no
+// --robot, --tip, --package-path (RobotArguments; --missing-meshes is not offered: no meshes).
+struct BenchKinOptions : RobotArguments {
+  int poses = 10000;  // numeric IK targets (and FK sanity-check configurations)
+  std::string json;   // also write the table as JSON to this file; empty: no
 };
 
 int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostream& err);

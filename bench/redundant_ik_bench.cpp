@@ -1,23 +1,28 @@
-// The 7-DOF benchmark (docs/benchmarks.md, "Redundant arm"): inverse kinematics of a
-// Panda-like arm over random reachable poses, telear against Orocos KDL's
-// ChainIkSolverPos_LMA in the same run, and forward kinematics against KDL's.
+// The 7-DOF benchmark (docs/benchmarks.md, "Redundant arm"): inverse kinematics of the shipped
+// 7-joint arm (data/robots/arm7.yaml: a Panda-type arm, tip tcp) over random reachable poses,
+// telear against Orocos KDL's ChainIkSolverPos_LMA in the same run, and forward kinematics
+// against KDL's.
 //
-//   build/bench/redundant_ik_bench [poses]      (default 10,000)
+//   build/bench/redundant_ik_bench [poses] [robot]      (default 10,000 and arm7)
 //
-// The arm is built in code (tests/core/test_arms.hpp) until the shipped robot file
-// data/robots/arm7.yaml lands; then this program should load that instead.
+// The KDL chain is built by kdl_parser from the same URDF text (bench/kdl_chain.hpp), so the
+// baseline shares no parsing code with telear. `telear bench kin --robot arm7` prints the same
+// comparison inside the CLI; this program adds the rest-pose preference and stays a plain
+// executable that a profiler can run.
 //
 // Targets: T = FK(q_true), q_true uniform within the limits (bench/kin_workload.hpp). Both
-// solvers start from the Panda's "ready" pose (q = 0 is outside joint 4's limits). Solved:
-// the solver reports success, FK of its answer reaches the target (telear at 1.5e-6 m / rad;
-// KDL at its looser 1e-5 m, 1e-3 rad) and every joint is within its limits. Times: thread CPU
-// time, one reading per solve, failures included.
+// solvers start from the robot's "ready" configuration (q = 0 is outside joint 4's limits).
+// Solved: the solver reports success, FK of its answer reaches the target (telear at 1.5e-6 m /
+// rad; KDL at its looser 1e-5 m, 1e-3 rad) and every joint is within its limits. Times: thread
+// CPU time, one reading per solve, failures included.
 
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainiksolverpos_lma.hpp>
+#include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -29,7 +34,7 @@
 #include "telear/core/ik_numeric.hpp"
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/kinematics.hpp"
-#include "tests/core/test_arms.hpp"
+#include "telear/core/robot_description.hpp"
 
 namespace {
 
@@ -48,8 +53,20 @@ int main(int argc, char** argv) {
     std::cerr << "redundant_ik_bench: poses must be at least 100\n";
     return 2;
   }
-  const core::RobotModel model = core::test_arms::panda_like();
-  auto built = bench::kdl_chain_from_joints(model);
+  const std::string robot = argc > 2 ? argv[2] : "arm7";
+  auto description = core::load_robot_description({robot, "", {}});
+  if (!description) {
+    std::cerr << "redundant_ik_bench: " << description.error().message << "\n";
+    return 2;
+  }
+  const core::RobotModel& model = *description->model;
+  const std::optional<Eigen::VectorXd> ready_pose = model.named_configuration("ready");
+  if (model.dof() <= 6 || !ready_pose) {
+    std::cerr << "redundant_ik_bench: robot '" << robot
+              << "' needs more than 6 joints and a named configuration 'ready'\n";
+    return 2;
+  }
+  auto built = bench::kdl_chain_from_urdf(*description);
   if (!built) {
     std::cerr << "redundant_ik_bench: " << built.error().message << "\n";
     return 2;
@@ -66,7 +83,7 @@ int main(int argc, char** argv) {
   );
 
   const std::vector<bench::IkCase> cases = bench::make_ik_cases(model, poses, 3);
-  const Eigen::VectorXd ready = core::test_arms::panda_ready();
+  const Eigen::VectorXd& ready = *ready_pose;
 
   // The baseline is the same arm: KDL's tool frame equals telear's.
   core::KinematicsData data(model);
@@ -94,7 +111,8 @@ int main(int argc, char** argv) {
     kdl_fk.JntToCart(qs_kdl[static_cast<size_t>(i & 1023)], frames);
     bench::keep(frames[0]);
   });
-  rows.push_back({"FK, all frames (7 joints)", "ns", fk_telear, fk_kdl, "", ""});
+  rows.push_back({"FK, all frames (" + std::to_string(model.dof()) + " joints)", "ns", fk_telear,
+                  fk_kdl, "", ""});
 
   core::NumericIkSolver solver(model);
   const KDL::JntArray ready_kdl = bench::to_kdl(ready);

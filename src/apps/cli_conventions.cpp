@@ -113,10 +113,9 @@ void add_bench_commands(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   auto kin_options = std::make_shared<BenchKinOptions>();
   BenchKinOptions& bench_kin_options = *kin_options;
-  CLI::App* bench_kin =
-      bench_app->add_subcommand("kin", "FK, Jacobian, analytic and numeric IK against Orocos KDL");
-  bench_kin->add_option("--robot", bench_kin_options.robot, "shipped robot name or DH .yaml file")
-      ->capture_default_str();
+  CLI::App* bench_kin = bench_app->add_subcommand(
+      "kin", "FK, Jacobian, analytic and numeric IK of any arm against Orocos KDL");
+  add_robot_arguments(bench_kin, bench_kin_options, /*draws_meshes=*/false);
   bench_kin->add_option("--poses", bench_kin_options.poses, "random targets for numeric IK")
       ->capture_default_str();
   bench_kin->add_option("--json", bench_kin_options.json, "also write the table as JSON to FILE");

@@ -10,8 +10,8 @@
 
 namespace telear::core {
 
-// The solver's state behind a small interface, so that 6-joint arms get fixed-size Eigen types
-// (unrolled 6 x 6 products and factorizations) and other arms dynamic ones.
+// The solver's state behind a small interface, so that 6- and 7-joint arms get fixed-size Eigen
+// types (unrolled products and factorizations) and other arms dynamic ones.
 class NumericIkSolver::Workspace {
  public:
   virtual ~Workspace() = default;
@@ -387,8 +387,12 @@ NumericIkSolver::NumericIkSolver(const RobotModel& model, NumericIkOptions optio
     : options_(options), dof_(model.dof()) {
   assert(options_.max_iterations > 0 && options_.max_restarts >= 0 &&
          "NumericIkSolver: max_iterations must be positive, max_restarts non-negative");
+  // The common arm sizes get unrolled fixed-size algebra (a 6-joint arm, a 7-joint redundant
+  // one); any other chain the dynamic form.
   if (model.dof() == 6) {
     workspace_ = std::make_unique<LevenbergMarquardt<6>>(model, options_);
+  } else if (model.dof() == 7) {
+    workspace_ = std::make_unique<LevenbergMarquardt<7>>(model, options_);
   } else {
     workspace_ = std::make_unique<LevenbergMarquardt<Eigen::Dynamic>>(model, options_);
   }

@@ -1,6 +1,6 @@
 #include "telear/core/inverse_kinematics.hpp"
 
-#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -10,6 +10,7 @@
 #include "telear/core/ik_numeric.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
+#include "telear/core/pose.hpp"
 
 namespace telear::core {
 namespace {
@@ -106,35 +107,53 @@ Result<IkSolution> nearest_numeric(const RobotModel& model, const Eigen::Isometr
   precise.position_tolerance_m = kPreciseTolerance;
   precise.orientation_tolerance_rad = kPreciseTolerance;
   precise.max_restarts = 20;
-  NumericIkResult r = NumericIkSolver(model, precise).solve(T_base_tool, q_current);
-  if (!r.success) r = NumericIkSolver(model).solve(T_base_tool, q_current);
-  if (!r.success) return Error{"target unreachable (numeric IK): " + r.message};
-  IkSolution s;
-  s.config = "numeric";
-  s.q = r.q;
-  s.within_limits = nearest_equivalent_within_limits(model, q_current, s.q);
-  if (model.dof() > 6 && s.within_limits) {
-    const Eigen::VectorXd& preferred =
-        redundancy.preference == NullSpacePreference::kRest ? redundancy.rest_q : q_current;
-    s.q = optimize_null_space(model, T_base_tool, s.q, preferred, redundancy).q;
-    s.config = "redundant";
-  }
+  const bool redundant = model.dof() > 6;
   KinematicsData data(model);
-  forward_kinematics(model, data, s.q);
-  Jacobian J;
-  geometric_jacobian(model, data, JacobianFrame::kBase, J);
-  // Smallest singular value of J: square root of the smallest eigenvalue of the smaller Gram
-  // matrix (J J^T for 6 or more joints; J^T J padded with an identity block otherwise, whose
-  // eigenvalues of 1 are far above the threshold).
-  Eigen::Matrix<double, 6, 6> gram = Eigen::Matrix<double, 6, 6>::Identity();
-  if (model.dof() >= 6) {
-    gram.noalias() = J * J.transpose();
-  } else {
-    gram.topLeftCorner(model.dof(), model.dof()).noalias() = J.transpose() * J;
+  auto reaches_precisely = [&](const Eigen::VectorXd& q) {
+    forward_kinematics(model, data, q);
+    const Vector6d e = pose_error_in_base(data.T_base_tool, T_base_tool);
+    return e.head<3>().norm() <= kPreciseTolerance && e.tail<3>().norm() <= kPreciseTolerance;
+  };
+  // A redundant arm's null-space search restores the pose to its pose_tolerance (1e-10) by
+  // Newton steps of its own, so LM need only find the self-motion, at its default 1e-6: the
+  // last LM iterations, and the slow convergence at 1e-9 near singular targets, are saved.
+  // Where that restoring fails, the precise route below runs after all.
+  for (const bool coarse : {true, false}) {
+    if (coarse && !redundant) continue;
+    NumericIkResult r =
+        NumericIkSolver(model, coarse ? NumericIkOptions{} : precise).solve(T_base_tool, q_current);
+    if (!r.success && !coarse) r = NumericIkSolver(model).solve(T_base_tool, q_current);
+    if (!r.success) return Error{"target unreachable (numeric IK): " + r.message};
+    IkSolution s;
+    s.config = "numeric";
+    s.q = r.q;
+    s.within_limits = nearest_equivalent_within_limits(model, q_current, s.q);
+    if (redundant && s.within_limits) {
+      const Eigen::VectorXd& preferred =
+          redundancy.preference == NullSpacePreference::kRest ? redundancy.rest_q : q_current;
+      s.q = optimize_null_space(model, T_base_tool, s.q, preferred, redundancy).q;
+      s.config = "redundant";
+    }
+    if (coarse && !reaches_precisely(s.q)) continue;
+    forward_kinematics(model, data, s.q);
+    Jacobian J;
+    geometric_jacobian(model, data, JacobianFrame::kBase, J);
+    // Smallest singular value of J: square root of the smallest eigenvalue of the smaller Gram
+    // matrix (J J^T for 6 or more joints; J^T J padded with an identity block otherwise, whose
+    // eigenvalues of 1 are far above the threshold).
+    Eigen::Matrix<double, 6, 6> gram = Eigen::Matrix<double, 6, 6>::Identity();
+    if (model.dof() >= 6) {
+      gram.noalias() = J * J.transpose();
+    } else {
+      gram.topLeftCorner(model.dof(), model.dof()).noalias() = J.transpose() * J;
+    }
+    // Eigenvalues only (ascending), cheaper than an SVD of the symmetric Gram matrix.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(gram,
+                                                                           Eigen::EigenvaluesOnly);
+    s.singular = std::sqrt(std::max(0.0, eigen.eigenvalues()[0])) < kJacobianSingular;
+    return s;
   }
-  const Eigen::JacobiSVD<Eigen::Matrix<double, 6, 6>> svd(gram);
-  s.singular = std::sqrt(std::max(0.0, svd.singularValues()[5])) < kJacobianSingular;
-  return s;
+  return Error{"target unreachable (numeric IK)"};  // not reached: the precise pass returns
 }
 
 }  // namespace

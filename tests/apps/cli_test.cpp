@@ -329,13 +329,11 @@ TEST(CliKin, DemoRunsInverseKinematicsBackFromEachNamedConfiguration) {
   EXPECT_THAT(r.out, HasSubstr("worst round trip |FK(IK(T)) - T| = "));
 }
 
-TEST(CliBench, KinPrintsEveryRowWithKdlRatiosAndTheBaselineAgrees) {
-  const auto r = run_telear("bench kin --poses 200");
-  if (r.exit_code == 2 && r.err.find("not built") != std::string::npos) GTEST_SKIP() << r.err;
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  // Row name -> its cells "operation | telear | KDL | KDL/telear | target | met".
+// `telear bench kin`'s table: row name -> its cells "operation | telear | KDL | KDL/telear |
+// target | met".
+std::map<std::string, std::vector<std::string>> bench_table(const std::string& out) {
   std::map<std::string, std::vector<std::string>> rows;
-  std::istringstream lines(r.out);
+  std::istringstream lines(out);
   for (std::string line; std::getline(lines, line);) {
     std::vector<std::string> cells;
     std::istringstream fields(line);
@@ -346,6 +344,14 @@ TEST(CliBench, KinPrintsEveryRowWithKdlRatiosAndTheBaselineAgrees) {
     }
     if (cells.size() >= 5) rows[cells[0]] = cells;
   }
+  return rows;
+}
+
+TEST(CliBench, KinPrintsEveryRowWithKdlRatiosAndTheBaselineAgrees) {
+  const auto r = run_telear("bench kin --poses 200");
+  if (r.exit_code == 2 && r.err.find("not built") != std::string::npos) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = bench_table(r.out);
   const char* with_ratio[] = {"FK, all frames",
                               "FK, joint 5 changed (incremental)",
                               "Jacobian (with FK)",
@@ -377,6 +383,51 @@ TEST(CliBench, KinPrintsEveryRowWithKdlRatiosAndTheBaselineAgrees) {
   const auto bad = run_telear("bench kin --poses 5");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(bad.err, "telear bench kin: --poses must be at least 100, got 5\n");
+}
+
+// A URDF arm (issue 12): the KDL chain comes from kdl_parser, the IK rows from telear's numeric
+// solvers (no closed form), each beside KDL's LMA; a tree with several leaves needs --tip.
+TEST(CliBench, KinTakesAnyUrdfArmWithTheRobotOptions) {
+  const auto r = run_telear("bench kin --robot ur6 --poses 100");
+  if (r.exit_code == 2 && r.err.find("not built") != std::string::npos) GTEST_SKIP() << r.err;
+  if (r.exit_code == 2 && r.err.find("kdl_parser") != std::string::npos) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("robot ur6 (6 joints, URDF tip "));
+  auto rows = bench_table(r.out);
+  ASSERT_TRUE(rows.count("operation")) << r.out;
+  EXPECT_EQ(rows["operation"][1], "telear");
+  EXPECT_EQ(rows["operation"][2], "KDL");
+  for (const char* name :
+       {"FK, all frames", "Jacobian (with FK)", "numeric IK, cold start, q = 0: mean",
+        "numeric IK, seeded near the answer: mean"}) {
+    ASSERT_TRUE(rows.count(name)) << name << "\n" << r.out;
+    EXPECT_THAT(rows[name][1], ::testing::EndsWith("s")) << name;  // telear: ns or us
+    EXPECT_THAT(rows[name][2], ::testing::EndsWith("s")) << name;  // KDL
+    EXPECT_THAT(rows[name][3], ::testing::MatchesRegex("[0-9.]+x")) << name;
+  }
+  EXPECT_THAT(rows["numeric IK, cold start, q = 0: solved"][1], ::testing::EndsWith("%"));
+  EXPECT_THAT(rows["numeric IK, cold start, q = 0: solved"][2], ::testing::EndsWith("%"));
+  // No closed form for this arm: every branch by seeded LM instead, with no KDL counterpart.
+  EXPECT_EQ(rows.count("analytic IK, all 8 (solve_puma_ik)"), 0u);
+  const std::string branches = "every branch (solve_ik_all), 100 targets: solved";
+  ASSERT_TRUE(rows.count(branches)) << r.out;
+  EXPECT_EQ(rows[branches][2], "-");
+  // The baseline (kdl_parser's chain of the same URDF) is the same arm.
+  const std::string check = "vs telear FK, tool pose of 100 configurations: max |difference| ";
+  const auto at = r.out.find(check);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_LT(std::stod(r.out.substr(at + check.size())), 1e-12);
+
+  const std::string branching = std::string(TELEAR_TEST_FILES_DIR) + "/urdf/branching_tip.urdf";
+  const auto no_tip = run_telear("bench kin --poses 100 --robot " + branching);
+  EXPECT_EQ(no_tip.exit_code, 2);
+  EXPECT_THAT(no_tip.err, HasSubstr("the tree has several leaf links (a, b, tcp); name the tip "
+                                    "with --tip LINK"));
+  EXPECT_THAT(no_tip.err, ::testing::StartsWith("telear bench kin: "));
+  EXPECT_EQ(std::count(no_tip.err.begin(), no_tip.err.end(), '\n'), 1) << no_tip.err;
+  const auto with_tip = run_telear("bench kin --poses 100 --robot " + branching + " --tip a");
+  ASSERT_EQ(with_tip.exit_code, 0) << with_tip.err;
+  EXPECT_THAT(with_tip.out, HasSubstr("robot branching (2 joints, URDF tip a)"));
 }
 
 }  // namespace

@@ -69,7 +69,7 @@ class NumericIkSolver {
 
   const NumericIkOptions& options() const { return options_; }
 
-  // The workspace: fixed-size matrices for 6-joint arms, dynamic ones otherwise.
+  // The workspace: fixed-size matrices for 6- and 7-joint arms, dynamic ones otherwise.
   class Workspace;
 
  private:

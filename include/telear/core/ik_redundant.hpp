@@ -16,10 +16,14 @@
 //
 // which leaves the pose unchanged to first order, then restores it exactly with Newton steps
 // dq = J^+ e (e: the base-frame pose error), and keeps the step when the result lies within
-// the limits and lowers h; otherwise alpha is halved (alpha = 1 first: the Newton step of the
-// quadratic preference term). It stops when a step moves no joint by more than
-// step_tolerance, when no step lowers h, or after max_iterations. Deterministic: no random
-// numbers, and the same input gives the same output. Moving the target a little moves the
+// the limits and lowers h; otherwise alpha is halved. alpha is 1 at the first step (the Newton
+// step of the quadratic preference term), then Barzilai-Borwein's s^T s / s^T y (s: the last
+// accepted step, y: the change of the projected gradient over it), a secant estimate of h's
+// curvature along the self-motion, so that the search converges superlinearly where the
+// self-motion is curved. J^+ comes from a 6 x 6 LDL^T of J J^T; the Jacobian of the last
+// restoring step is reused for the next projection. It stops when a step moves no joint by
+// more than step_tolerance, when no step lowers h, or after max_iterations. Deterministic: no
+// random numbers, and the same input gives the same output. Moving the target a little moves the
 // minimum a little, so motion commands (Cartesian jog) do not jump between branches.
 
 #include <Eigen/Core>

@@ -13,7 +13,9 @@
 //
 // Redundant arms (more than six joints) then move that solution along the self-motion
 // manifold to the null-space preference of `redundancy` (ik_redundant.hpp: near q_current by
-// default, or near a rest pose, away from the joint limits), config "redundant". Six-joint arms
+// default, or near a rest pose, away from the joint limits), config "redundant"; since that
+// search restores the pose to 1e-10 itself, their LM asks for its default 1e-6 first, and the
+// 1e-9 route above runs only where the result does not reach 1e-9. Six-joint arms
 // without a closed form can list all their branches with solve_ik_all (ik_branches.hpp).
 
 #include <Eigen/Core>
