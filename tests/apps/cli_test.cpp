@@ -256,7 +256,10 @@ TEST(CliKinIk, UrdfRobotsUseNumericIk) {
   ASSERT_EQ(j["solutions"].size(), 8u);
   const Eigen::Isometry3d expected = core::pose_from_xyz_rpy({0.5, 0.1, 0.4}, {0, 1.5, 0});
   for (std::size_t i = 0; i < 8; ++i) {
-    EXPECT_EQ(j["solutions"][i]["config"], "b" + std::to_string(i));
+    // Appended, not "b" + to_string(i): GCC 12's -Wrestrict false positive (PR 105329).
+    std::string label = "b";
+    label += std::to_string(i);
+    EXPECT_EQ(j["solutions"][i]["config"], label);
     const Eigen::VectorXd q = json_vector(j["solutions"][i]["q"]);
     EXPECT_LT(test::max_abs_diff(core::tool_pose(*model, q).matrix(), expected.matrix()), 1e-6);
   }
