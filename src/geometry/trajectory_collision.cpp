@@ -10,6 +10,8 @@ namespace {
 
 // The time within a segment's profile at which s reaches `target` (s(t) is monotonic).
 double time_at(const core::TrapezoidalProfile& profile, double target) {
+  if (target <= 0.0) return 0.0;
+  if (target >= 1.0) return profile.duration;
   double lo = 0.0, hi = profile.duration;
   for (int i = 0; i < 60 && hi - lo > 1e-9; ++i) {
     const double mid = 0.5 * (lo + hi);
@@ -18,6 +20,21 @@ double time_at(const core::TrapezoidalProfile& profile, double target) {
     (s < target ? lo : hi) = mid;
   }
   return hi;
+}
+
+// Motion bound per unit s of body b relative to body a (the distance between two bodies does
+// not change when both move rigidly together): only the joints between the inner body's frame
+// and the outer one's move one against the other, so the outer body's levers about those joints
+// bound it.
+double relative_speed(const RobotCollisionModel& robot, const Eigen::VectorXd& D, std::size_t a,
+                      std::size_t b) {
+  if (robot.bodies[a].frame > robot.bodies[b].frame) std::swap(a, b);
+  double speed = 0.0;
+  for (std::size_t j = static_cast<std::size_t>(robot.bodies[a].frame); j < robot.lever.size();
+       ++j) {
+    speed += std::abs(D[static_cast<Eigen::Index>(j)]) * robot.lever[j][b];
+  }
+  return speed;
 }
 
 struct PairState {
@@ -71,10 +88,10 @@ class Walker {
       }
     }
     for (std::size_t p = 0; p < pairs.size(); ++p) {
-      state_[p].speed =
-          body_speed[static_cast<std::size_t>(pairs[p].body)] +
-          (pairs[p].other_body >= 0 ? body_speed[static_cast<std::size_t>(pairs[p].other_body)]
-                                    : 0.0);
+      state_[p].speed = pairs[p].other_body >= 0
+                            ? relative_speed(robot, D, static_cast<std::size_t>(pairs[p].body),
+                                             static_cast<std::size_t>(pairs[p].other_body))
+                            : body_speed[static_cast<std::size_t>(pairs[p].body)];
     }
     const double fastest =
         body_speed.empty() ? 0.0 : *std::max_element(body_speed.begin(), body_speed.end());
@@ -98,8 +115,10 @@ class Walker {
         double bound = first ? 0.0 : st.d_last - (s - st.s_last) * st.speed;
         // Re-computed when its bound has shrunk, or when it could set a new minimum clearance
         // (so that the minimum is sampled every step, not every refresh).
+        const double record = pairs[p].other_body >= 0 ? report.min_clearance.distance_m
+                                                       : report.min_workspace_clearance.distance_m;
         if (first || st.in_contact || bound < options_.refresh_fraction * st.d_last ||
-            bound < report.min_clearance.distance_m) {
+            bound < record) {
           update_pair(p, s, time_of);
           bound = st.in_contact ? 0.0 : st.d_last;
         }
@@ -139,9 +158,14 @@ class Walker {
     } else {
       st.in_contact = false;
     }
+    const bool self = pair.other_body >= 0;
     if (st.d_last < report.min_clearance.distance_m) {
-      report.min_clearance = {st.d_last, time_of(s), body, checker_.pair_other_name(pair),
-                              pair.other_body >= 0};
+      report.min_clearance = {st.d_last, time_of(s), segment_, body, checker_.pair_other_name(pair),
+                              self};
+    }
+    if (!self && st.d_last < report.min_workspace_clearance.distance_m) {
+      report.min_workspace_clearance = {
+          st.d_last, time_of(s), segment_, body, checker_.pair_other_name(pair), false};
     }
   }
 
@@ -216,9 +240,13 @@ TrajectoryCheckReport check_trajectory_sampled(CollisionChecker& checker,
       }
       in_contact[p] = contact;
       const double clearance = std::max(d.distance_m, 0.0);
+      const bool self = pairs[p].other_body >= 0;
       if (clearance < report.min_clearance.distance_m) {
-        report.min_clearance = {clearance, t, body, checker.pair_other_name(pairs[p]),
-                                pairs[p].other_body >= 0};
+        report.min_clearance = {clearance, t, 0, body, checker.pair_other_name(pairs[p]), self};
+      }
+      if (!self && clearance < report.min_workspace_clearance.distance_m) {
+        report.min_workspace_clearance = {clearance, t, 0, body, checker.pair_other_name(pairs[p]),
+                                          false};
       }
     }
   }

@@ -6,16 +6,17 @@
 // s in [0, 1] (the time scaling s(t) only decides when). By robot_collision.hpp's motion
 // bound, moving from s to s + ds moves any point of body b at most ds * L_b with
 //   L_b = sum_j |D_j| lever(j, b),
-// so a pair at distance d (body against object: L = L_b; body against body: L_a + L_b) cannot
-// touch before ds = d / L: conservative advancement. Each step advances s by the smallest such
-// ds over the pairs, never below resolution_m / L (a pair closer than the resolution may then
-// penetrate by at most resolution_m before it is seen: far below a 2 mm plate), and never
-// beyond max_step_m of motion of any body (so that the clearance is sampled finely enough:
-// near its minimum the distance is flat, and a step of h misses it by about h^2 / 8 rho for a
-// surface of curvature radius rho).
-// A pair's distance is re-computed only once its lower bound d_last - (s - s_last) L has
-// fallen below refresh_fraction * d_last, or below the smallest clearance found so far (it
-// might set a new minimum), so pairs far apart cost one query per segment.
+// so a pair at distance d cannot touch before ds = d / L: conservative advancement. Body
+// against object: L = L_b. Two bodies on frames k_a <= k_b: a common rigid motion keeps their
+// distance, and only joints k_a.. move b against a, so L = sum_{j >= k_a} |D_j| lever(j, b). Each
+// step advances s by the smallest such ds over the pairs, never below resolution_m / L (a pair
+// closer than the resolution may then penetrate by at most resolution_m before it is seen: far
+// below a 2 mm plate), and never beyond max_step_m of motion of any body (so that the clearance is
+// sampled finely enough: near its minimum the distance is flat, and a step of h misses it by about
+// h^2 / 8 rho for a surface of curvature radius rho). A pair's distance is re-computed only once
+// its lower bound d_last - (s - s_last) L has fallen below refresh_fraction * d_last, or below the
+// smallest clearance found so far (it might set a new minimum), so pairs far apart cost one query
+// per segment.
 //
 // Result: every contact episode (a pair from first contact to separation) with the time the
 // contact starts (within resolution_m of motion), the pair and the deepest penetration seen
@@ -47,6 +48,7 @@ struct PlanCollision {
 struct PlanClearance {
   double distance_m = std::numeric_limits<double>::infinity();
   double time_s = 0.0;
+  int segment = 0;
   std::string body, other;
   bool self = false;
 };
@@ -65,8 +67,11 @@ struct TrajectoryCheckOptions {
 struct TrajectoryCheckReport {
   std::vector<PlanCollision> collisions;  // in time order
   PlanClearance min_clearance;            // 0 when in contact
-  long evaluations = 0;                   // configurations posed
-  long distance_queries = 0;              // pair distances computed
+  // The same over the pairs of a body and a workspace object only (the arm's own links can
+  // pass close to each other by design: a spherical wrist's housings).
+  PlanClearance min_workspace_clearance;
+  long evaluations = 0;       // configurations posed
+  long distance_queries = 0;  // pair distances computed
   bool collision_free() const { return collisions.empty(); }
 };
 
