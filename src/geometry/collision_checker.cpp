@@ -130,6 +130,8 @@ struct CollisionChecker::Impl {
   std::vector<Owner> bodies, objects;
   std::vector<CollisionPair> pairs;
   core::KinematicsData kin;
+  double fraction = 0.5;
+  std::vector<bool> dirty;  // per body: not posed at the current configuration yet
   fcl::DistanceRequestd request = distance_request();
 
   Impl(RobotCollisionModel r, const core::Workspace& w, AllowedCollisionMatrix a)
@@ -154,24 +156,46 @@ struct CollisionChecker::Impl {
                                : bodies[static_cast<std::size_t>(p.other_body)];
   }
 
+  // Forward kinematics now; each body is posed when a query first needs it (continuous
+  // checking re-computes a few pairs per step, so most bodies are not needed).
   void set_configuration(const Eigen::VectorXd& q, double f) {
     core::update_kinematics(*robot.model, kin, q);
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-      const CollisionBody& body = robot.bodies[b];
-      bodies[b].set_pose(kin.T_base_link[static_cast<std::size_t>(body.frame)] *
-                         robot.T_frame_body(b, f));
-    }
+    fraction = f;
+    dirty.assign(bodies.size(), true);
   }
 
-  PairDistance distance(const CollisionPair& p) {
+  Owner& body(std::size_t b) {
+    if (dirty[b]) {
+      bodies[b].set_pose(kin.T_base_link[static_cast<std::size_t>(robot.bodies[b].frame)] *
+                         robot.T_frame_body(b, fraction));
+      dirty[b] = false;
+    }
+    return bodies[b];
+  }
+
+  void pose_all() {
+    for (std::size_t b = 0; b < bodies.size(); ++b) body(b);
+  }
+
+  Owner& other(const CollisionPair& p) {
+    return p.other_object >= 0 ? objects[static_cast<std::size_t>(p.other_object)]
+                               : body(static_cast<std::size_t>(p.other_body));
+  }
+
+  PairDistance distance(const CollisionPair& p, double relative_error) {
     PairDistance out;
     out.distance_m = std::numeric_limits<double>::infinity();
-    const Owner& a = bodies[static_cast<std::size_t>(p.body)];
+    const Owner& a = body(static_cast<std::size_t>(p.body));
     const Owner& b = other(p);
+    fcl::DistanceRequestd r = request;
+    // A volume is skipped when both its distance >= best - abs_err and its distance
+    // * (1 + rel_err) >= best: abs_err unbounded leaves the relative test alone.
+    r.rel_err = relative_error;
+    r.abs_err = relative_error > 0.0 ? std::numeric_limits<double>::max() : 0.0;
     for (const ShapeObject& sa : a.shapes) {
       for (const ShapeObject& sb : b.shapes) {
         fcl::DistanceResultd result;
-        fcl::distance(sa.object.get(), sb.object.get(), request, result);
+        fcl::distance(sa.object.get(), sb.object.get(), r, result);
         if (result.min_distance < out.distance_m) {
           out.distance_m = result.min_distance;
           out.p_body_base = result.nearest_points[0];
@@ -179,12 +203,16 @@ struct CollisionChecker::Impl {
         }
       }
     }
+    // FCL stops a bounding-volume tree's search once no volume can be nearer than the best
+    // distance / (1 + rel_err): the true distance is at least that (primitives are exact).
+    out.lower_bound_m =
+        out.distance_m > 0.0 ? out.distance_m / (1.0 + relative_error) : out.distance_m;
     return out;
   }
 
   // Whether the pair is in contact and its deepest contact.
   bool collide(const CollisionPair& p, double& depth, Eigen::Vector3d& point) {
-    const Owner& a = bodies[static_cast<std::size_t>(p.body)];
+    const Owner& a = body(static_cast<std::size_t>(p.body));
     const Owner& b = other(p);
     bool hit = false;
     depth = 0.0;
@@ -269,6 +297,7 @@ Status CollisionChecker::attach(const std::string& name, std::vector<CollisionSh
   Owner owner;
   for (const CollisionShape& s : m.robot.bodies[index].shapes) owner.add(s);
   m.bodies.push_back(std::move(owner));
+  m.dirty.push_back(true);
   // The hand holds it: the bodies on the tip's frame may touch it (adjacency by frame).
   const int tip_frame = m.robot.bodies[index].frame;
   for (std::size_t b = 0; b < index; ++b) {
@@ -300,8 +329,8 @@ void CollisionChecker::set_configuration(const Eigen::VectorXd& q, double grippe
   impl_->set_configuration(q, gripper_fraction);
 }
 
-PairDistance CollisionChecker::distance(const CollisionPair& pair) {
-  return impl_->distance(pair);
+PairDistance CollisionChecker::distance(const CollisionPair& pair, double relative_error) {
+  return impl_->distance(pair, relative_error);
 }
 
 bool CollisionChecker::in_contact(const CollisionPair& pair) {
@@ -320,13 +349,16 @@ double CollisionChecker::penetration_depth(const CollisionPair& pair, Eigen::Vec
 
 double CollisionChecker::min_distance_all_pairs() {
   double best = std::numeric_limits<double>::infinity();
-  for (const CollisionPair& p : impl_->pairs) best = std::min(best, impl_->distance(p).distance_m);
+  for (const CollisionPair& p : impl_->pairs) {
+    best = std::min(best, impl_->distance(p, 0.0).distance_m);
+  }
   return best;
 }
 
 CollisionReport CollisionChecker::check(const Eigen::VectorXd& q, double gripper_fraction) {
   Impl& m = *impl_;
   m.set_configuration(q, gripper_fraction);
+  m.pose_all();
   CollisionReport report;
   // Contacts first (pairs whose bounds overlap), then clearance over the rest, nearest bounds
   // first so that most pairs are skipped by their bounds' distance.
@@ -353,7 +385,7 @@ CollisionReport CollisionChecker::check(const Eigen::VectorXd& q, double gripper
   for (const auto& [bound, i] : by_bounds) {
     if (bound >= best.distance_m) break;
     const CollisionPair& p = m.pairs[i];
-    const PairDistance d = m.distance(p);
+    const PairDistance d = m.distance(p, 0.0);
     if (d.distance_m < best.distance_m) {
       best.distance_m = std::max(d.distance_m, 0.0);
       best.body = m.robot.bodies[static_cast<std::size_t>(p.body)].name;

@@ -138,11 +138,19 @@ class Walker {
   void update_pair(std::size_t p, double s, const TimeOf& time_of) {
     const CollisionPair& pair = checker_.pairs()[p];
     PairState& st = state_[p];
-    const PairDistance d = checker_.distance(pair);
+    // A quick bound first (meshes: an early-stopped search); exact only where the pair might
+    // set a new minimum clearance.
+    PairDistance d = checker_.distance(pair, options_.relative_error);
     ++report.distance_queries;
+    const double record = pair.other_body >= 0 ? report.min_clearance.distance_m
+                                               : report.min_workspace_clearance.distance_m;
+    if (d.distance_m > 0.0 && d.lower_bound_m < d.distance_m && d.lower_bound_m < record) {
+      d = checker_.distance(pair, 0.0);
+      ++report.distance_queries;
+    }
     st.s_last = s;
     const bool contact = d.distance_m <= 0.0 && checker_.in_contact(pair);
-    st.d_last = std::max(d.distance_m, 0.0);
+    st.d_last = std::max(d.lower_bound_m, 0.0);
     const std::string& body = checker_.robot().bodies[static_cast<std::size_t>(pair.body)].name;
     if (contact) {
       const double depth = checker_.penetration_depth(pair);
@@ -197,6 +205,10 @@ Status TrajectoryCheckOptions::validate() const {
                  core::format_number(initial_gripper_fraction)};
   }
   if (max_evaluations < 1) return Error{"max_evaluations must be at least 1"};
+  if (!(relative_error >= 0.0) || !std::isfinite(relative_error)) {
+    return Error{"relative_error must be a finite number >= 0, got " +
+                 core::format_number(relative_error)};
+  }
   return Status::Ok();
 }
 

@@ -61,7 +61,7 @@ class AllowedCollisionMatrix {
 struct AllowedCollisionOptions {
   int samples = 2000;  // random configurations
   std::uint64_t seed = 13;
-  bool allow_never = false;       // also allow pairs never in contact (MoveIt's default: yes)
+  bool allow_never = false;       // also allow pairs never in contact (MoveIt does)
   double gripper_fraction = 0.5;  // the gripper opening the samples are taken at
 
   Status validate() const;

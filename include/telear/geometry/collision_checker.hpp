@@ -68,7 +68,8 @@ struct CollisionPair {
 };
 
 struct PairDistance {
-  double distance_m = 0.0;  // <= 0: in contact
+  double distance_m = 0.0;     // <= 0: in contact
+  double lower_bound_m = 0.0;  // the true distance is at least this (see distance())
   Eigen::Vector3d p_body_base = Eigen::Vector3d::Zero(), p_other_base = Eigen::Vector3d::Zero();
 };
 
@@ -102,7 +103,10 @@ class CollisionChecker {
 
   // For continuous checking: pose every body at (q, f), then query single pairs.
   void set_configuration(const Eigen::VectorXd& q, double gripper_fraction);
-  PairDistance distance(const CollisionPair& pair);
+  // With relative_error > 0 a mesh's search stops early: distance_m is then a distance between
+  // two points of the shapes (>= the true one) and lower_bound_m = distance_m /
+  // (1 + relative_error) <= the true one. Primitives are always exact.
+  PairDistance distance(const CollisionPair& pair, double relative_error = 0.0);
   bool in_contact(const CollisionPair& pair);
   // Penetration depth of a pair in contact (0 when not, or when FCL gives none).
   double penetration_depth(const CollisionPair& pair, Eigen::Vector3d* point_base = nullptr);

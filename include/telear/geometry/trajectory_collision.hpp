@@ -54,9 +54,13 @@ struct PlanClearance {
 };
 
 struct TrajectoryCheckOptions {
-  double resolution_m = 1e-4;             // the least step of motion near a surface (> 0)
-  double contact_step_m = 1e-3;           // motion between depth samples while in contact (> 0)
-  double max_step_m = 0.02;               // the most any body moves in one step (> 0)
+  double resolution_m = 1e-4;    // the least step of motion near a surface (> 0)
+  double contact_step_m = 1e-3;  // motion between depth samples while in contact (> 0)
+  double max_step_m = 0.02;      // the most any body moves in one step (> 0)
+  // Mesh pairs are first bounded by a search stopped at this relative error (>= 0; the bound
+  // is distance / (1 + relative_error)), and computed exactly only where they might set a new
+  // minimum clearance.
+  double relative_error = 0.25;
   double refresh_fraction = 0.5;          // (0, 1): re-compute a pair's distance below this share
   double initial_gripper_fraction = 1.0;  // before any gripper command, 0..1
   long max_evaluations = 2'000'000;       // configurations posed, then an error
