@@ -94,8 +94,7 @@ struct Arm {
       if (report.collision_free()) waypoints.push_back({to});
     }
     if (waypoints.size() < 2) {
-      std::fprintf(stderr, "collision_bench: %s: no collision-free segment found\n",
-                   robot.c_str());
+      std::fprintf(stderr, "collision_bench: %s: no collision-free segment found\n", robot.c_str());
       std::exit(2);
     }
     while (waypoints.size() > 2 && duration(waypoints) > kPlanDuration_s) waypoints.pop_back();

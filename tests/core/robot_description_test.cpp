@@ -179,7 +179,7 @@ TEST(RobotFile, KeepsTheAllowedCollisionPairs) {
   write(dir / "acm.yaml", "urdf: " + gripper_urdf +
                               "\ntip: tcp\nallowed_collisions:\n  - [base, hand, never]\n"
                               "  - [left_finger, l1]\n");
-  auto d = load_robot_description({(dir / "acm.yaml").string(), ""});
+  auto d = load_robot_description({(dir / "acm.yaml").string(), "", {}});
   ASSERT_TRUE(d) << d.error().message;
   ASSERT_TRUE(d->allowed_collisions);
   ASSERT_EQ(d->allowed_collisions->size(), 2u);
@@ -187,7 +187,7 @@ TEST(RobotFile, KeepsTheAllowedCollisionPairs) {
   EXPECT_EQ((*d->allowed_collisions)[0].reason, "never");
   EXPECT_EQ((*d->allowed_collisions)[1].reason, "user");
   // None stored: unset (the geometry layer computes one).
-  auto shipped = load_robot_description({"ur6", ""});
+  auto shipped = load_robot_description({"ur6", "", {}});
   ASSERT_TRUE(shipped) << shipped.error().message;
   EXPECT_FALSE(shipped->allowed_collisions);
 }

@@ -301,6 +301,22 @@ TEST(CollisionCheckerTest, AnObjectHeldInTheGripperMovesWithItAndIsChecked) {
   EXPECT_EQ(again.error().message, "attach: the robot already has a body named 'bar'");
 }
 
+// A matrix stored in the robot file is used as written (plus the adjacent pairs) instead of
+// being computed: allowing ur6's base and upper arm removes the contact at its zero pose.
+TEST(AllowedCollisionsTest, TheRobotFilesMatrixIsUsedAsWritten) {
+  test_files::TempDir dir;
+  const std::string robots = std::string(TELEAR_TEST_DATA_DIR) + "/robots";
+  const std::string path = dir.write(
+      "ur6_acm.yaml", "urdf: " + robots + "/telear_ur6/urdf/ur6.urdf\npackage_paths: [" + robots +
+                          "]\ntip: tcp\nallowed_collisions:\n  - [base_link, upper_arm_link]\n");
+  auto checker = make_collision_checker(description(path), core::Workspace{});
+  ASSERT_TRUE(checker) << checker.error().message;
+  EXPECT_TRUE(checker->allowed().allowed("upper_arm_link", "base_link"));
+  EXPECT_TRUE(checker->allowed().allowed("base_link", "shoulder_link"));  // adjacent, added
+  EXPECT_FALSE(checker->allowed().allowed("base_link", "forearm_link"));
+  EXPECT_TRUE(checker->check(Eigen::VectorXd::Zero(6)).collision_free());
+}
+
 TEST(AllowedCollisionsTest, TheMatrixRoundTripsThroughYamlAndRefusesUnknownReasons) {
   AllowedCollisionMatrix m;
   m.allow("b", "a", AllowedReason::kAdjacent);
