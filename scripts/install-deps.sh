@@ -8,8 +8,8 @@ packages=(
   cmake ninja-build g++ pkg-config clang-format
   # core: math, robot descriptions, file formats
   libeigen3-dev liburdfdom-dev libyaml-cpp-dev nlohmann-json3-dev
-  # geometry: mesh files (STL, COLLADA, OBJ)
-  libassimp-dev
+  # geometry: mesh files (STL, COLLADA, OBJ); collision checking and distances (FCL 0.7)
+  libassimp-dev libfcl-dev
   # apps
   libcli11-dev libspdlog-dev
   # vision: camera models, distortion maps, calibration

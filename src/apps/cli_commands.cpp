@@ -12,6 +12,7 @@
 #include "apps/demo_command.hpp"
 #include "apps/eval_command.hpp"
 #include "apps/kin_command.hpp"
+#include "apps/plan_command.hpp"
 #include "apps/register_command.hpp"
 #include "apps/render_command.hpp"
 #include "apps/sim_command.hpp"
@@ -130,6 +131,24 @@ void add_render_command(CLI::App& app, Commands& commands) {
 
   commands.push_back(
       {render_app, [options] { return run_render(*options, std::cout, std::cerr); }});
+}
+
+// [SECTION] plan
+
+void add_plan_commands(CLI::App& app, Commands& commands) {
+  auto options = std::make_shared<PlanCheckOptions>();
+  PlanCheckOptions& check = *options;
+  CLI::App* plan_app = app.add_subcommand("plan", "saved plans (the session's plan YAML)");
+  plan_app->require_subcommand(1);
+  CLI::App* check_app = plan_app->add_subcommand(
+      "check", "continuous collision check of a plan against a workspace and the arm itself");
+  add_robot_arguments(check_app, check, true);
+  check_app->add_option("--workspace", check.workspace,
+                        "workspace file (default: the robot's shipped table scene)");
+  check_app->add_option("--plan", check.plan, "plan file (YAML)")->required();
+  check_app->add_flag("--json", check.json, "print JSON");
+  commands.push_back(
+      {check_app, [options] { return run_plan_check(*options, std::cout, std::cerr); }});
 }
 
 // [SECTION] calibrate, register, eval

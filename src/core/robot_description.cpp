@@ -161,7 +161,8 @@ Result<RobotDescription> from_robot_file(const std::string& path, const YAML::No
                                                  "named_configurations_deg",
                                                  "named_configurations_rad",
                                                  "body",
-                                                 "marker"};
+                                                 "marker",
+                                                 "allowed_collisions"};
   for (const auto& entry : root) {
     const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
     if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end()) {
@@ -316,6 +317,38 @@ Result<RobotDescription> from_robot_file(const std::string& path, const YAML::No
       if (!mount) return mount.error();
       d.marker = *mount;
     }
+  }
+
+  if (const YAML::Node acm = root["allowed_collisions"]) {
+    const std::string what = where + "allowed_collisions";
+    if (!acm.IsSequence()) return Error{what + ": must be a list of [link, link, reason]"};
+    std::vector<AllowedCollisionEntry> entries;
+    for (std::size_t i = 0; i < acm.size(); ++i) {
+      const YAML::Node e = acm[i];
+      const std::string at = what + "[" + std::to_string(i) + "]";
+      if (!e.IsSequence() || e.size() < 2 || e.size() > 3) {
+        return Error{at + ": must be [link, link] or [link, link, reason]"};
+      }
+      AllowedCollisionEntry entry;
+      for (std::size_t k = 0; k < e.size(); ++k) {
+        if (!e[k].IsScalar()) return Error{at + ": must be [link, link] or [link, link, reason]"};
+      }
+      entry.a = e[0].Scalar();
+      entry.b = e[1].Scalar();
+      if (e.size() == 3) entry.reason = e[2].Scalar();
+      for (const std::string* link : {&entry.a, &entry.b}) {
+        const bool known = std::any_of(urdf->links.begin(), urdf->links.end(),
+                                       [&](const RobotLink& l) { return l.name == *link; });
+        if (!known) return Error{at + ": '" + *link + "' is not a link of the URDF"};
+      }
+      static const std::vector<std::string> kReasons = {"adjacent", "always", "never", "user"};
+      if (std::find(kReasons.begin(), kReasons.end(), entry.reason) == kReasons.end()) {
+        return Error{at + ": unknown reason '" + entry.reason +
+                     "' (adjacent, always, never or user)"};
+      }
+      entries.push_back(std::move(entry));
+    }
+    d.allowed_collisions = std::move(entries);
   }
 
   d.name = model.name;

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "telear/core/number_format.hpp"
+#include "telear/core/resource_uri.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/yaml_reader.hpp"
 
@@ -44,7 +45,14 @@ double positive(const YAML::Node& node, const std::string& what) {
   return value;
 }
 
-WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
+// Where a mesh object's `file` is looked for: relative to the workspace file, package://
+// through the caller's package paths, then ROS_PACKAGE_PATH.
+struct MeshSearch {
+  ResourceSearchPaths paths;
+};
+
+WorkspaceObject parse_object(const YAML::Node& node, const std::string& what,
+                             const MeshSearch& search) {
   if (!node.IsMap()) throw ParseError{what + " must be a map"};
   WorkspaceObject object;
   if (!node["name"] || !node["name"].IsScalar() || node["name"].Scalar().empty()) {
@@ -53,7 +61,7 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
   object.name = node["name"].Scalar();
   const std::string where = "object '" + object.name + "'";
   if (!node["shape"] || !node["shape"].IsScalar()) {
-    throw ParseError{where + ": shape: missing (box, cylinder or sphere)"};
+    throw ParseError{where + ": shape: missing (box, cylinder, sphere or mesh)"};
   }
   const std::string shape = node["shape"].Scalar();
   const std::set<std::string> common = {"name", "shape", "pose", "colour", "graspable"};
@@ -82,8 +90,29 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
     object.shape = ShapeKind::kSphere;
     keys({"radius"});
     object.radius_m = positive(node["radius"], where + ": radius");
+  } else if (shape == "mesh") {
+    object.shape = ShapeKind::kMesh;
+    keys({"file", "scale"});
+    if (!node["file"] || !node["file"].IsScalar() || node["file"].Scalar().empty()) {
+      throw ParseError{where +
+                       ": file: missing (the mesh file: a path relative to the "
+                       "workspace file, package://PKG/PATH or file:///PATH)"};
+    }
+    object.mesh_file = node["file"].Scalar();
+    auto resolved = resolve_resource_uri(object.mesh_file, search.paths, "mesh");
+    if (!resolved) throw ParseError{where + ": file: " + resolved.error().message};
+    object.mesh_path = *resolved;
+    if (node["scale"]) {
+      object.mesh_scale = checked(yaml_vector3(node["scale"], where + ": scale"));
+      for (int i = 0; i < 3; ++i) {
+        if (!(object.mesh_scale[i] > 0.0)) {
+          throw ParseError{where + ": scale[" + std::to_string(i) + "] must be positive, got " +
+                           format_number(object.mesh_scale[i])};
+        }
+      }
+    }
   } else {
-    throw ParseError{where + ": unknown shape '" + shape + "' (box, cylinder or sphere)"};
+    throw ParseError{where + ": unknown shape '" + shape + "' (box, cylinder, sphere or mesh)"};
   }
   if (node["pose"]) object.T_base_object = checked(yaml_pose(node["pose"], where + ": pose"));
   if (node["colour"]) {
@@ -104,7 +133,13 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what) {
   return object;
 }
 
-Result<Workspace> parse_workspace(const YAML::Node& root, const std::string& source) {
+Result<Workspace> parse_workspace(const YAML::Node& root, const std::string& source,
+                                  const std::vector<std::string>& package_paths) {
+  MeshSearch search;
+  search.paths.package_paths = package_paths;
+  search.paths.ros_package_path = ros_package_path_from_environment();
+  search.paths.base_dir =
+      std::filesystem::absolute(std::filesystem::path(source)).parent_path().string();
   Workspace workspace;
   workspace.source = source;
   try {
@@ -117,7 +152,8 @@ Result<Workspace> parse_workspace(const YAML::Node& root, const std::string& sou
     }
     std::set<std::string> names;
     for (std::size_t i = 0; i < objects.size(); ++i) {
-      WorkspaceObject object = parse_object(objects[i], "objects[" + std::to_string(i) + "]");
+      WorkspaceObject object =
+          parse_object(objects[i], "objects[" + std::to_string(i) + "]", search);
       if (!names.insert(object.name).second) {
         return Error{source + ": object '" + object.name + "' is named twice"};
       }
@@ -162,6 +198,8 @@ const char* to_string(ShapeKind kind) {
       return "cylinder";
     case ShapeKind::kSphere:
       return "sphere";
+    case ShapeKind::kMesh:
+      return "mesh";
   }
   return "?";
 }
@@ -178,6 +216,16 @@ Eigen::Vector3d WorkspaceObject::half_extent_base() const {
     case ShapeKind::kSphere:
       half = Eigen::Vector3d::Constant(radius_m);
       break;
+    case ShapeKind::kMesh: {
+      // The mesh's own bounds need not be centred on its frame: the box about the frame's
+      // origin that holds them is conservative.
+      if (!mesh) break;
+      for (const auto& v : mesh->vertices) {
+        half =
+            half.cwiseMax(Eigen::Vector3d(v.position[0], v.position[1], v.position[2]).cwiseAbs());
+      }
+      break;
+    }
   }
   // The rotated box of half-extents `half` spans |R| half about the centre (a cylinder and a
   // sphere lie inside their boxes, so the bounds are conservative for them).
@@ -217,16 +265,18 @@ double Workspace::support_height(const Eigen::Vector2d& xy_base, double below_z)
   return height;
 }
 
-Result<Workspace> parse_workspace_yaml(const std::string& text, const std::string& source) {
+Result<Workspace> parse_workspace_yaml(const std::string& text, const std::string& source,
+                                       const std::vector<std::string>& package_paths) {
   auto root = load_yaml(text, source + ": ");
   if (!root) return root.error();
-  return parse_workspace(*root, source);
+  return parse_workspace(*root, source, package_paths);
 }
 
-Result<Workspace> load_workspace_file(const std::string& path) {
+Result<Workspace> load_workspace_file(const std::string& path,
+                                      const std::vector<std::string>& package_paths) {
   auto root = load_yaml_file(path, "workspace file " + path + ": ");
   if (!root) return root.error();
-  return parse_workspace(*root, path);
+  return parse_workspace(*root, path, package_paths);
 }
 
 std::string default_workspace_file(const std::string& robot_name) {
@@ -249,6 +299,9 @@ Mesh workspace_object_mesh(const WorkspaceObject& object, int segments) {
     }
     case ShapeKind::kSphere:
       append_sphere(mesh, object.radius_m, std::max(segments, 4), object.colour);
+      break;
+    case ShapeKind::kMesh:
+      if (object.mesh) mesh = *object.mesh;
       break;
   }
   return mesh;

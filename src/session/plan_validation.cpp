@@ -9,6 +9,7 @@
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/motion_command.hpp"
+#include "telear/geometry/trajectory_collision.hpp"
 
 namespace telear::session {
 namespace {
@@ -31,6 +32,41 @@ std::string distance(const core::RobotModel& model, int joint, double value) {
 std::string tolerance_text(const core::RobotModel& model, int joint, double value) {
   return model.joint(joint).type == core::JointType::kRevolute ? format("%.3f rad", value)
                                                                : format("%.4f m", value);
+}
+
+std::string segment_name(int segment) {
+  return "the segment waypoint[" + std::to_string(segment) + "] -> waypoint[" +
+         std::to_string(segment + 1) + "]";
+}
+
+// Contacts along the trajectory are errors, a workspace clearance below the margin a warning;
+// each says where (segment and time) and what (link and object).
+template <typename Error, typename Warning>
+void check_collisions(geometry::CollisionChecker& checker, const core::Trajectory& trajectory,
+                      double safety_margin_m, const Error& error, const Warning& warning) {
+  if (!(safety_margin_m >= 0.0) || !std::isfinite(safety_margin_m)) {
+    error(-1, -1,
+          "safety_margin_m must be a finite number >= 0, got " + format("%g", safety_margin_m));
+    return;
+  }
+  auto report = geometry::check_trajectory(checker, trajectory);
+  if (!report) {
+    error(-1, -1, "the plan could not be checked for collisions: " + report.error().message);
+    return;
+  }
+  for (const geometry::PlanCollision& c : report->collisions) {
+    error(c.segment, -1,
+          segment_name(c.segment) + " collides at t = " + format("%.2f", c.time_s) +
+              " s: " + c.body + " hits " + (c.self ? "link " : "") + c.other + " (penetration " +
+              format("%.1f", c.depth_m * 1e3) + " mm)");
+  }
+  const geometry::PlanClearance& m = report->min_workspace_clearance;
+  if (report->collision_free() && m.distance_m < safety_margin_m) {
+    warning(m.segment, -1,
+            segment_name(m.segment) + " passes " + format("%.1f", m.distance_m * 1e3) +
+                " mm from " + m.other + " (" + m.body + ") at t = " + format("%.2f", m.time_s) +
+                " s, within the safety margin of " + format("%.0f", safety_margin_m * 1e3) + " mm");
+  }
 }
 
 }  // namespace
@@ -142,6 +178,10 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
       error(-1, -1, "the robot would refuse the sampled plan: " + s.error().message);
     }
   }
+
+  if (options.collision_checker)
+    check_collisions(*options.collision_checker, *trajectory, options.safety_margin_m, error,
+                     warning);
 
   // Near-singular segments: one warning per segment, at its closest sample.
   core::KinematicsData data(model);

@@ -154,6 +154,12 @@ TEST(RobotFile, ErrorsNameTheFileAndTheKey) {
        "body: '" + (dir / "nobody.yaml").string() + "' does not exist"},
       {"urdf: " + gripper_urdf + "\ntip: tcp\nmarker: {id: 99, side_m: 0.1}\n", "marker: id"},
       {"urdf: [a, b]\n", "urdf must be a non-empty string"},
+      {"urdf: " + gripper_urdf + "\ntip: tcp\nallowed_collisions: [[base, elbow, never]]\n",
+       "allowed_collisions[0]: 'elbow' is not a link of the URDF"},
+      {"urdf: " + gripper_urdf + "\ntip: tcp\nallowed_collisions: [[base, l1, sometimes]]\n",
+       "allowed_collisions[0]: unknown reason 'sometimes' (adjacent, always, never or user)"},
+      {"urdf: " + gripper_urdf + "\ntip: tcp\nallowed_collisions: [[base]]\n",
+       "allowed_collisions[0]: must be [link, link] or [link, link, reason]"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const fs::path path = dir / ("case" + std::to_string(i) + ".yaml");
@@ -163,6 +169,27 @@ TEST(RobotFile, ErrorsNameTheFileAndTheKey) {
     EXPECT_THAT(d.error().message, HasSubstr("robot file '" + path.string() + "': "));
     EXPECT_THAT(d.error().message, HasSubstr(cases[i].message));
   }
+}
+
+// The allowed-collision matrix stored in the robot file (geometry/allowed_collisions.hpp).
+TEST(RobotFile, KeepsTheAllowedCollisionPairs) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "telear_robot_file_acm";
+  const std::string gripper_urdf =
+      fs::path(kFiles + "/urdf/mimic_gripper.urdf").lexically_normal().string();
+  write(dir / "acm.yaml", "urdf: " + gripper_urdf +
+                              "\ntip: tcp\nallowed_collisions:\n  - [base, hand, never]\n"
+                              "  - [left_finger, l1]\n");
+  auto d = load_robot_description({(dir / "acm.yaml").string(), "", {}});
+  ASSERT_TRUE(d) << d.error().message;
+  ASSERT_TRUE(d->allowed_collisions);
+  ASSERT_EQ(d->allowed_collisions->size(), 2u);
+  EXPECT_EQ((*d->allowed_collisions)[0].b, "hand");
+  EXPECT_EQ((*d->allowed_collisions)[0].reason, "never");
+  EXPECT_EQ((*d->allowed_collisions)[1].reason, "user");
+  // None stored: unset (the geometry layer computes one).
+  auto shipped = load_robot_description({"ur6", "", {}});
+  ASSERT_TRUE(shipped) << shipped.error().message;
+  EXPECT_FALSE(shipped->allowed_collisions);
 }
 
 TEST(RobotDescription, ThePumaLoadsAsBefore) {

@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
+
+#include "test_util/mesh_test_files.hpp"
 
 namespace telear::core {
 namespace {
@@ -115,7 +118,7 @@ TEST(WorkspaceTest, BadFilesAreRefusedWithTheObjectAndTheFieldNamed) {
   EXPECT_EQ(error_of("objects:\n  - {name: a, shape: box, size: [1, .nan, 1]}\n"),
             "ws.yaml: object 'a': size[1]: must be finite, got .nan");
   EXPECT_EQ(error_of("objects:\n  - {name: a, shape: cone, radius: 1}\n"),
-            "ws.yaml: object 'a': unknown shape 'cone' (box, cylinder or sphere)");
+            "ws.yaml: object 'a': unknown shape 'cone' (box, cylinder, sphere or mesh)");
   EXPECT_EQ(error_of("objects:\n  - {name: a, shape: sphere}\n"),
             "ws.yaml: object 'a': radius: missing");
   EXPECT_EQ(error_of("objects:\n  - {name: a, shape: sphere, radius: 1, size: [1, 1, 1]}\n"),
@@ -138,6 +141,69 @@ TEST(WorkspaceTest, BadFilesAreRefusedWithTheObjectAndTheFieldNamed) {
   auto missing = load_workspace_file("/nonexistent/ws.yaml");
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().message, "workspace file /nonexistent/ws.yaml: cannot be read");
+}
+
+// A mesh object keeps its file resolved to an absolute path (relative to the workspace file,
+// or inside a package) and its scale; core does not read the mesh (the geometry layer does).
+TEST(WorkspaceTest, AMeshObjectResolvesItsFileAgainstTheWorkspaceFileAndAPackage) {
+  test_files::TempDir dir;
+  const std::string stl = dir.write("scene/meshes/cube.stl", test_files::binary_stl_cube());
+  dir.write("pkgs/fixtures/package.xml", "<package/>");
+  const std::string packaged =
+      dir.write("pkgs/fixtures/meshes/cube.stl", test_files::binary_stl_cube());
+  const std::string path = dir.write("scene/ws.yaml", R"(
+objects:
+  - name: fixture
+    shape: mesh
+    file: meshes/cube.stl
+    scale: [0.1, 0.2, 0.3]
+    pose: {xyz: [1, 0, 0]}
+  - name: packaged
+    shape: mesh
+    file: package://fixtures/meshes/cube.stl
+)");
+  auto workspace = load_workspace_file(path, {(dir.path() / "pkgs").string()});
+  ASSERT_TRUE(workspace) << workspace.error().message;
+  const WorkspaceObject& fixture = workspace->objects[0];
+  EXPECT_EQ(fixture.shape, ShapeKind::kMesh);
+  EXPECT_EQ(fixture.mesh_file, "meshes/cube.stl");
+  EXPECT_EQ(std::filesystem::canonical(fixture.mesh_path), std::filesystem::canonical(stl));
+  EXPECT_TRUE(fixture.mesh_scale.isApprox(Eigen::Vector3d(0.1, 0.2, 0.3)));
+  EXPECT_EQ(fixture.mesh, nullptr);  // not loaded by core
+  EXPECT_TRUE(fixture.half_extent_base().isZero());
+  EXPECT_EQ(std::filesystem::canonical(workspace->objects[1].mesh_path),
+            std::filesystem::canonical(packaged));
+  EXPECT_TRUE(workspace->objects[1].mesh_scale.isApprox(Eigen::Vector3d::Ones()));
+}
+
+TEST(WorkspaceTest, BadMeshObjectsAreRefusedWithTheObjectAndTheFieldNamed) {
+  test_files::TempDir dir;
+  dir.write("cube.stl", test_files::binary_stl_cube());
+  auto error = [&](const std::string& object) {
+    const std::string path = dir.write("ws.yaml", "objects:\n  - " + object + "\n");
+    auto workspace = load_workspace_file(path);
+    EXPECT_FALSE(workspace) << object;
+    const std::string prefix = path + ": ";
+    if (workspace) return std::string();
+    const std::string& message = workspace.error().message;
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << message;
+    return message.substr(std::min(message.size(), prefix.size()));
+  };
+  EXPECT_EQ(error("{name: m, shape: mesh}"),
+            "object 'm': file: missing (the mesh file: a path relative to the workspace file, "
+            "package://PKG/PATH or file:///PATH)");
+  EXPECT_EQ(error("{name: m, shape: mesh, file: cube.stl, scale: [1, 0, 1]}"),
+            "object 'm': scale[1] must be positive, got 0");
+  EXPECT_EQ(error("{name: m, shape: mesh, file: cube.stl, scale: [1, .nan, 1]}"),
+            "object 'm': scale[1]: must be finite, got .nan");
+  EXPECT_EQ(error("{name: m, shape: mesh, file: cube.stl, radius: 1}"),
+            "object 'm': unknown key 'radius' (expected colour, file, graspable, name, pose, "
+            "scale, shape)");
+  const std::string missing = error("{name: m, shape: mesh, file: nowhere.stl}");
+  EXPECT_EQ(missing.rfind("object 'm': file: mesh 'nowhere.stl'", 0), 0u) << missing;
+  const std::string package = error("{name: m, shape: mesh, file: package://nopkg/a.stl}");
+  EXPECT_EQ(package.rfind("object 'm': file: mesh 'package://nopkg/a.stl' not found", 0), 0u)
+      << package;
 }
 
 }  // namespace

@@ -82,6 +82,13 @@ struct Gripper {
   double fraction(double opening_m) const;
 };
 
+// One entry of the robot file's `allowed_collisions:` (geometry/allowed_collisions.hpp): two
+// URDF links never checked against each other, and why (adjacent, always, never or user).
+struct AllowedCollisionEntry {
+  std::string a, b;
+  std::string reason = "user";
+};
+
 struct RobotDescription {
   RobotModelPtr model;  // the chain root -> tip
   std::string name;
@@ -94,6 +101,8 @@ struct RobotDescription {
   std::vector<std::string> package_paths;  // from the robot file, absolute
   std::string body_file;                   // body override (absolute), empty: from the URDF
   std::optional<MarkerMount> marker;       // from the robot file or NAME.marker.yaml
+  // The robot file's allowed-collision matrix; unset: none stored (geometry computes one).
+  std::optional<std::vector<AllowedCollisionEntry>> allowed_collisions;
   const RobotLink* link(const std::string& name) const;
   // T_frame_link for link `index` at the gripper opening fraction (identity steps: I).
   Eigen::Isometry3d T_frame_link(std::size_t index, double gripper_fraction) const;

@@ -11,14 +11,19 @@
 //     check the robot server applies (core validate_timed_waypoints: velocities, accelerations,
 //     sample count);
 //   - the plan's first waypoint is farther than start_tolerance from the real robot's current
-//     q on some joint: the server would refuse it, and the arm would jump.
+//     q on some joint: the server would refuse it, and the arm would jump;
+//   - with a collision checker: a contact anywhere along the timed trajectory, checked
+//     continuously (geometry/trajectory_collision.hpp), one error per contact naming the
+//     segment, the time, the link, the object (or other link) and the penetration depth.
 // Warnings
 //   - the real robot's state is unknown (the start was not checked);
 //   - a single waypoint (executing it moves nothing);
 //   - a segment passing near a singularity (smallest singular value of the geometric Jacobian
 //     below singularity_warning_threshold, sampled along the straight joint-space segment): a
 //     joint path is safe there, but the Cartesian frame loses a direction, so the operator
-//     should look at that part of the preview.
+//     should look at that part of the preview;
+//   - with a collision checker: the arm passing closer to a workspace object than
+//     safety_margin_m (where and how close).
 //
 // Reachability needs no IK here: waypoints are joint vectors, checked against the limits.
 // Waypoints are numbered from 0 ("waypoint[2]"), joints from 1 ("joint 2 (shoulder)").
@@ -29,6 +34,10 @@
 #include <vector>
 
 #include "telear/session/plan.hpp"
+
+namespace telear::geometry {
+class CollisionChecker;
+}
 
 namespace telear::session {
 
@@ -61,6 +70,11 @@ struct ValidationOptions {
   // server's sample limit.
   double sample_rate_hz = 100.0;
   int max_samples = core::kMaxTimedSamples;
+  // The robot's collision checker in the workspace (geometry/collision_checker.hpp), or null
+  // for no collision check. Not owned; validation poses it, so not shared between threads.
+  geometry::CollisionChecker* collision_checker = nullptr;
+  // A clearance to a workspace object below this (m, >= 0) is a warning.
+  double safety_margin_m = 0.03;
 };
 
 // `q_real`: the real robot's current joint vector, when known (from its state stream; an
