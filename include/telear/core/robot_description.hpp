@@ -21,6 +21,7 @@
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "telear/core/marker_mount.hpp"
@@ -115,6 +116,14 @@ std::string urdf_text_for_clients(const RobotDescription& description);
 
 // What a command's --robot / --tip say.
 struct RobotSpec {
+  RobotSpec() = default;
+  // Implicit, so that {"ur6"} and {"arm.urdf", "tcp"} read as what they say.
+  RobotSpec(std::string name_or_path_,  // NOLINT(google-explicit-constructor)
+            std::string tip_ = {}, std::vector<std::string> package_paths_ = {})
+      : name_or_path(std::move(name_or_path_)),
+        tip(std::move(tip_)),
+        package_paths(std::move(package_paths_)) {}
+
   std::string name_or_path;  // shipped name, robot file (.yaml with `urdf:`), DH table, .urdf
   std::string tip;           // tip link; empty: the robot file's, else the single leaf
   // --package-path: searched first for package:// URIs (core/resource_uri.hpp), then the
