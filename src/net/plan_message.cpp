@@ -34,7 +34,10 @@ Status fill_plan_message(const std::string& plan_id, const core::Trajectory& tra
     out->mutable_q()->Add(w.q.data(), w.q.data() + w.q.size());
     out->set_min_duration_s(w.min_duration);
     out->set_via(w.via);
-    if (w.gripper) out->set_gripper_opening(*w.gripper);
+    if (w.gripper) {
+      out->set_has_gripper(true);
+      out->set_gripper_opening(*w.gripper);
+    }
   }
   message.set_plan_hash(*hash);
   return Status::Ok();
@@ -71,7 +74,7 @@ Result<ReceivedPlan> plan_from_message(const core::RobotModel& model,
     core::JointWaypoint& out = waypoints.emplace_back(
         Eigen::Map<const Eigen::VectorXd>(w.q().data(), w.q_size()), w.min_duration_s());
     out.via = w.via();
-    if (w.has_gripper_opening()) out.gripper = w.gripper_opening();
+    if (w.has_gripper()) out.gripper = w.gripper_opening();
   }
   core::TrajectoryOptions options;
   options.velocity_scale = message.velocity_scale();
