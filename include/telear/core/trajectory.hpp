@@ -41,10 +41,12 @@
 // stopping: a run that would be is split by stopping at its sharpest corner (that waypoint's
 // passes_through() is then false) and each half is timed again.
 //
-// Determinism. Only +, -, *, / and sqrt (IEEE-754 exact), per-joint scalar loops, no
-// reductions whose order could change, and the core sources are compiled with
-// -ffp-contract=off (no fused multiply-add): the same waypoints and options give bit-identical
-// trajectories on any x86-64 build (golden hashes in tests/core/plan_hash_test.cpp guard it).
+// Determinism. Only +, -, *, / and sqrt (IEEE-754 exact), per-joint scalar loops or
+// coefficient-wise Eigen expressions, no reductions whose order could change (max is
+// order-independent), SSE2 arithmetic (x86-64: no x87 extended precision), and the trajectory
+// sources are compiled with -ffp-contract=off (no fused multiply-add even under -march=native;
+// never -ffast-math): the same waypoints and options give bit-identical trajectories on any
+// x86-64 build (golden hashes in tests/core/plan_hash_test.cpp guard it).
 //
 // Shapes. A joint vector is dof() long, radians (revolute) or metres (prismatic); velocities
 // per second, accelerations per second squared. TimedWaypoints holds N times and N joint
