@@ -8,6 +8,8 @@ packages=(
   cmake ninja-build g++ pkg-config clang-format
   # core: math, robot descriptions, file formats
   libeigen3-dev liburdfdom-dev libyaml-cpp-dev nlohmann-json3-dev
+  # core: SHA-256 of plans (libcrypto)
+  libssl-dev
   # geometry: mesh files (STL, COLLADA, OBJ); collision checking and distances (FCL 0.7)
   libassimp-dev libfcl-dev
   # apps

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "telear/core/blended_run.hpp"
 #include "telear/core/joint_limits.hpp"
 
 namespace telear::core {
@@ -16,6 +17,8 @@ namespace {
 // duration is its min_duration and the arm steps to the next waypoint at its end. Far below
 // any encoder's resolution, it keeps 1 / displacement from overflowing.
 constexpr double kStationaryDisplacement = 1e-12;
+// A blended run this close to stopping's duration (relative) counts as no slower.
+constexpr double kSameDuration = 1.0 + 1e-12;
 
 std::string indexed(const char* what, size_t k) {
   return std::string(what) + "[" + std::to_string(k) + "]";
@@ -97,26 +100,186 @@ Result<Trajectory> Trajectory::create(const RobotModel& model, std::vector<Joint
   if (Status s = validate_waypoints(model, waypoints, options); !s) return s.error();
   Trajectory trajectory;
   trajectory.dof_ = model.dof();
-  trajectory.times_.reserve(waypoints.size());
-  trajectory.profiles_.reserve(waypoints.size() - 1);
-  trajectory.times_.push_back(0.0);
-  const Eigen::VectorXd v_max = options.velocity_scale * model.max_velocities();
-  const Eigen::VectorXd a_max = options.acceleration_scale * model.max_accelerations();
-  for (size_t k = 1; k < waypoints.size(); ++k) {
-    const Eigen::ArrayXd D = (waypoints[k].q - waypoints[k - 1].q).array().abs();
-    double alpha = 0.0;  // s: the slowest joint's time at full speed
-    double beta = 0.0;   // s^2: the slowest joint's displacement over acceleration
-    if (D.maxCoeff() > kStationaryDisplacement) {
-      alpha = (D / v_max.array()).maxCoeff();
-      beta = (D / a_max.array()).maxCoeff();
-    }
-    const TrapezoidalProfile profile =
-        TrapezoidalProfile::Fastest(alpha, beta, waypoints[k].min_duration);
-    trajectory.profiles_.push_back(profile);
-    trajectory.times_.push_back(trajectory.times_.back() + profile.duration);
-  }
+  trajectory.options_ = options;
+  trajectory.v_max_ = options.velocity_scale * model.max_velocities();
+  trajectory.a_max_ = options.acceleration_scale * model.max_accelerations();
   trajectory.waypoints_ = std::move(waypoints);
+  const std::vector<JointWaypoint>& w = trajectory.waypoints_;
+  const size_t n = w.size();
+  // Which waypoints are passed through: a via flag inside the list with motion on both sides.
+  auto moving = [&](size_t k) {  // segment k -> k + 1
+    return (w[k + 1].q - w[k].q).cwiseAbs().maxCoeff() > kStationaryDisplacement;
+  };
+  trajectory.via_.assign(n, 0);
+  for (size_t k = 1; k + 1 < n; ++k) {
+    trajectory.via_[k] = w[k].via && moving(k - 1) && moving(k) ? 1 : 0;
+  }
+  trajectory.deviation_.assign(n, Eigen::VectorXd::Zero(model.dof()));
+  trajectory.times_.assign(n, 0.0);
+  trajectory.profiles_.reserve(n - 1);
+  for (size_t k = 0; k + 1 < n;) {
+    size_t last = k + 1;  // the next stop
+    while (trajectory.via_[last] != 0) ++last;
+    trajectory.add_run(k, last);
+    k = last;
+  }
+  trajectory.piece_starts_.reserve(trajectory.pieces_.size());
+  for (const Piece& piece : trajectory.pieces_) trajectory.piece_starts_.push_back(piece.start);
   return trajectory;
+}
+
+TrapezoidalProfile Trajectory::stop_profile(size_t k) const {
+  const Eigen::ArrayXd D = (waypoints_[k + 1].q - waypoints_[k].q).array().abs();
+  double alpha = 0.0;  // s: the slowest joint's time at full speed
+  double beta = 0.0;   // s^2: the slowest joint's displacement over acceleration
+  if (D.maxCoeff() > kStationaryDisplacement) {
+    alpha = (D / v_max_.array()).maxCoeff();
+    beta = (D / a_max_.array()).maxCoeff();
+  }
+  return TrapezoidalProfile::Fastest(alpha, beta, waypoints_[k + 1].min_duration);
+}
+
+void Trajectory::add_run(size_t first, size_t last) {
+  if (last == first + 1) {
+    add_stop_segment(first);
+    return;
+  }
+  const size_t n = last - first;  // segments
+  std::vector<Eigen::VectorXd> points(n + 1);
+  std::vector<double> min_durations(n);
+  for (size_t i = 0; i <= n; ++i) points[i] = waypoints_[first + i].q;
+  for (size_t s = 0; s < n; ++s) min_durations[s] = waypoints_[first + s + 1].min_duration;
+  const BlendedRun run = time_blended_run(points, min_durations, v_max_, a_max_);
+  // Never slower than stopping at every via point of the run: otherwise stop at the corner
+  // that needs the most room and try the two halves again. Minimum durations that bind make
+  // both equal up to rounding (kSameDuration), and then the arm should not stop.
+  double stopping = 0.0;
+  for (size_t k = first; k < last; ++k) stopping += stop_profile(k).duration;
+  if (run.duration() <= stopping * kSameDuration) {
+    add_blended_run(first, last, points, run);
+    return;
+  }
+  const size_t corner = first + sharpest_corner(points, v_max_, a_max_);
+  via_[corner] = 0;
+  add_run(first, corner);
+  add_run(corner, last);
+}
+
+void Trajectory::add_stop_segment(size_t k) {
+  const TrapezoidalProfile profile = stop_profile(k);
+  profiles_.push_back(profile);
+  times_[k + 1] = times_[k] + profile.duration;
+  Piece piece;
+  piece.start = times_[k];
+  piece.segment = static_cast<int>(k);
+  pieces_.push_back(std::move(piece));
+}
+
+void Trajectory::add_quadratic(double start, double anchor, Eigen::VectorXd p, Eigen::VectorXd v,
+                               Eigen::VectorXd a) {
+  Piece piece;
+  // Rounding may put a piece's computed start an ulp before its predecessor's (a blend that
+  // fills its segment): keep the starts sorted for the binary search.
+  piece.start = pieces_.empty() ? start : std::max(start, pieces_.back().start);
+  piece.anchor = anchor;
+  piece.p = std::move(p);
+  piece.v = std::move(v);
+  piece.a = std::move(a);
+  pieces_.push_back(std::move(piece));
+}
+
+void Trajectory::add_blended_run(size_t first, size_t last,
+                                 const std::vector<Eigen::VectorXd>& points,
+                                 const BlendedRun& run) {
+  const size_t n = last - first;  // segments
+  const std::vector<double>& T = run.segment_durations;
+  const std::vector<double>& b = run.blend_durations;
+  const std::vector<Eigen::VectorXd>& v = run.velocities;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(dof_);
+
+  // Nominal times: the line of segment s passes P_s at t[s] and P_{s+1} at t[s + 1].
+  std::vector<double> t(n + 1);
+  const double start = times_[first];
+  t[0] = start + 0.5 * b[0];
+  for (size_t s = 0; s < n; ++s) t[s + 1] = t[s] + T[s];
+  const double end = t[n] + 0.5 * b[n];
+  for (size_t k = 1; k < n; ++k) times_[first + k] = t[k];
+  times_[last] = end;
+
+  // From rest at P_0: accelerate at v_0 / b_0 (the line through P_0 at t_0 meets it at the
+  // blend's end).
+  Eigen::VectorXd a(dof_);
+  for (int j = 0; j < dof_; ++j) a[j] = v[0][j] / b[0];
+  add_quadratic(start, start, points[0], zero, a);
+  for (size_t s = 0; s < n; ++s) {
+    if (s > 0 && b[s] > 0.0) {  // the blend around via point s, centred on t[s]
+      Eigen::VectorXd p(dof_), mean(dof_), deviation(dof_);
+      for (int j = 0; j < dof_; ++j) {
+        const double dv = v[s][j] - v[s - 1][j];
+        a[j] = dv / b[s];
+        deviation[j] = dv * b[s] / 8.0;
+        p[j] = points[s][j] + deviation[j];
+        mean[j] = 0.5 * (v[s - 1][j] + v[s][j]);
+      }
+      deviation_[first + s] = deviation.cwiseAbs();
+      add_quadratic(t[s] - 0.5 * b[s], t[s], std::move(p), std::move(mean), a);
+    }
+    add_quadratic(t[s] + 0.5 * b[s], t[s], points[s], v[s], zero);  // the linear part
+  }
+  // To rest at P_n, anchored there so that the run ends on it exactly.
+  for (int j = 0; j < dof_; ++j) a[j] = -v[n - 1][j] / b[n];
+  add_quadratic(end - b[n], end, points[n], zero, a);
+
+  for (size_t s = 0; s < n; ++s) {
+    TrapezoidalProfile profile;
+    profile.duration = times_[first + s + 1] - times_[first + s];
+    profile.peak_rate = 1.0 / T[s];
+    profiles_.push_back(profile);
+  }
+}
+
+Eigen::VectorXd Trajectory::via_deviation(size_t k) const {
+  return deviation_.at(k);
+}
+
+Eigen::VectorXd Trajectory::peak_velocities() const {
+  Eigen::VectorXd peak = Eigen::VectorXd::Zero(dof_);
+  for (size_t i = 0; i < pieces_.size(); ++i) {
+    const Piece& piece = pieces_[i];
+    const double end = i + 1 < pieces_.size() ? pieces_[i + 1].start : duration();
+    for (int j = 0; j < dof_; ++j) {
+      double v = 0.0;
+      if (piece.segment >= 0) {
+        const auto k = static_cast<size_t>(piece.segment);
+        v = std::abs(waypoints_[k + 1].q[j] - waypoints_[k].q[j]) * profiles_[k].peak_rate;
+      } else {  // linear in time: the largest at either end
+        v = std::max(std::abs(piece.v[j] + piece.a[j] * (piece.start - piece.anchor)),
+                     std::abs(piece.v[j] + piece.a[j] * (end - piece.anchor)));
+      }
+      peak[j] = std::max(peak[j], v);
+    }
+  }
+  return peak;
+}
+
+Eigen::VectorXd Trajectory::peak_accelerations() const {
+  Eigen::VectorXd peak = Eigen::VectorXd::Zero(dof_);
+  for (size_t i = 0; i < pieces_.size(); ++i) {
+    const Piece& piece = pieces_[i];
+    const double end = i + 1 < pieces_.size() ? pieces_[i + 1].start : duration();
+    if (!(end > piece.start)) continue;  // never sampled
+    for (int j = 0; j < dof_; ++j) {
+      double a = 0.0;
+      if (piece.segment >= 0) {
+        const auto k = static_cast<size_t>(piece.segment);
+        a = std::abs(waypoints_[k + 1].q[j] - waypoints_[k].q[j]) * profiles_[k].acceleration;
+      } else {
+        a = std::abs(piece.a[j]);
+      }
+      peak[j] = std::max(peak[j], a);
+    }
+  }
+  return peak;
 }
 
 void Trajectory::sample(double t, Eigen::VectorXd& q, Eigen::VectorXd* qd,
@@ -125,15 +288,26 @@ void Trajectory::sample(double t, Eigen::VectorXd& q, Eigen::VectorXd* qd,
   q.resize(dof_);
   if (qd) qd->resize(dof_);
   if (qdd) qdd->resize(dof_);
-  if (t >= times_.back()) {  // also the single-waypoint trajectory
+  if (pieces_.empty() || t >= times_.back()) {  // also the single-waypoint trajectory
     q = waypoints_.back().q;
     if (qd) qd->setZero();
     if (qdd) qdd->setZero();
     return;
   }
-  // Segment k with times_[k] <= t < times_[k + 1]; a zero-duration segment is never chosen.
-  const auto next = std::upper_bound(times_.begin(), times_.end(), std::max(t, 0.0));
-  const size_t k = static_cast<size_t>(next - times_.begin()) - 1;
+  // The piece with start <= t < the next one's start; a zero-length piece is never chosen.
+  t = std::max(t, 0.0);
+  const auto next = std::upper_bound(piece_starts_.begin(), piece_starts_.end(), t);
+  const Piece& piece = pieces_[static_cast<size_t>(next - piece_starts_.begin()) - 1];
+  if (piece.segment < 0) {
+    const double tau = t - piece.anchor;
+    for (int j = 0; j < dof_; ++j) {
+      q[j] = piece.p[j] + piece.v[j] * tau + 0.5 * piece.a[j] * tau * tau;
+      if (qd) (*qd)[j] = piece.v[j] + piece.a[j] * tau;
+      if (qdd) (*qdd)[j] = piece.a[j];
+    }
+    return;
+  }
+  const auto k = static_cast<size_t>(piece.segment);
   const Eigen::VectorXd& q0 = waypoints_[k].q;
   const Eigen::VectorXd& q1 = waypoints_[k + 1].q;
   double s = 0.0, s_dot = 0.0, s_ddot = 0.0;
@@ -199,7 +373,7 @@ Result<TimedWaypoints> Trajectory::sampled(double rate_hz, int max_samples) cons
     for (int i = 1; i <= n; ++i) {
       // The last step lands exactly on the waypoint time computed in create().
       const double t = (i == n) ? times_[k + 1] : times_[k] + T * i / n;
-      if (i == n) {
+      if (i == n && via_[k + 1] == 0) {
         q = waypoints_[k + 1].q;
       } else {
         sample(t, q);
@@ -211,7 +385,7 @@ Result<TimedWaypoints> Trajectory::sampled(double rate_hz, int max_samples) cons
         out.q.back() = q;
       }
     }
-    if (n == 0) out.q.back() = waypoints_[k + 1].q;  // zero-duration segment
+    if (n == 0 && via_[k + 1] == 0) out.q.back() = waypoints_[k + 1].q;  // zero-duration
   }
   out.gripper = gripper_events();
   return out;

@@ -7,6 +7,7 @@
 #include <cstddef>
 
 #include "telear/core/clock.hpp"
+#include "telear/net/plan_message.hpp"
 #include "telear/net/robot_messages.hpp"
 #include "telear/v1/robot.pb.h"
 
@@ -63,6 +64,16 @@ CommandBytes compare_command_bytes(const core::TimedWaypoints& plan, double jog_
   }
   bytes.jog_messages = messages;
   return bytes;
+}
+
+Result<std::uint64_t> plan_message_bytes(const core::Trajectory& trajectory,
+                                         const std::string& lease_id, const std::string& plan_id) {
+  v1::ExecutePlanRequest request;
+  request.set_lease_id(lease_id);
+  if (Status s = fill_plan_message(plan_id, trajectory, *request.mutable_plan()); !s) {
+    return s.error();
+  }
+  return static_cast<std::uint64_t>(request.ByteSizeLong());
 }
 
 }  // namespace telear::net

@@ -15,6 +15,7 @@
 #include "telear/core/clock.hpp"
 #include "telear/net/client_base.hpp"
 #include "telear/net/latest_slot.hpp"
+#include "telear/net/plan_message.hpp"
 #include "telear/net/robot_messages.hpp"
 #include "telear/v1/robot.grpc.pb.h"
 
@@ -374,6 +375,20 @@ Result<TrajectoryAck> RobotClient::execute(const std::string& trajectory_id,
   if (!status.ok()) return impl_->error("execute", status);
   return TrajectoryAck{response.trajectory_id(), response.duplicate(),
                        from_proto(response.status()), response.duration_s()};
+}
+
+Result<PlanAck> RobotClient::execute_plan(const std::string& plan_id,
+                                          const core::Trajectory& trajectory) {
+  v1::ExecutePlanRequest request;
+  request.set_lease_id(impl_->current_lease_id());
+  if (Status s = fill_plan_message(plan_id, trajectory, *request.mutable_plan()); !s) {
+    return Error{"execute plan: " + s.error().message};
+  }
+  v1::ExecutePlanResponse response;
+  const grpc::Status status = impl_->call(&Stub::ExecutePlan, request, &response, true);
+  if (!status.ok()) return impl_->error("execute plan", status);
+  return PlanAck{response.plan_id(), response.duplicate(), from_proto(response.status()),
+                 response.duration_s(), response.plan_hash()};
 }
 
 Status RobotClient::cancel(const std::string& reason) {

@@ -9,6 +9,8 @@
 #include <utility>
 
 #include "telear/core/clock.hpp"
+#include "telear/core/plan_hash.hpp"
+#include "telear/net/plan_message.hpp"
 #include "telear/net/robot_messages.hpp"
 
 namespace telear::net {
@@ -48,7 +50,12 @@ std::string printable(const std::string& text, size_t shown = 64) {
 }
 
 std::string quoted(const std::string& id) {
-  return "'" + printable(id) + "'";
+  // Appended rather than "'" + printable(id) + "'", which trips GCC 12's -Wrestrict false
+  // positive (GCC PR 105329) once the function is inlined into enough callers.
+  std::string out = "'";
+  out += printable(id);
+  out += '\'';
+  return out;
 }
 
 grpc::Status invalid(const Error& error) {
@@ -284,6 +291,47 @@ grpc::Status RobotService::Jog(grpc::ServerContext* context, const v1::JogReques
   return finish(context, what, grpc::Status::OK);
 }
 
+std::optional<RobotService::Execution> RobotService::first_acceptance(const std::string& id) const {
+  const auto first = accepted_.find(id);
+  if (first == accepted_.end()) return std::nullopt;
+  const auto record = driver_.trajectory_record(id);
+  return Execution{true, record ? record->status : core::TrajectoryStatus::kRunning,
+                   first->second.duration_s, first->second.accepted_ns};
+}
+
+grpc::Status RobotService::start(const std::string& id, const core::TimedWaypoints& waypoints,
+                                 Execution& execution) {
+  const core::RobotState state = driver_.snapshot().state;
+  if (state.estop) {
+    return {grpc::StatusCode::FAILED_PRECONDITION, "trajectory " + quoted(id) +
+                                                       " rejected: the e-stop is engaged (" +
+                                                       state.estop_reason + "); reset it first"};
+  }
+  if (state.mode != core::RobotMode::kIdle) {
+    const std::string busy = state.trajectory_id.empty()
+                                 ? std::string("the arm is ") + to_string(state.mode)
+                                 : "trajectory " + quoted(state.trajectory_id) + " is running";
+    return {grpc::StatusCode::FAILED_PRECONDITION,
+            "trajectory " + quoted(id) + " rejected: " + busy +
+                "; wait until the arm is at rest (or cancel)"};
+  }
+  if (Status s = check_start_state(*driver_.model(), id, waypoints.q.front(), state.q,
+                                   driver_.start_tolerance());
+      !s) {
+    return invalid(s.error());
+  }
+  auto accepted = driver_.execute(id, waypoints);
+  if (!accepted) return {driver_rejection_code(), accepted.error().message};
+  accepted_[id] = FirstAcceptance{accepted->accepted_ns, accepted->record.duration};
+  {
+    std::lock_guard last_lock(last_mutex_);
+    last_trajectory_id_ = id;
+  }
+  execution = Execution{accepted->duplicate, accepted->record.status, accepted->record.duration,
+                        accepted->accepted_ns};
+  return grpc::Status::OK;
+}
+
 grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
                                              const v1::ExecuteTrajectoryRequest* request,
                                              v1::ExecuteTrajectoryResponse* response) {
@@ -296,51 +344,68 @@ grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
   }
   std::lock_guard lock(execute_mutex_);
   response->set_trajectory_id(id);
-  if (const auto first = accepted_.find(id); first != accepted_.end()) {
-    const auto record = driver_.trajectory_record(id);
-    response->set_duplicate(true);
-    response->set_status(to_proto(record ? record->status : core::TrajectoryStatus::kRunning));
-    response->set_duration_s(first->second.duration_s);
-    response->set_accepted_ns(first->second.accepted_ns);
+  auto fill = [&](const Execution& e) {
+    response->set_duplicate(e.duplicate);
+    response->set_status(to_proto(e.status));
+    response->set_duration_s(e.duration_s);
+    response->set_accepted_ns(e.accepted_ns);
+  };
+  if (const auto first = first_acceptance(id)) {
+    fill(*first);
     return finish(context, what + ": a duplicate of the first acceptance, not executed again",
                   grpc::Status::OK);
   }
   auto waypoints = timed_waypoints_from_request(*driver_.model(), *request, limits_);
   if (!waypoints) return finish(context, what, invalid(waypoints.error()));
+  Execution execution;
+  if (grpc::Status s = start(id, *waypoints, execution); !s.ok()) return finish(context, what, s);
+  fill(execution);
+  return finish(context, what + ", " + core::format_number(execution.duration_s, "%.3f s"),
+                grpc::Status::OK);
+}
 
-  const core::RobotState state = driver_.snapshot().state;
-  if (state.estop) {
+grpc::Status RobotService::ExecutePlan(grpc::ServerContext* context,
+                                       const v1::ExecutePlanRequest* request,
+                                       v1::ExecutePlanResponse* response) {
+  const v1::PlanMessage& plan = request->plan();
+  const std::string& id = plan.plan_id();
+  std::string what = "execute plan " + quoted(id) + " (" + std::to_string(plan.waypoints_size()) +
+                     " waypoints, " + printable(plan.algorithm()) + ")";
+  if (grpc::Status s = admit(context, what, request->lease_id()); !s.ok()) return s;
+  if (Status s = check_plan_id(id, limits_); !s) return finish(context, what, invalid(s.error()));
+  std::lock_guard lock(execute_mutex_);
+  response->set_plan_id(id);
+  response->set_algorithm(std::string(core::kTrajectoryAlgorithm));
+  auto fill = [&](const Execution& e) {
+    response->set_duplicate(e.duplicate);
+    response->set_status(to_proto(e.status));
+    response->set_duration_s(e.duration_s);
+    response->set_accepted_ns(e.accepted_ns);
+  };
+  if (const auto first = first_acceptance(id)) {
+    fill(*first);
+    if (const auto hash = accepted_plan_hashes_.find(id); hash != accepted_plan_hashes_.end()) {
+      response->set_plan_hash(hash->second);
+    }
+    return finish(context, what + ": a duplicate of the first acceptance, not executed again",
+                  grpc::Status::OK);
+  }
+  // Validated and timed with the client's algorithm, hash compared: nothing moves before.
+  auto received = plan_from_message(*driver_.model(), plan, limits_);
+  if (!received) return finish(context, what, invalid(received.error()));
+  // The arm follows the trajectory's samples, every waypoint on one (Trajectory::sampled).
+  auto samples = received->trajectory.sampled(kPlanExecutionRateHz);
+  if (!samples)
     return finish(context, what,
-                  {grpc::StatusCode::FAILED_PRECONDITION,
-                   "trajectory " + quoted(id) + " rejected: the e-stop is engaged (" +
-                       state.estop_reason + "); reset it first"});
-  }
-  if (state.mode != core::RobotMode::kIdle) {
-    const std::string busy = state.trajectory_id.empty()
-                                 ? std::string("the arm is ") + to_string(state.mode)
-                                 : "trajectory " + quoted(state.trajectory_id) + " is running";
-    return finish(
-        context, what,
-        {grpc::StatusCode::FAILED_PRECONDITION, "trajectory " + quoted(id) + " rejected: " + busy +
-                                                    "; wait until the arm is at rest (or cancel)"});
-  }
-  if (Status s = check_start_state(*driver_.model(), id, waypoints->q.front(), state.q,
-                                   driver_.start_tolerance());
-      !s) {
-    return finish(context, what, invalid(s.error()));
-  }
-  auto accepted = driver_.execute(id, *waypoints);
-  if (!accepted) return finish(context, what, {driver_rejection_code(), accepted.error().message});
-  accepted_[id] = FirstAcceptance{accepted->accepted_ns, accepted->record.duration};
-  {
-    std::lock_guard last_lock(last_mutex_);
-    last_trajectory_id_ = id;
-  }
-  response->set_duplicate(accepted->duplicate);
-  response->set_status(to_proto(accepted->record.status));
-  response->set_duration_s(accepted->record.duration);
-  response->set_accepted_ns(accepted->accepted_ns);
-  return finish(context, what + ", " + core::format_number(accepted->record.duration, "%.3f s"),
+                  invalid(Error{"plan " + quoted(id) + " rejected: " + samples.error().message}));
+  Execution execution;
+  if (grpc::Status s = start(id, *samples, execution); !s.ok()) return finish(context, what, s);
+  accepted_plan_hashes_[id] = received->hash;
+  fill(execution);
+  response->set_plan_hash(received->hash);
+  return finish(context,
+                what + ", " + core::format_number(execution.duration_s, "%.3f s") + ", hash " +
+                    received->hash.substr(0, 12),
                 grpc::Status::OK);
 }
 

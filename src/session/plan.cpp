@@ -175,7 +175,9 @@ Status Plan::set_scales(double velocity_scale, double acceleration_scale) {
 std::vector<core::JointWaypoint> Plan::joint_waypoints() const {
   std::vector<core::JointWaypoint> list;
   list.reserve(waypoints_.size());
-  for (const PlanWaypoint& w : waypoints_) list.emplace_back(w.q, w.min_duration, w.gripper);
+  for (const PlanWaypoint& w : waypoints_) {
+    list.emplace_back(w.q, w.min_duration, w.gripper, w.via);
+  }
   return list;
 }
 
@@ -207,6 +209,7 @@ std::string Plan::to_yaml() const {
     if (w.gripper) out << YAML::Key << "gripper" << YAML::Value << *w.gripper;
     if (w.min_duration != 0.0)
       out << YAML::Key << "min_duration_s" << YAML::Value << w.min_duration;
+    if (w.via) out << YAML::Key << "via" << YAML::Value << true;
     out << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap;
@@ -247,7 +250,7 @@ Result<Plan> Plan::from_yaml(core::RobotModelPtr model, const std::string& text,
       const std::string name = waypoint_name(i);
       const YAML::Node node = list[i];
       if (!node.IsMap()) throw ParseError{name + ": must be a map with q_rad"};
-      reject_unknown_keys(node, {"label", "q_rad", "gripper", "min_duration_s"}, name);
+      reject_unknown_keys(node, {"label", "q_rad", "gripper", "min_duration_s", "via"}, name);
       PlanWaypoint w;
       const YAML::Node q = node["q_rad"];
       if (!q) throw ParseError{name + ".q_rad: missing"};
@@ -263,6 +266,13 @@ Result<Plan> Plan::from_yaml(core::RobotModelPtr model, const std::string& text,
       if (node["gripper"]) w.gripper = scalar(node["gripper"], name + ".gripper");
       if (node["min_duration_s"]) {
         w.min_duration = scalar(node["min_duration_s"], name + ".min_duration_s");
+      }
+      if (node["via"]) {
+        const YAML::Node via = node["via"];
+        if (!via.IsScalar() || (via.Scalar() != "true" && via.Scalar() != "false")) {
+          throw ParseError{name + ".via: must be true or false"};
+        }
+        w.via = via.Scalar() == "true";
       }
       if (node["label"]) {
         if (!node["label"].IsScalar()) throw ParseError{name + ".label: must be text"};

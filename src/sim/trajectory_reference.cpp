@@ -41,6 +41,16 @@ Status check_profiles(const core::RobotModel& model, const core::Trajectory& tra
       }
     }
   }
+  // Blends around via waypoints accelerate where no segment's trapezoid says: their peaks.
+  const Eigen::VectorXd peak = trajectory.peak_accelerations();
+  for (int j = 0; j < model.dof(); ++j) {
+    if (peak[j] > model.max_accelerations()[j] * slack) {
+      return Error{"a blend at a via waypoint: " + core::joint_label(model, j) +
+                   " accelerates at " + core::format_joint_value(model, j, peak[j]) +
+                   "/s^2, beyond its max acceleration of " +
+                   core::format_joint_value(model, j, model.max_accelerations()[j]) + "/s^2"};
+    }
+  }
   return Status::Ok();
 }
 

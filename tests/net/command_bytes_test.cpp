@@ -9,6 +9,7 @@
 #include <string>
 
 #include "robot_test_support.hpp"
+#include "telear/core/plan_hash.hpp"
 #include "telear/net/robot_client.hpp"
 
 namespace telear::net::test {
@@ -51,6 +52,42 @@ TEST(CommandBytes, ThePlanIsTheRequestTheClientSends) {
   // The server's lease ids are 32 characters; only their length matters for the size.
   const CommandBytes bytes = compare_command_bytes(plan, 100.0, std::string(32, '0'), "reach-1");
   EXPECT_EQ(bytes.plan_bytes, sent);
+}
+
+TEST(CommandBytes, ThePlanMessageIsTheRequestExecutePlanSends) {
+  auto server = start_server();
+  RobotClientOptions options;
+  options.address = server->address();
+  options.token = kToken;
+  options.client_name = "alice";
+  RobotClient client(options);
+  client.start();
+  ASSERT_TRUE(client.acquire_lease(5.0));
+  auto sample = client.wait_state(0, 2.0);
+  ASSERT_TRUE(sample.has_value());
+  const Eigen::VectorXd q0 = sample->state.q;
+  Eigen::VectorXd q1 = q0, q2 = q0;
+  q1[0] += 0.05;
+  q2[0] += 0.05;
+  q2[1] += 0.05;
+  auto trajectory = core::Trajectory::create(*telear::test::puma560(),
+                                             {{q0}, {q1, 0.0, std::nullopt, true}, {q2}});
+  ASSERT_TRUE(trajectory) << trajectory.error().message;
+  const std::uint64_t before = client.command_bytes_sent();
+  auto ack = client.execute_plan("reach-plan", *trajectory);
+  ASSERT_TRUE(ack) << ack.error().message;
+  EXPECT_EQ(ack->plan_id, "reach-plan");
+  EXPECT_FALSE(ack->duplicate);
+  EXPECT_EQ(ack->plan_hash, *core::plan_hash(*trajectory));
+  EXPECT_EQ(ack->duration_s, trajectory->duration());
+  const auto bytes = plan_message_bytes(*trajectory, std::string(32, '0'), "reach-plan");
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  EXPECT_EQ(*bytes, client.command_bytes_sent() - before);
+  // Three waypoints: a few hundred bytes, against a kilobyte and more for the samples.
+  const CommandBytes samples =
+      compare_command_bytes(*trajectory->sampled(100.0), 100.0, std::string(32, '0'), "p");
+  EXPECT_LT(*bytes, samples.plan_bytes);
+  EXPECT_LT(*bytes, samples.jog_stream_bytes);
 }
 
 TEST(CommandBytes, JogsOncePerSampleOfTheSpanAndCostsMoreThanThePlan) {

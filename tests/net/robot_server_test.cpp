@@ -15,25 +15,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-// Reads the stream (250 Hz) until `done` says so or `timeout_s` passes; returns the last
-// message read.
-template <typename Done>
-v1::RobotState stream_until(v1::RobotService::Stub& stub, Done done, double timeout_s = 3.0) {
-  grpc::ClientContext c;
-  c.set_deadline(std::chrono::system_clock::now() +
-                 std::chrono::milliseconds(static_cast<int>(timeout_s * 1e3)));
-  v1::StreamStateRequest request;
-  request.set_rate_hz(250);
-  auto reader = stub.StreamState(&c, request);
-  v1::RobotState state;
-  while (reader->Read(&state)) {
-    if (done(state)) break;
-  }
-  c.TryCancel();
-  reader->Finish();
-  return state;
-}
-
 TEST(RobotServer, StreamsStateAtTheRequestedRate) {
   auto server = start_server();
   auto stub = stub_for(*server);

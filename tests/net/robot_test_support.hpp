@@ -71,6 +71,26 @@ inline v1::RobotState read_state(v1::RobotService::Stub& stub) {
   return state;
 }
 
+// Reads the stream (250 Hz) until `done` says so or `timeout_s` passes; returns the last
+// message read.
+template <typename Done>
+inline v1::RobotState stream_until(v1::RobotService::Stub& stub, Done done,
+                                   double timeout_s = 3.0) {
+  grpc::ClientContext c;
+  c.set_deadline(std::chrono::system_clock::now() +
+                 std::chrono::milliseconds(static_cast<int>(timeout_s * 1e3)));
+  v1::StreamStateRequest request;
+  request.set_rate_hz(250);
+  auto reader = stub.StreamState(&c, request);
+  v1::RobotState state;
+  while (reader->Read(&state)) {
+    if (done(state)) break;
+  }
+  c.TryCancel();
+  reader->Finish();
+  return state;
+}
+
 inline Eigen::VectorXd q_of(const v1::RobotState& state) {
   return Eigen::Map<const Eigen::VectorXd>(state.q().data(), state.q_size());
 }

@@ -120,6 +120,9 @@ TEST(Plan, TimesAndSamplesLikeTheCoreTrajectory) {
 TEST(Plan, YamlRoundTrip) {
   Plan plan = three_waypoints();
   ASSERT_TRUE(plan.set_scales(0.5, 0.25).ok());
+  PlanWaypoint passed = plan.waypoint(1);
+  passed.via = true;
+  ASSERT_TRUE(plan.replace(1, passed).ok());
   const std::string path =
       (std::filesystem::temp_directory_path() / "telear_plan_test.yaml").string();
   ASSERT_TRUE(plan.save(path).ok());
@@ -132,7 +135,10 @@ TEST(Plan, YamlRoundTrip) {
     EXPECT_EQ(loaded->waypoint(i).gripper, plan.waypoint(i).gripper);
     EXPECT_EQ(loaded->waypoint(i).min_duration, plan.waypoint(i).min_duration);
     EXPECT_EQ(loaded->waypoint(i).label, plan.waypoint(i).label);
+    EXPECT_EQ(loaded->waypoint(i).via, plan.waypoint(i).via);
   }
+  EXPECT_TRUE(loaded->waypoint(1).via);
+  EXPECT_TRUE(loaded->joint_waypoints()[1].via);
   EXPECT_EQ(loaded->trajectory_options().velocity_scale, 0.5);
   EXPECT_EQ(loaded->trajectory_options().acceleration_scale, 0.25);
 }
@@ -162,7 +168,9 @@ TEST(Plan, UntrustedFilesGiveErrorsNamingWaypointAndField) {
             "limit of 135.00 deg");
   EXPECT_EQ(load_error(head + "  - {q_deg: [0, 0, 0, 0, 0, 0]}\n"),
             "plan 'p.yaml': waypoint[0].q_deg: unknown key (known: gripper, label, "
-            "min_duration_s, q_rad)");
+            "min_duration_s, q_rad, via)");
+  EXPECT_EQ(load_error(head + "  - {q_rad: [0, 0, 0, 0, 0, 0], via: maybe}\n"),
+            "plan 'p.yaml': waypoint[0].via: must be true or false");
   EXPECT_EQ(load_error(head + "  - {q_rad: [0, 0, 0, 0, 0, 0], min_duration_s: -2}\n"),
             "plan 'p.yaml': waypoint[0]: min_duration -2 s is outside 0..3600 s");
   EXPECT_EQ(load_error("robot: puma560\nvelocity_scale: 2\nwaypoints: []\n"),

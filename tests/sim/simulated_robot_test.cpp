@@ -370,6 +370,31 @@ TEST_F(SimulatedRobotTrajectoryTest, FollowsATrajectoryWithSmallTrackingError) {
   EXPECT_EQ(robot->state().gripper, 0.0);
 }
 
+TEST_F(SimulatedRobotTrajectoryTest, FollowsATrajectoryThroughViaPointsWithinTheLimits) {
+  auto robot = make_at(q_start);
+  auto trajectory =
+      core::Trajectory::create(*model, {{q_start},
+                                        {deg({30, 20, -30, 40, 60, 90}), 0.0, std::nullopt, true},
+                                        {deg({-20, 50, -90, -30, 10, 0})}});
+  ASSERT_TRUE(trajectory.ok()) << trajectory.error().message;
+  ASSERT_TRUE(trajectory->passes_through(1));
+  auto ack = robot->execute("via-1", *trajectory);
+  ASSERT_TRUE(ack.ok()) << ack.error().message;
+  const double t_start = robot->time();
+  double max_error = 0.0;
+  MotionWatch watch(*model);
+  run_for(*robot, trajectory->duration() + 0.2, [&](const core::RobotState& s) {
+    watch(s);
+    if (s.mode != core::RobotMode::kTrajectory) return;
+    max_error =
+        std::max(max_error, (s.q - trajectory->sample(s.time - t_start).q).cwiseAbs().maxCoeff());
+  });
+  EXPECT_LT(max_error, 1e-9);
+  EXPECT_LE(watch.velocity_ratio, 1.0 + 1e-6);
+  EXPECT_LE(watch.acceleration_ratio, 1.0 + 1e-6);
+  EXPECT_EQ(robot->state().q, trajectory->waypoints().back().q);
+}
+
 TEST_F(SimulatedRobotTrajectoryTest, FollowsTimedWaypointsByInterpolatingTheSamples) {
   auto robot = make_at(q_start);
   const core::Trajectory trajectory = make_trajectory(q_start);

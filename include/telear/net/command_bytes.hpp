@@ -2,6 +2,8 @@
 // What commanding a motion costs on the wire: the seed's point that sending one finalized
 // trajectory beats streaming the operator's commands (and survives a bad network).
 //
+//   plan message     one ExecutePlanRequest: the waypoints, timing parameters and hash; the
+//                    server re-times them (telear/net/plan_message.hpp)
 //   plan-then-send   one ExecuteTrajectoryRequest with the sampled trajectory
 //   jogging          the same motion as a JogRequest (joint target, lease id, expiry) per
 //                    sample at jog_rate_hz, as a conventional teleoperation client streams it
@@ -13,6 +15,7 @@
 #include <cstdint>
 #include <string>
 
+#include "telear/core/result.hpp"
 #include "telear/core/trajectory.hpp"
 
 namespace telear::net {
@@ -27,5 +30,10 @@ struct CommandBytes {
 // jog_rate_hz (> 0), one joint-target jog per sample.
 CommandBytes compare_command_bytes(const core::TimedWaypoints& plan, double jog_rate_hz,
                                    const std::string& lease_id, const std::string& trajectory_id);
+
+// The bytes of the one ExecutePlanRequest that sends `trajectory` as a plan message. Fails
+// when the trajectory is too long to hash (plan_hash).
+Result<std::uint64_t> plan_message_bytes(const core::Trajectory& trajectory,
+                                         const std::string& lease_id, const std::string& plan_id);
 
 }  // namespace telear::net

@@ -87,6 +87,15 @@ struct TrajectoryAck {
   double duration_s = 0.0;
 };
 
+// ExecutePlan's answer: the server's hash (equal to the client's: a mismatch is an error).
+struct PlanAck {
+  std::string plan_id;
+  bool duplicate = false;
+  core::TrajectoryStatus status = core::TrajectoryStatus::kRunning;
+  double duration_s = 0.0;
+  std::string plan_hash;
+};
+
 struct JogAck {
   Eigen::VectorXd target_q;  // empty for a velocity jog
   std::string singularity_warning;
@@ -126,6 +135,9 @@ class RobotClient {
   Result<JogAck> jog_velocity(const Eigen::VectorXd& qd, double valid_for_s = 0.5);
   Result<TrajectoryAck> execute(const std::string& trajectory_id,
                                 const core::TimedWaypoints& waypoints);
+  // The plan is the message: sends the trajectory's waypoints, options and plan_hash
+  // (telear/net/plan_message.hpp); the server times them itself and executes only a match.
+  Result<PlanAck> execute_plan(const std::string& plan_id, const core::Trajectory& trajectory);
   Status cancel(const std::string& reason = "cancelled by the operator");
   Status set_gripper(double opening);
   Status estop(const std::string& reason = "e-stop from the operator");

@@ -19,6 +19,11 @@
 // its peer address (describe_caller, telear/net/client_name.hpp). A lapsed lease is logged by the
 // watchdog, with how late the stop began.
 //
+// Plans (ExecutePlan, telear/net/plan_message.hpp): the server times the waypoints with core's
+// Trajectory::create, compares its plan_hash with the client's, samples the trajectory at
+// kPlanExecutionRateHz and executes the samples like a trajectory's; a mismatch, an unknown
+// algorithm or an invalid waypoint is INVALID_ARGUMENT and nothing moves.
+//
 // Trajectory ids: the first acceptance of each id is kept, and a repeated id is answered with
 // it (duplicate = true, the current status) before any other check but authentication and
 // the lease: a retry after a lost reply is safe even when the arm has moved on since.
@@ -33,6 +38,7 @@
 #include <cstdint>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "telear/core/robot_driver.hpp"
@@ -43,6 +49,9 @@
 #include "telear/v1/robot.grpc.pb.h"
 
 namespace telear::net {
+
+// The rate at which an accepted plan's trajectory is sampled for the driver.
+inline constexpr double kPlanExecutionRateHz = 100.0;
 
 class RobotService final : public v1::RobotService::Service {
  public:
@@ -71,6 +80,8 @@ class RobotService final : public v1::RobotService::Service {
   grpc::Status ExecuteTrajectory(grpc::ServerContext* context,
                                  const v1::ExecuteTrajectoryRequest* request,
                                  v1::ExecuteTrajectoryResponse* response) override;
+  grpc::Status ExecutePlan(grpc::ServerContext* context, const v1::ExecutePlanRequest* request,
+                           v1::ExecutePlanResponse* response) override;
   grpc::Status Cancel(grpc::ServerContext* context, const v1::CancelRequest* request,
                       v1::CancelResponse* response) override;
   grpc::Status SetGripper(grpc::ServerContext* context, const v1::SetGripperRequest* request,
@@ -87,6 +98,20 @@ class RobotService final : public v1::RobotService::Service {
     std::int64_t accepted_ns = 0;
     double duration_s = 0.0;
   };
+  // What ExecuteTrajectory and ExecutePlan answer.
+  struct Execution {
+    bool duplicate = false;
+    core::TrajectoryStatus status = core::TrajectoryStatus::kRunning;
+    double duration_s = 0.0;
+    std::int64_t accepted_ns = 0;
+  };
+
+  // The first acceptance of `id`, if any (execute_mutex_ held).
+  std::optional<Execution> first_acceptance(const std::string& id) const;
+  // The arm's state (e-stop, busy, start state), then the driver; records the acceptance
+  // (execute_mutex_ held). The status is the refusal, if any.
+  grpc::Status start(const std::string& id, const core::TimedWaypoints& waypoints,
+                     Execution& execution);
 
   // Authentication, then the lease; logs and returns the refusal, if any.
   grpc::Status admit(grpc::ServerContext* context, const std::string& what,
@@ -104,6 +129,7 @@ class RobotService final : public v1::RobotService::Service {
 
   std::mutex execute_mutex_;  // one trajectory acceptance at a time
   std::map<std::string, FirstAcceptance> accepted_;
+  std::map<std::string, std::string> accepted_plan_hashes_;  // plan id -> the server's hash
   mutable std::mutex last_mutex_;
   std::string last_trajectory_id_;  // the latest accepted (for the state's last_trajectory_*)
 

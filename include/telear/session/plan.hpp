@@ -7,8 +7,8 @@
 //                  the segment, a repeated pose with a duration is a dwell), label (free text) }
 //
 // The plan maps one to one onto telear/core/trajectory.hpp's JointWaypoint list: trajectory() times
-// it with the plan's velocity / acceleration scales (straight joint-space segments, the arm
-// stops at every waypoint), timed_waypoints() samples it for ExecuteTrajectory.
+// it with the plan's velocity / acceleration scales (straight joint-space segments; the arm
+// stops at every waypoint not marked via), timed_waypoints() samples it for ExecuteTrajectory.
 //
 // Editing keeps the plan valid: every waypoint added or changed is checked (size, finite,
 // within the joint limits, duration in [0, max_segment_duration], gripper in [0, 1]) and a
@@ -21,7 +21,8 @@
 //   acceleration_scale: 0.5       # optional, (0, 1], default 1
 //   waypoints:
 //     - {label: approach, q_rad: [0, 0.5, -1.2, 0, 0.7, 0], gripper: 1}
-//     - {q_rad: [0, 0.6, -1.1, 0, 0.5, 0], min_duration_s: 1.5}
+//     - {q_rad: [0, 0.6, -1.1, 0, 0.5, 0], min_duration_s: 1.5, via: true}  # via: optional
+//     - {q_rad: [0, 0.7, -1.0, 0, 0.4, 0]}
 //
 // Files are untrusted: load errors name the file, the waypoint and the field.
 //
@@ -57,6 +58,7 @@ struct PlanWaypoint {
   std::optional<double> gripper;  // 0 closed .. 1 open; unset: unchanged
   double min_duration = 0.0;      // s, from the previous waypoint
   std::string label;              // e.g. "approach"; may be empty
+  bool via = false;               // pass through without stopping (core::JointWaypoint::via)
 };
 
 class Plan {
