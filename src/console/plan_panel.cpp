@@ -127,6 +127,20 @@ void draw_plan_panel(PanelContext& ctx, const PanelLayout& layout) {
   }
   if (!s.last_execution_result().empty())
     ImGui::TextWrapped("last execution: %s", s.last_execution_result().c_str());
+  // The plan is the message: the hash of the trajectory the preview showed and the robot
+  // server's hash of what it ran (docs/trajectory.md); equal means the robot ran the preview.
+  if (!s.previewed_hash().empty() || !s.executed_hash().empty()) {
+    const std::string previewed = s.previewed_hash().substr(0, 12);
+    const std::string executed = s.executed_hash().substr(0, 12);
+    ImGui::Text("plan hash: previewed %s", previewed.empty() ? "-" : previewed.c_str());
+    if (!executed.empty()) {
+      ImGui::SameLine();
+      const bool same = s.executed_hash() == s.previewed_hash();
+      ImGui::TextColored(same ? ImVec4(0.4f, 0.9f, 0.4f, 1) : ImVec4(1.0f, 0.7f, 0.2f, 1),
+                         "executed %s (%s)", executed.c_str(),
+                         same ? "as previewed" : "not the last preview");
+    }
+  }
   ImGui::End();
 }
 

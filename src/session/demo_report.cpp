@@ -34,10 +34,8 @@ nlohmann::json latency_json(const std::vector<double>& v) {
           {"samples", v.size()}};
 }
 
-double jog_ratio(const net::CommandBytes& bytes) {
-  return bytes.plan_bytes > 0
-             ? static_cast<double>(bytes.jog_stream_bytes) / static_cast<double>(bytes.plan_bytes)
-             : 0.0;
+double ratio(std::uint64_t numerator, std::uint64_t denominator) {
+  return denominator > 0 ? static_cast<double>(numerator) / static_cast<double>(denominator) : 0.0;
 }
 
 }  // namespace
@@ -69,11 +67,14 @@ std::string demo_report_json(const DemoFacts& facts) {
                      {"fps_shown", facts.seconds > 0 ? r.frames_shown / facts.seconds : 0.0},
                      {"latency", latency},
                      {"bytes_per_s", facts.video_bytes_per_s}};
-  report["bytes"] = {{"plan_then_send_measured", facts.plan_bytes_measured},
-                     {"plan_then_send", facts.bytes.plan_bytes},
-                     {"jog_100hz", facts.bytes.jog_stream_bytes},
-                     {"jog_messages", facts.bytes.jog_messages},
-                     {"ratio", jog_ratio(facts.bytes)}};
+  report["bytes"] = {
+      {"plan_message_measured", facts.plan_bytes_measured},
+      {"plan_message", facts.plan_message_bytes},
+      {"samples_100hz", facts.bytes.plan_bytes},
+      {"jog_100hz", facts.bytes.jog_stream_bytes},
+      {"jog_messages", facts.bytes.jog_messages},
+      {"ratio", ratio(facts.bytes.jog_stream_bytes, facts.plan_bytes_measured)},
+      {"ratio_vs_samples", ratio(facts.bytes.plan_bytes, facts.plan_bytes_measured)}};
   nlohmann::json tracking;
   tracking["result"] = facts.execution_result;
   if (facts.tracking) {
@@ -82,7 +83,12 @@ std::string demo_report_json(const DemoFacts& facts) {
     tracking["rms_error_rad"] = facts.tracking->rms_error;
     tracking["samples"] = facts.tracking->samples;
     tracking["tolerance_rad"] = facts.tolerance_rad;
+    tracking["max_command_deviation_rad"] = facts.tracking->max_command_deviation;
   }
+  tracking["previewed_hash"] = facts.previewed_hash;
+  tracking["executed_hash"] = facts.executed_hash;
+  tracking["executed_is_previewed"] =
+      !facts.executed_hash.empty() && facts.executed_hash == facts.previewed_hash;
   tracking["plan_duration_s"] = facts.plan_duration_s;
   tracking["waypoints"] = facts.waypoints;
   report["execution"] = tracking;
@@ -135,14 +141,26 @@ std::string demo_report_markdown(const DemoFacts& facts) {
   if (!r.video_codec.empty()) md += ", " + r.video_codec;
   md += "\n";
   if (!r.video_warning.empty()) md += "- warning: " + r.video_warning + "\n";
-  md += "- bytes to command the motion: plan-then-send " + std::to_string(facts.bytes.plan_bytes) +
-        " B (one message), jogging at 100 Hz " + std::to_string(facts.bytes.jog_stream_bytes) +
-        " B (" + std::to_string(facts.bytes.jog_messages) + " messages), " +
-        fixed(jog_ratio(facts.bytes), 1) + "x\n- execution: " + facts.execution_result;
+  md += "- bytes to command the motion: the plan message " +
+        std::to_string(facts.plan_bytes_measured) + " B, its 100 Hz samples " +
+        std::to_string(facts.bytes.plan_bytes) + " B (" +
+        fixed(ratio(facts.bytes.plan_bytes, facts.plan_bytes_measured), 1) +
+        "x), jogging at 100 Hz " + std::to_string(facts.bytes.jog_stream_bytes) + " B (" +
+        std::to_string(facts.bytes.jog_messages) + " messages, " +
+        fixed(ratio(facts.bytes.jog_stream_bytes, facts.plan_bytes_measured), 1) +
+        "x)\n- execution: " + facts.execution_result;
   if (facts.tracking) {
     md += ", max tracking error " + fixed(facts.tracking->max_error_so_far * 1e3, 3) +
           " mrad (tolerance " + fixed(facts.tolerance_rad * 1e3, 0) + " mrad)";
   }
+  const bool same = !facts.executed_hash.empty() && facts.executed_hash == facts.previewed_hash;
+  md += std::string("\n- executed the previewed trajectory: ") + (same ? "yes" : "NO") +
+        " (plan hash " + facts.executed_hash.substr(0, 16) + "...";
+  if (facts.tracking) {
+    md += ", robot's command within " + fixed(facts.tracking->max_command_deviation * 1e3, 4) +
+          " mrad of the preview";
+  }
+  md += ")";
   md += "\n- display: " + std::to_string(facts.ar_to_vr) + " AR -> VR and " +
         std::to_string(facts.vr_to_ar) + " VR -> AR switches (injected delay " +
         std::to_string(facts.injected_delay_ms) + " ms)\n- total " + fixed(facts.seconds, 1) +

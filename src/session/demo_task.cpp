@@ -157,10 +157,17 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
   outcome.execution_result = session.last_execution_result();
   note("execution: " + outcome.execution_result);
 
+  // The same motion's cost as the plan message, as its 100 Hz samples in one message, and as
+  // 100 Hz jogs (a lease id of the server's length, an id of the session's form).
+  const std::string lease(32, '0'), id = "plan-0000000000-1";
   auto samples = trajectory->sampled(100.0);
   if (!samples) return phase_error("execution", samples.error().message);
-  outcome.bytes =
-      net::compare_command_bytes(*samples, 100.0, std::string(32, '0'), "plan-0000000000-1");
+  outcome.bytes = net::compare_command_bytes(*samples, 100.0, lease, id);
+  auto message = net::plan_message_bytes(*trajectory, lease, id);
+  if (!message) return phase_error("execution", message.error().message);
+  outcome.plan_message_bytes = *message;
+  outcome.previewed_hash = session.previewed_hash();
+  outcome.executed_hash = session.executed_hash();
   return outcome;
 }
 

@@ -167,6 +167,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   facts.camera_fps = options.camera_fps;
   facts.video_bytes_per_s = session.stats().video_bytes_per_s;
   facts.plan_bytes_measured = outcome->plan_bytes_measured;
+  facts.plan_message_bytes = outcome->plan_message_bytes;
+  facts.previewed_hash = outcome->previewed_hash;
+  facts.executed_hash = outcome->executed_hash;
   facts.bytes = outcome->bytes;
   facts.execution_result = outcome->execution_result;
   if (const ExecutionMonitor* monitor = session.monitor()) {

@@ -45,7 +45,8 @@ const TrackingStatus& ExecutionMonitor::update(double robot_time, const Eigen::V
 }
 
 const TrackingStatus& ExecutionMonitor::update_at_plan_time(double plan_time,
-                                                            const Eigen::VectorXd& q_real) {
+                                                            const Eigen::VectorXd& q_real,
+                                                            const Eigen::VectorXd& q_commanded) {
   TrackingStatus& s = status_;
   const double duration = trajectory_.duration();
   const double t = std::isfinite(plan_time) ? std::clamp(plan_time, 0.0, duration) : 0.0;
@@ -65,6 +66,11 @@ const TrackingStatus& ExecutionMonitor::update_at_plan_time(double plan_time,
     return s;
   }
   trajectory_.sample(t, q_plan_);
+  if (q_commanded.size() == q_plan_.size() && q_commanded.allFinite()) {
+    s.max_command_deviation =
+        std::max(s.max_command_deviation, (q_commanded - q_plan_).cwiseAbs().maxCoeff());
+    ++s.command_samples;
+  }
   s.error = q_real - q_plan_;
   Eigen::Index worst = 0;
   s.max_abs_error = s.error.cwiseAbs().maxCoeff(&worst);

@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "telear/core/clock.hpp"
+#include "telear/core/number_format.hpp"
+#include "telear/core/plan_hash.hpp"
 
 namespace telear::session {
 
@@ -201,6 +203,9 @@ Status Session::add_ghost_waypoint(double min_duration, std::string label) {
 Status Session::start_preview(PreviewOptions options) {
   auto trajectory = plan_.trajectory();
   if (!trajectory) return Error{"preview: " + trajectory.error().message};
+  auto hash = core::plan_hash(*trajectory);
+  if (!hash) return Error{"preview: " + hash.error().message};
+  previewed_hash_ = *hash;
   preview_.emplace(std::move(*trajectory), options);
   preview_->play();
   return Status::Ok();
@@ -217,7 +222,13 @@ ValidationReport Session::validate_plan() const {
   return session::validate_plan(plan_, real_q(), options);
 }
 
-Result<net::TrajectoryAck> Session::execute_plan() {
+Result<std::string> Session::plan_hash() const {
+  auto trajectory = plan_.trajectory();
+  if (!trajectory) return trajectory.error();
+  return core::plan_hash(*trajectory);
+}
+
+Result<net::PlanAck> Session::execute_plan() {
   if (executing_) return Error{"execute: a plan is already executing (" + executing_id_ + ")"};
   if (!in_control()) return Error{"execute: take control (the lease) first"};
   const ValidationReport report = validate_plan();
@@ -227,21 +238,23 @@ Result<net::TrajectoryAck> Session::execute_plan() {
   }
   auto trajectory = plan_.trajectory();
   if (!trajectory) return Error{"execute: " + trajectory.error().message};
-  auto samples = trajectory->sampled(options_.sample_rate_hz);
-  if (!samples) return Error{"execute: " + samples.error().message};
   const std::string id = "plan-" + std::to_string(epoch_ns_) + "-" + std::to_string(++executions_);
-  auto ack = robot_->execute(id, *samples);
+  auto ack = robot_->execute_plan(id, *trajectory);
   if (!ack) {
     log(SessionEvent::Kind::kError, ack.error().message);
     return ack;
   }
+  executed_hash_ = ack->plan_hash;
   stop_preview();
   monitor_.emplace(model_, std::move(*trajectory), 0.0, options_.monitor);
   executing_id_ = id;
   executing_ = true;
   last_result_.clear();
-  log(SessionEvent::Kind::kInfo, "executing " + id + " (" + std::to_string(samples->times.size()) +
-                                     " samples, " + std::to_string(ack->duration_s) + " s)");
+  log(SessionEvent::Kind::kInfo,
+      "executing " + id + " (" + std::to_string(plan_.size()) + " waypoints, " +
+          core::format_number(ack->duration_s, "%.2f") + " s, hash " +
+          ack->plan_hash.substr(0, 12) +
+          (ack->plan_hash == previewed_hash_ ? ", as previewed)" : ", not the last preview)"));
   return ack;
 }
 
@@ -337,7 +350,8 @@ void Session::update_monitor() {
   const auto& sample = *view_.real;
   const auto& real = sample.state;
   if (real.trajectory_id == executing_id_) {
-    const TrackingStatus& status = monitor_->update_at_plan_time(real.trajectory_time, real.q);
+    const TrackingStatus& status =
+        monitor_->update_at_plan_time(real.trajectory_time, real.q, real.q_commanded);
     if (status.cancel) {
       (void)robot_->cancel(status.cancel_message);
       executing_ = false;

@@ -87,18 +87,29 @@ TEST_F(SessionIntegrationTest, APlanExecutesOnTheRobotAndTheMonitorTracksIt) {
   const Eigen::VectorXd goal = session->plan().waypoints().back().q;
   const ValidationReport report = session->validate_plan();
   ASSERT_TRUE(report.ok()) << report.summary();
+  ASSERT_TRUE(session->start_preview().ok());
+  const std::string previewed = session->previewed_hash();
+  EXPECT_EQ(previewed.size(), 64u);
+  const std::uint64_t bytes_before = session->stats().command_bytes_sent;
   auto ack = session->execute_plan();
   ASSERT_TRUE(ack) << ack.error().message;
   EXPECT_TRUE(session->executing());
+  // The plan is the message: the server timed the same waypoints to the same trajectory as
+  // the preview (equal hashes), and the message is a few hundred bytes, not 100 Hz samples.
+  EXPECT_EQ(ack->plan_hash, previewed);
+  EXPECT_EQ(session->executed_hash(), previewed);
+  EXPECT_LT(session->stats().command_bytes_sent - bytes_before, 1000u);
   ASSERT_TRUE(run_until([&] { return !session->executing(); }, ack->duration_s + 15.0));
   EXPECT_EQ(session->last_execution_result(), "completed");
   ASSERT_NE(session->monitor(), nullptr);
   EXPECT_GT(session->monitor()->status().samples, 10);
   EXPECT_LT(session->monitor()->status().max_error_so_far, session->monitor()->options().tolerance);
+  // The robot's own servo command followed the previewed trajectory (the server's 100 Hz
+  // sampling of it, interpolated: micro-radians).
+  EXPECT_GT(session->monitor()->status().command_samples, 10);
+  EXPECT_LT(session->monitor()->status().max_command_deviation, 1e-3);
   ASSERT_TRUE(run_until([&] { return (real_q() - goal).cwiseAbs().maxCoeff() < 1e-3; }, 5.0))
       << "the real robot did not reach the plan's end";
-  // The plan went as one message; the bytes are counted.
-  EXPECT_GT(session->stats().command_bytes_sent, 1000u);
 }
 
 TEST_F(SessionIntegrationTest, ValidationRejectsAPlanThatStartsFarFromTheRealRobot) {

@@ -6,9 +6,11 @@
 // include/telear/vision/accuracy_check.hpp), calibration_cached,
 // overlay_error_live.{left,right}.{rms_px_mean, max_px, checks, marker_not_found, last_miss},
 // video.{resolution, camera_fps, frames_shown, display_ticks, fps_shown, latency.<stage>.{p50_ms,
-// p99_ms, samples}, bytes_per_s}, bytes.{ plan_then_send_measured, plan_then_send, jog_100hz,
-// jog_messages, ratio}, execution.{result, max_error_rad, max_error_joint (1-based), rms_error_rad,
-// samples, tolerance_rad, plan_duration_s, waypoints}, display.{ar_to_vr, vr_to_ar,
+// p99_ms, samples}, bytes_per_s}, bytes.{plan_message_measured, plan_message, samples_100hz,
+// jog_100hz, jog_messages, ratio (jogs / plan message), ratio_vs_samples}, execution.{result,
+// max_error_rad, max_error_joint (1-based), rms_error_rad, samples, tolerance_rad,
+// max_command_deviation_rad, plan_duration_s, waypoints, previewed_hash, executed_hash,
+// executed_is_previewed}, display.{ar_to_vr, vr_to_ar,
 // injected_delay_ms, switches}, outputs.{video, video_codec, video_warning, video_frames,
 // key_frames}, seconds. Latency stages: the keys of net::kLatencyStages
 // (include/telear/net/latency_stages.hpp), capture_to_encode, encode, send_queue, network, decode,
@@ -36,8 +38,10 @@ struct DemoFacts {
   std::string resolution;  // "WxH" as given
   double camera_fps = 0.0;
   double video_bytes_per_s = 0.0;
-  std::uint64_t plan_bytes_measured = 0;
-  net::CommandBytes bytes;
+  std::uint64_t plan_bytes_measured = 0;  // the plan message execute_plan sent
+  std::uint64_t plan_message_bytes = 0;   // its size, computed
+  net::CommandBytes bytes;                // the 100 Hz samples and jogs of the same motion
+  std::string previewed_hash, executed_hash;
   std::string execution_result;
   std::optional<TrackingStatus> tracking;  // when the session monitored the execution
   double tolerance_rad = 0.0;

@@ -57,9 +57,12 @@ struct DemoTaskOutcome {
   int waypoints = 0;
   double plan_duration_s = 0.0;
   std::string validation_summary;
-  std::uint64_t plan_bytes_measured = 0;  // what execute_plan sent
-  net::CommandBytes bytes;                // plan-then-send vs 100 Hz jogs of the same motion
-  std::string execution_result;           // Session::last_execution_result()
+  std::uint64_t plan_bytes_measured = 0;  // what execute_plan sent (the plan message)
+  std::uint64_t plan_message_bytes = 0;   // the same message's size, computed
+  net::CommandBytes bytes;       // 100 Hz samples (one message) vs 100 Hz jogs of the same motion
+  std::string previewed_hash;    // the plan_hash of the trajectory the preview showed
+  std::string executed_hash;     // the robot server's hash of the trajectory it ran
+  std::string execution_result;  // Session::last_execution_result()
 };
 
 // Errors name the phase ("start", "rehearsal: grasp", "preview", "execution") and the

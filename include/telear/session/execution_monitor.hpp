@@ -46,6 +46,12 @@ struct TrackingStatus {
   double rms_error = 0.0;  // RMS over samples of max_abs_error
   int samples = 0;
 
+  // The robot's own servo command (RobotState::q_commanded) against the same trajectory:
+  // 0 up to floating point when the robot runs exactly the trajectory the operator previewed
+  // (the plan is the message, docs/trajectory.md). Over all samples that carried one.
+  double max_command_deviation = 0.0;
+  int command_samples = 0;
+
   bool cancel = false;  // latched
   std::string cancel_message;
 };
@@ -64,8 +70,10 @@ class ExecutionMonitor {
 
   // A state sample at robot time `robot_time` (s).
   const TrackingStatus& update(double robot_time, const Eigen::VectorXd& q_real);
-  // A state sample at `plan_time` s into the trajectory (the robot's own report).
-  const TrackingStatus& update_at_plan_time(double plan_time, const Eigen::VectorXd& q_real);
+  // A state sample at `plan_time` s into the trajectory (the robot's own report), with the
+  // robot's commanded position when it reports one (empty: none).
+  const TrackingStatus& update_at_plan_time(double plan_time, const Eigen::VectorXd& q_real,
+                                            const Eigen::VectorXd& q_commanded = {});
 
   const TrackingStatus& status() const { return status_; }
   bool cancelled() const { return status_.cancel; }

@@ -13,10 +13,17 @@
 //   start_preview()     the ghost animates along the time-parameterized plan (play, pause,
 //                       scrub through preview()); update() advances it
 //   validate_plan()     limits, speeds, sampling, and the plan's start vs the real robot now
-//   execute_plan()      validates again, samples at options.sample_rate_hz, sends the whole
-//                       trajectory as one ExecuteTrajectory; an ExecutionMonitor then compares
-//                       every new robot state with the plan at the robot's own trajectory time
-//                       and cancels the robot beyond the tolerance, saying where and how much
+//   execute_plan()      validates again and sends the plan itself (ExecutePlan: waypoints,
+//                       timing options and the plan_hash of the trajectory the preview showed,
+//                       docs/trajectory.md); the server times it with the same function and
+//                       runs it only when its hash is ours. An ExecutionMonitor then compares
+//                       every new robot state with that trajectory at the robot's own
+//                       trajectory time and cancels the robot beyond the tolerance, saying
+//                       where and how much
+//
+// Preview = execution. start_preview() and execute_plan() both take Plan::trajectory() and
+// record its plan_hash: previewed_hash() and executed_hash() (the server's answer) are equal
+// exactly when the robot runs what the operator last previewed.
 //
 // Delay-aware display. update() measures the age of the newest decoded frame (now - capture
 // time, on this machine's clock after the clock-offset estimate) and of the robot state, and
@@ -159,7 +166,13 @@ class Session {
   void stop_preview();
   PlanPreview* preview() { return preview_ ? &*preview_ : nullptr; }
   ValidationReport validate_plan() const;
-  Result<net::TrajectoryAck> execute_plan();
+  // The plan_hash of the plan as it stands (its Plan::trajectory()), what execute_plan sends.
+  Result<std::string> plan_hash() const;
+  Result<net::PlanAck> execute_plan();
+  // The hash of the trajectory the last preview showed, and the server's hash of the last
+  // executed plan (empty until then).
+  const std::string& previewed_hash() const { return previewed_hash_; }
+  const std::string& executed_hash() const { return executed_hash_; }
   Status cancel_execution(const std::string& reason = "cancelled by the operator");
   const ExecutionMonitor* monitor() const { return monitor_ ? &*monitor_ : nullptr; }
   bool executing() const { return executing_; }
@@ -198,6 +211,7 @@ class Session {
   std::optional<PlanPreview> preview_;
   std::optional<ExecutionMonitor> monitor_;
   std::string executing_id_;
+  std::string previewed_hash_, executed_hash_;
   bool executing_ = false;
   int executions_ = 0;
   std::string last_result_;
