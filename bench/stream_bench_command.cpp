@@ -204,6 +204,7 @@ struct RobotResult {
   int calls = 0;
   net::CommandBytes bytes_100hz;  // plan sampled at the jog rate
   net::CommandBytes bytes_10hz;   // plan sampled at 10 Hz (still validates: same profile)
+  std::uint64_t plan_message_bytes = 0;  // the plan itself (ExecutePlan, docs/trajectory.md)
   double motion_s = 0;
 };
 
@@ -260,6 +261,9 @@ Result<RobotResult> measure_robot(const StreamBenchOptions& options) {
   if (!at_10) return at_10.error();
   result.bytes_100hz = net::compare_command_bytes(*at_100, kJogRateHz, lease, "plan-1");
   result.bytes_10hz = net::compare_command_bytes(*at_10, kJogRateHz, lease, "plan-1");
+  auto message = net::plan_message_bytes(*trajectory, lease, "plan-1");
+  if (!message) return message.error();
+  result.plan_message_bytes = *message;
   return result;
 }
 
@@ -315,6 +319,7 @@ void print_robot(const RobotResult& r, std::ostream& out) {
                   static_cast<double>(r.bytes_100hz.jog_stream_bytes) / static_cast<double>(bytes))
         << " |\n";
   };
+  row("ExecutePlan (the plan message)", 1, r.plan_message_bytes);
   row("ExecuteTrajectory, sampled at 100 Hz", 1, r.bytes_100hz.plan_bytes);
   row("ExecuteTrajectory, sampled at 10 Hz", 1, r.bytes_10hz.plan_bytes);
   row("Jog (joint target) at 100 Hz", r.bytes_100hz.jog_messages, r.bytes_100hz.jog_stream_bytes);
@@ -359,7 +364,8 @@ nlohmann::json to_json(const RobotResult& r) {
           {"motion_s", r.motion_s},
           {"jog_rate_hz", kJogRateHz},
           {"command_bytes_plan_100hz", bytes(r.bytes_100hz)},
-          {"command_bytes_plan_10hz", bytes(r.bytes_10hz)}};
+          {"command_bytes_plan_10hz", bytes(r.bytes_10hz)},
+          {"command_bytes_plan_message", r.plan_message_bytes}};
 }
 
 // The servers log every command and stream at info; a benchmark of thousands of calls keeps
