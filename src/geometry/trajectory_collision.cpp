@@ -37,6 +37,9 @@ double relative_speed(const RobotCollisionModel& robot, const Eigen::VectorXd& D
   return speed;
 }
 
+// The share of its interval a pair may be looked at early, with another pair that is due.
+constexpr double kEarlyLook = 0.2;
+
 struct PairState {
   double d_last = 0.0;  // lower bound on the distance at s_last (exact, early-stopped or cheap)
   double s_last = 0.0;  // where (segment parameter)
@@ -163,9 +166,12 @@ class Walker {
                      " (raise max_evaluations or the resolution)"};
       }
       checker_.set_configuration(q0 + D * s, fraction);
-      // Only the pairs due are looked at (the checker poses only their bodies).
+      // Only the pairs due are looked at (the checker poses only their bodies), with those
+      // that have used most of their interval: looking early is safe, and one configuration
+      // then serves several pairs instead of one each.
       for (std::size_t p = 0; p < pairs.size(); ++p) {
-        if (state_[p].s_next > s) continue;
+        const PairState& st = state_[p];
+        if (st.s_next > s && st.s_next - s > kEarlyLook * (st.s_next - st.s_last)) continue;
         update_pair(p, s, time_of);
         schedule(p, s);
       }
