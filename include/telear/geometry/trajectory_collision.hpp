@@ -18,10 +18,11 @@
 //     contact by more than resolution_m of penetration (far below a 2 mm plate), and samples a
 //     pair that might set the minimum clearance every max_step_m of motion (near its minimum
 //     the distance is flat; a vertex passing a face is sampled within max_step_m / 2).
-// Only the pairs due are looked at (their bodies posed), so a pair a few millimetres apart by
-// design (a spherical wrist's housings) is looked at often without shortening anyone else's
-// step. A look first takes the distance of the two sides' axis-aligned bounds (no FCL query):
-// kept as the pair's bound while it is above the smallest clearance so far and above
+// Only the pairs due are looked at (their bodies posed; with them any pair that has used 80 %
+// of its interval, so that one configuration serves several pairs), so a pair a few millimetres
+// apart by design (a spherical wrist's housings) is looked at often without shortening anyone
+// else's step. A look first takes the distance of the two sides' axis-aligned bounds (no FCL
+// query): kept as the pair's bound while it is above the smallest clearance so far and above
 // refresh_fraction of the pair's last computed distance. Bounds carry over from one segment to
 // the next (less the motion since their look), except across a gripper change.
 //
