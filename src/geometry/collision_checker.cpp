@@ -333,6 +333,12 @@ PairDistance CollisionChecker::distance(const CollisionPair& pair, double relati
   return impl_->distance(pair, relative_error);
 }
 
+double CollisionChecker::distance_lower_bound(const CollisionPair& pair) {
+  const Owner& a = impl_->body(static_cast<std::size_t>(pair.body));
+  const Owner& b = impl_->other(pair);
+  return a.aabb.overlap(b.aabb) ? 0.0 : a.aabb.distance(b.aabb);
+}
+
 bool CollisionChecker::in_contact(const CollisionPair& pair) {
   double depth = 0.0;
   Eigen::Vector3d p;

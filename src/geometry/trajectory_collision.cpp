@@ -37,10 +37,16 @@ double relative_speed(const RobotCollisionModel& robot, const Eigen::VectorXd& D
   return speed;
 }
 
+// The share of its interval a pair may be looked at early, with another pair that is due.
+constexpr double kEarlyLook = 0.2;
+
 struct PairState {
-  double d_last = 0.0;  // distance when last computed
+  double d_last = 0.0;  // lower bound on the distance at s_last (exact, early-stopped or cheap)
   double s_last = 0.0;  // where (segment parameter)
+  double s_next = 0.0;  // where it must be looked at again (> 1: not on this segment)
   double speed = 0.0;   // motion bound per unit s on this segment
+  double d_ref = 0.0;   // the last distance computed by FCL
+  bool known = false;   // d_last holds (false before the first look and after a gripper change)
   bool in_contact = false;
   std::size_t episode = 0;  // index into the collisions while in contact
 };
@@ -74,6 +80,39 @@ class Walker {
   TrajectoryCheckReport report;
 
  private:
+  double record_for(const CollisionPair& pair) const {
+    return pair.other_body >= 0 ? report.min_clearance.distance_m
+                                : report.min_workspace_clearance.distance_m;
+  }
+
+  // Per-pair advancement: after a look at s the pair is due again at s + ds / speed, where ds
+  // of relative motion is the larger of
+  //   - what its bound may lose before it falls below refresh_fraction of itself or below the
+  //     smallest clearance so far (below either it must be looked at: it might set a new
+  //     minimum), and
+  //   - the conservative-advancement step min(max(d, resolution_m), max_step_m), which cannot
+  //     miss a contact by more than resolution_m and samples a pair near the minimum clearance
+  //     every max_step_m of motion.
+  // Each pair keeps its own pace: a pair a few millimetres apart by design (a wrist's housings)
+  // is looked at often, but no longer shortens every other pair's step.
+  void schedule(std::size_t p, double s) {
+    PairState& st = state_[p];
+    if (!(st.speed > 0.0)) {
+      st.s_next = 2.0;  // nothing moves one against the other on this segment
+      return;
+    }
+    double ds = 0.0;
+    if (st.in_contact) {
+      ds = options_.contact_step_m;
+    } else {
+      const double d = st.d_last;
+      const double keep =
+          d - std::max(options_.refresh_fraction * d, record_for(checker_.pairs()[p]));
+      ds = std::max(keep, std::min(std::max(d, options_.resolution_m), options_.max_step_m));
+    }
+    st.s_next = s + ds / st.speed;
+  }
+
   // One segment from q0 (s = 0) to q1 (s = 1) starting at time t0.
   Status walk(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
               const core::TrapezoidalProfile* profile, double t0) {
@@ -87,49 +126,55 @@ class Walker {
         body_speed[b] += std::abs(D[static_cast<Eigen::Index>(j)]) * robot.lever[j][b];
       }
     }
-    for (std::size_t p = 0; p < pairs.size(); ++p) {
-      state_[p].speed = pairs[p].other_body >= 0
-                            ? relative_speed(robot, D, static_cast<std::size_t>(pairs[p].body),
-                                             static_cast<std::size_t>(pairs[p].other_body))
-                            : body_speed[static_cast<std::size_t>(pairs[p].body)];
-    }
-    const double fastest =
-        body_speed.empty() ? 0.0 : *std::max_element(body_speed.begin(), body_speed.end());
     const double fraction = trajectory_.gripper_at(t0).value_or(options_.initial_gripper_fraction);
+    // The fingers move with the gripper between segments: every bound is re-established then.
+    if (fraction != fraction_) {
+      for (PairState& st : state_) st.known = false;
+      fraction_ = fraction;
+    }
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+      PairState& st = state_[p];
+      // A bound carried over from the previous segment (its end is this one's start): what it
+      // may have lost since its last look; then looked at now, or scheduled from it.
+      if (st.known && !st.in_contact) {
+        st.d_last = std::max(0.0, st.d_last - (1.0 - st.s_last) * st.speed);
+      }
+      st.s_last = 0.0;
+      st.speed = pairs[p].other_body >= 0
+                     ? relative_speed(robot, D, static_cast<std::size_t>(pairs[p].body),
+                                      static_cast<std::size_t>(pairs[p].other_body))
+                     : body_speed[static_cast<std::size_t>(pairs[p].body)];
+      const bool due =
+          !st.known || st.in_contact ||
+          st.d_last < std::max(options_.refresh_fraction * st.d_ref, record_for(pairs[p])) ||
+          profile == nullptr;
+      if (due) {
+        st.s_next = 0.0;
+      } else {
+        schedule(p, 0.0);
+      }
+    }
     auto time_of = [&](double s) { return profile ? t0 + time_at(*profile, s) : t0; };
 
-    double s = 0.0;
-    Eigen::VectorXd q = q0;
-    bool first = true;
     while (true) {
+      double s = 2.0;
+      for (const PairState& st : state_) s = std::min(s, st.s_next);
+      if (s > 1.0) break;
       if (++report.evaluations > options_.max_evaluations) {
         return Error{"collision check: more than " + std::to_string(options_.max_evaluations) +
                      " configurations on segment " + std::to_string(segment_) +
                      " (raise max_evaluations or the resolution)"};
       }
-      q = q0 + D * s;
-      checker_.set_configuration(q, fraction);
-      double step = fastest > 0.0 ? options_.max_step_m / fastest : 1.0;
+      checker_.set_configuration(q0 + D * s, fraction);
+      // Only the pairs due are looked at (the checker poses only their bodies), with those
+      // that have used most of their interval: looking early is safe, and one configuration
+      // then serves several pairs instead of one each.
       for (std::size_t p = 0; p < pairs.size(); ++p) {
-        PairState& st = state_[p];
-        double bound = first ? 0.0 : st.d_last - (s - st.s_last) * st.speed;
-        // Re-computed when its bound has shrunk, or when it could set a new minimum clearance
-        // (so that the minimum is sampled every step, not every refresh).
-        const double record = pairs[p].other_body >= 0 ? report.min_clearance.distance_m
-                                                       : report.min_workspace_clearance.distance_m;
-        if (first || st.in_contact || bound < options_.refresh_fraction * st.d_last ||
-            bound < record) {
-          update_pair(p, s, time_of);
-          bound = st.in_contact ? 0.0 : st.d_last;
-        }
-        if (st.speed > 0.0) {
-          const double floor = st.in_contact ? options_.contact_step_m : options_.resolution_m;
-          step = std::min(step, std::max(bound, floor) / st.speed);
-        }
+        const PairState& st = state_[p];
+        if (st.s_next > s && st.s_next - s > kEarlyLook * (st.s_next - st.s_last)) continue;
+        update_pair(p, s, time_of);
+        schedule(p, s);
       }
-      first = false;
-      if (s >= 1.0) break;
-      s = std::min(1.0, s + step);
     }
     return Status::Ok();
   }
@@ -138,6 +183,18 @@ class Walker {
   void update_pair(std::size_t p, double s, const TimeOf& time_of) {
     const CollisionPair& pair = checker_.pairs()[p];
     PairState& st = state_[p];
+    st.s_last = s;
+    st.known = true;
+    // The bounds' distance first (no FCL query): enough while it stays above the smallest
+    // clearance so far (the pair cannot set a new minimum) and above refresh_fraction of the
+    // last exact distance (so that the step it allows stays long). Not in contact then.
+    if (!st.in_contact) {
+      const double cheap = checker_.distance_lower_bound(pair);
+      if (cheap > record_for(pair) && cheap >= options_.refresh_fraction * st.d_ref) {
+        st.d_last = cheap;
+        return;
+      }
+    }
     // A quick bound first (meshes: an early-stopped search); exact only where the pair might
     // set a new minimum clearance.
     PairDistance d = checker_.distance(pair, options_.relative_error);
@@ -148,9 +205,9 @@ class Walker {
       d = checker_.distance(pair, 0.0);
       ++report.distance_queries;
     }
-    st.s_last = s;
     const bool contact = d.distance_m <= 0.0 && checker_.in_contact(pair);
     st.d_last = std::max(d.lower_bound_m, 0.0);
+    st.d_ref = st.d_last;
     const std::string& body = checker_.robot().bodies[static_cast<std::size_t>(pair.body)].name;
     if (contact) {
       const double depth = checker_.penetration_depth(pair);
@@ -181,6 +238,7 @@ class Walker {
   const core::Trajectory& trajectory_;
   const TrajectoryCheckOptions& options_;
   std::vector<PairState> state_;
+  double fraction_ = -1.0;  // the gripper fraction the bounds hold for
   int segment_ = 0;
 };
 

@@ -107,6 +107,9 @@ class CollisionChecker {
   // two points of the shapes (>= the true one) and lower_bound_m = distance_m /
   // (1 + relative_error) <= the true one. Primitives are always exact.
   PairDistance distance(const CollisionPair& pair, double relative_error = 0.0);
+  // A cheap lower bound on the pair's distance at the configuration set: the distance between
+  // the two sides' axis-aligned bounds in the base frame (0 when they overlap), no FCL query.
+  double distance_lower_bound(const CollisionPair& pair);
   bool in_contact(const CollisionPair& pair);
   // Penetration depth of a pair in contact (0 when not, or when FCL gives none).
   double penetration_depth(const CollisionPair& pair, Eigen::Vector3d* point_base = nullptr);

@@ -8,15 +8,23 @@
 //   L_b = sum_j |D_j| lever(j, b),
 // so a pair at distance d cannot touch before ds = d / L: conservative advancement. Body
 // against object: L = L_b. Two bodies on frames k_a <= k_b: a common rigid motion keeps their
-// distance, and only joints k_a.. move b against a, so L = sum_{j >= k_a} |D_j| lever(j, b). Each
-// step advances s by the smallest such ds over the pairs, never below resolution_m / L (a pair
-// closer than the resolution may then penetrate by at most resolution_m before it is seen: far
-// below a 2 mm plate), and never beyond max_step_m of motion of any body (so that the clearance is
-// sampled finely enough: near its minimum the distance is flat, and a step of h misses it by about
-// h^2 / 8 rho for a surface of curvature radius rho). A pair's distance is re-computed only once
-// its lower bound d_last - (s - s_last) L has fallen below refresh_fraction * d_last, or below the
-// smallest clearance found so far (it might set a new minimum), so pairs far apart cost one query
-// per segment.
+// distance, and only joints k_a.. move b against a, so L = sum_{j >= k_a} |D_j| lever(j, b).
+//
+// Per-pair advancement: each pair keeps its own next look. After a look at s that found d (a
+// lower bound) the pair is due again at s + ds / L, ds the larger of
+//   - d minus the larger of refresh_fraction * d and the smallest clearance so far (below
+//     either the pair must be looked at again: it might set a new minimum), and
+//   - min(max(d, resolution_m), max_step_m): conservative advancement, which cannot pass a
+//     contact by more than resolution_m of penetration (far below a 2 mm plate), and samples a
+//     pair that might set the minimum clearance every max_step_m of motion (near its minimum
+//     the distance is flat; a vertex passing a face is sampled within max_step_m / 2).
+// Only the pairs due are looked at (their bodies posed; with them any pair that has used 80 %
+// of its interval, so that one configuration serves several pairs), so a pair a few millimetres
+// apart by design (a spherical wrist's housings) is looked at often without shortening anyone
+// else's step. A look first takes the distance of the two sides' axis-aligned bounds (no FCL
+// query): kept as the pair's bound while it is above the smallest clearance so far and above
+// refresh_fraction of the pair's last computed distance. Bounds carry over from one segment to
+// the next (less the motion since their look), except across a gripper change.
 //
 // Result: every contact episode (a pair from first contact to separation) with the time the
 // contact starts (within resolution_m of motion), the pair and the deepest penetration seen
@@ -56,7 +64,9 @@ struct PlanClearance {
 struct TrajectoryCheckOptions {
   double resolution_m = 1e-4;    // the least step of motion near a surface (> 0)
   double contact_step_m = 1e-3;  // motion between depth samples while in contact (> 0)
-  double max_step_m = 0.02;      // the most any body moves in one step (> 0)
+  // The most a pair that might set a new minimum clearance moves between two looks (> 0): a
+  // vertex passing a face is then sampled within max_step_m / 2 of its closest approach.
+  double max_step_m = 0.005;
   // Mesh pairs are first bounded by a search stopped at this relative error (>= 0; the bound
   // is distance / (1 + relative_error)), and computed exactly only where they might set a new
   // minimum clearance.
