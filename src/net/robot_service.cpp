@@ -312,12 +312,15 @@ grpc::Status RobotService::Jog(grpc::ServerContext* context, const v1::JogReques
     response->set_ik_config(outcome->ik_config);
   } else {
     if (guard_) {
-      // The arm moves at this velocity until the jog expires: check the line to where it
-      // would be then.
+      // The arm moves at this velocity until the jog expires (or a joint reaches its limit):
+      // check the line to where it would be then.
       const core::RobotState state = driver_.snapshot().state;
       const double horizon_s =
           static_cast<double>(std::max<std::int64_t>(request->expires_ns() - arrived_ns, 0)) * 1e-9;
-      const Eigen::VectorXd q_end = state.q + jog->velocity * horizon_s;
+      const core::RobotModel& model = *driver_.model();
+      const Eigen::VectorXd q_end = (state.q + jog->velocity * horizon_s)
+                                        .cwiseMax(model.lower_limits())
+                                        .cwiseMin(model.upper_limits());
       if (Status s = guard_->check_jog(*driver_.model(), state.q, q_end, state.gripper); !s) {
         return finish(context, what, invalid(s.error()));
       }

@@ -205,6 +205,25 @@ TEST(RobotCollisionAuthority, JogsTowardTheTableStopBeforeTheMargin) {
   EXPECT_LT(clearance, kDefaultSafetyMarginM + 0.011);  // within one step of it
 }
 
+TEST(RobotCollisionAuthority, AVelocityJogIntoTheTableIsRefused) {
+  auto server = create_server(table_file(), above_table());
+  ASSERT_TRUE(server) << server.error().message;
+  auto stub = stub_for(**server);
+  const v1::Lease lease = acquire(*stub);
+  // The shoulder down at 0.3 rad/s for 2 s: the line to where it would be then crosses the
+  // table top (through_table() is 0.41 rad of shoulder below).
+  v1::JogRequest jog;
+  jog.set_lease_id(lease.lease_id());
+  jog.set_expires_ns(core::monotonic_ns() + 2'000'000'000);
+  for (double v : {0.0, -0.3, 0.0, 0.0, 0.0, 0.0}) jog.mutable_joint_velocity()->add_qd(v);
+  v1::JogResponse response;
+  const grpc::Status status = stub->Jog(context().get(), jog, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("'table_top'"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_LT((q_of(read_state(*stub)) - above_table()).cwiseAbs().maxCoeff(), 1e-9);
+}
+
 TEST(RobotCollisionAuthority, GetInfoReturnsTheWorkspace) {
   auto server = create_server(table_file(), above_table());
   ASSERT_TRUE(server) << server.error().message;
