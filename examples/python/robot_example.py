@@ -1,6 +1,11 @@
 #!/usr/bin/python3
 """A telear robot client in Python: read the state, take the lease, run a short trajectory.
 
+Then, when the server checks collisions against a workspace (GetInfo's collision_checked and
+workspace_yaml; `telear robot-server --workspace data/workspaces/puma560_table.yaml`), it
+sends the PUMA 560 a trajectory that ends with the hand inside the table and prints the
+server's refusal: the server is the collision authority and the arm does not move.
+
 Run with Debian's python3-grpcio and python3-grpc-tools (/usr/bin/python3, see
 docs/network.md):
 
@@ -39,6 +44,27 @@ def load_stubs(out_dir):
     sys.path.insert(0, out_dir)
     from telear.v1 import robot_pb2, robot_pb2_grpc  # noqa: E402
     return robot_pb2, robot_pb2_grpc
+
+
+# The PUMA 560 with its wrist centre 10 cm below the table top's upper face (x 0.45 m,
+# y -0.60 m, z 0.30 m in the base frame), hand pointing down: from the robot's IK.
+Q_INTO_TABLE = [-0.7259, -0.7761, -0.9089, 0.0, -1.4566, 0.0]
+
+
+def cosine_move(q0, q1, joints, rate_hz):
+    """(t, q) samples from q0 to q1 on a cosine time scaling, within half the limits."""
+    duration_s = 0.5
+    for a, b, j in zip(q0, q1, joints):
+        d = abs(b - a)
+        duration_s = max(duration_s, d * math.pi / (2 * 0.5 * j.max_velocity),
+                         math.sqrt(d * math.pi ** 2 / (2 * 0.5 * j.max_acceleration)))
+    n = int(math.ceil(duration_s * rate_hz))
+    samples = []
+    for k in range(n + 1):
+        t = k / n * duration_s
+        s = 0.5 * (1.0 - math.cos(math.pi * t / duration_s))
+        samples.append((t, [a + (b - a) * s for a, b in zip(q0, q1)]))
+    return samples
 
 
 def cosine_samples(q0, joint, delta, duration_s, rate_hz):
@@ -129,8 +155,26 @@ def main():
             if state.last_trajectory_status != pb.TRAJECTORY_STATUS_COMPLETED:
                 print("not completed: " + state.last_trajectory_message, file=sys.stderr)
                 return 1
+
+            # 5. Into the table: the server checks the path against its workspace and refuses.
+            if not info.workspace_yaml or info.model_name != "puma560":
+                print("the server checks no PUMA 560 workspace: the colliding trajectory is "
+                      "skipped (start it with --workspace data/workspaces/puma560_table.yaml)")
+            else:
+                into = pb.ExecuteTrajectoryRequest(
+                    lease_id=lease.lease_id,
+                    trajectory_id=f"python-example-table-{os.getpid()}-{int(time.time())}")
+                for t, q in cosine_move(list(state.q), Q_INTO_TABLE, info.joints, rate_hz=50):
+                    into.waypoints.add(time_from_start_ns=round(t * 1e9), q=q)
+                try:
+                    stub.ExecuteTrajectory(into, metadata=metadata, timeout=10)
+                    print("the trajectory into the table was accepted", file=sys.stderr)
+                    return 1
+                except grpc.RpcError as refusal:
+                    print(f"trajectory into the table refused ({refusal.code().name}): "
+                          f"{refusal.details()}")
         finally:
-            # 5. Give the lease back.
+            # 6. Give the lease back.
             stop.set()
             beat.join()
             stub.ReleaseLease(pb.ReleaseLeaseRequest(lease_id=lease.lease_id),

@@ -42,6 +42,13 @@ void add_robot_server_command(CLI::App& app, Commands& commands) {
                                "initial joint values (rad) or a named configuration");
   robot_server_app->add_option("--log-level", robot_server.log_level,
                                "trace, debug, info, warn, error or off");
+  robot_server_app->add_option(
+      "--workspace", robot_server.workspace,
+      "workspace YAML every motion is checked against (and GetInfo hands to clients)");
+  robot_server_app
+      ->add_option("--safety-margin", robot_server.safety_margin_m,
+                   "m: jogs keep every link at least this far from workspace objects")
+      ->capture_default_str();
   commands.push_back(
       {robot_server_app, [options] { return run_robot_server(*options, std::cout, std::cerr); }});
 }

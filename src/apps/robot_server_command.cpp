@@ -55,6 +55,9 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   server_options.allow_observers = options.allow_observers;
   server_options.tls_cert_file = options.tls_cert;
   server_options.tls_key_file = options.tls_key;
+  server_options.robot_description = *description;
+  server_options.workspace_file = options.workspace;
+  server_options.safety_margin_m = options.safety_margin_m;
   const std::int64_t heartbeat_ns = std::int64_t{options.heartbeat_ms} * 1'000'000;
   server_options.lease.default_heartbeat_ns = heartbeat_ns;
   server_options.lease.min_heartbeat_ns =

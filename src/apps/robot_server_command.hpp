@@ -5,11 +5,15 @@
 // ephemeral port), and shuts down cleanly on the signal: streams are ended, the arm stops.
 // The log (spdlog, telear/net/server_log.hpp: one line per command with the client's name)
 // goes to stderr at --log-level (trace, debug, info, warn, error, off); a bad level exits 2.
+// The server is the collision authority (docs/network.md): every trajectory, plan and jog is
+// checked for self-collision and, with --workspace FILE, against that workspace, jogs keeping
+// --safety-margin metres from its objects.
 
 #include <ostream>
 #include <string>
 
 #include "apps/robot_arguments.hpp"
+#include "telear/net/motion_collision_guard.hpp"
 
 namespace telear::cli {
 
@@ -21,6 +25,8 @@ struct RobotServerCommandOptions : RobotArguments {
   int heartbeat_ms = 250;          // default lease heartbeat period
   std::string initial_q;           // joint values or a named configuration; empty: zero
   std::string log_level = "info";  // trace | debug | info | warn | error | off
+  std::string workspace;           // workspace YAML; empty: self-collision only
+  double safety_margin_m = net::kDefaultSafetyMarginM;
 };
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,

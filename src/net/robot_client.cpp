@@ -34,6 +34,9 @@ RobotInfo info_from_proto(const v1::RobotInfo& message) {
   info.model_name = message.model_name();
   info.urdf = message.urdf();
   info.tip_link = message.tip_link();
+  info.collision_checked = message.collision_checked();
+  info.workspace_yaml = message.workspace_yaml();
+  info.safety_margin_m = message.safety_margin_m();
   for (const v1::JointInfo& j : message.joints()) {
     info.joints.push_back(JointInfo{j.name(), j.prismatic(), j.min_position(), j.max_position(),
                                     j.max_velocity(), j.max_acceleration()});

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <utility>
 
+#include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/bearer_auth.hpp"
 #include "telear/net/robot_service.hpp"
 
@@ -45,6 +46,13 @@ Status RobotServerOptions::validate() const {
   }
   if (limits.max_waypoints < 1) return Error{"max_waypoints must be at least 1"};
   if (!(shutdown_deadline_s >= 0.0)) return Error{"shutdown_deadline_s must be >= 0"};
+  if (!workspace_file.empty() && !robot_description) {
+    return Error{"workspace_file '" + workspace_file +
+                 "' needs the robot's description (robot_description) to check against"};
+  }
+  if (!(safety_margin_m >= 0.0 && safety_margin_m < 1.0)) {
+    return Error{"safety_margin_m must be in [0, 1) m, got " + std::to_string(safety_margin_m)};
+  }
   return Status::Ok();
 }
 
@@ -68,11 +76,31 @@ Result<std::unique_ptr<RobotServer>> RobotServer::create(std::unique_ptr<core::R
     credentials = grpc::SslServerCredentials(ssl);
   }
 
+  std::unique_ptr<MotionCollisionGuard> guard;
+  if (options.robot_description) {
+    core::Workspace workspace;  // empty: self-collision only
+    std::string workspace_yaml;
+    if (!options.workspace_file.empty()) {
+      auto text = read_file(options.workspace_file, "workspace");
+      if (!text) return Error{"robot server: " + text.error().message};
+      auto loaded = geometry::load_workspace(options.workspace_file,
+                                             options.robot_description->package_paths);
+      if (!loaded) return Error{"robot server: " + loaded.error().message};
+      workspace = std::move(loaded).value();
+      workspace_yaml = std::move(text).value();
+    }
+    auto made = MotionCollisionGuard::create(*options.robot_description, workspace,
+                                             std::move(workspace_yaml), options.safety_margin_m);
+    if (!made) return Error{"robot server: " + made.error().message};
+    guard = std::move(made).value();
+  }
+
   std::unique_ptr<RobotServer> server(new RobotServer());
   server->options_ = options;
   server->driver_ = std::move(driver);
-  server->service_ = std::make_unique<RobotService>(
-      *server->driver_, BearerAuth(token, options.allow_observers), options.lease, options.limits);
+  server->service_ =
+      std::make_unique<RobotService>(*server->driver_, BearerAuth(token, options.allow_observers),
+                                     options.lease, options.limits, std::move(guard));
 
   grpc::ServerBuilder builder;
   builder.AddListeningPort(options.listen_address, credentials, &server->port_);

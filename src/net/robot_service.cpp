@@ -4,11 +4,13 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <utility>
 
 #include "telear/core/clock.hpp"
+#include "telear/core/motion_command.hpp"
 #include "telear/core/plan_hash.hpp"
 #include "telear/net/plan_message.hpp"
 #include "telear/net/robot_messages.hpp"
@@ -69,10 +71,11 @@ std::chrono::steady_clock::time_point steady_time(std::int64_t ns) {
 }  // namespace
 
 RobotService::RobotService(core::RobotDriver& driver, BearerAuth auth, LeaseOptions lease_options,
-                           CommandLimits limits)
+                           CommandLimits limits, std::unique_ptr<MotionCollisionGuard> guard)
     : driver_(driver),
       auth_(std::move(auth)),
       limits_(limits),
+      guard_(std::move(guard)),
       lease_(lease_options, [this](const LeaseLapse& lapse) { on_lease_lapse(lapse); }) {}
 
 RobotService::~RobotService() {
@@ -137,6 +140,11 @@ grpc::Status RobotService::GetInfo(grpc::ServerContext* context, const v1::GetIn
   response->set_start_tolerance(driver_.start_tolerance());
   response->set_max_waypoints(limits_.max_waypoints);
   response->set_server_time_ns(core::monotonic_ns());
+  if (guard_) {
+    response->set_workspace_yaml(guard_->workspace_yaml());
+    response->set_safety_margin_m(guard_->safety_margin_m());
+    response->set_collision_checked(true);
+  }
   return grpc::Status::OK;
 }
 
@@ -276,7 +284,24 @@ grpc::Status RobotService::Jog(grpc::ServerContext* context, const v1::JogReques
   if (Status s = check_jog_expiry(request->expires_ns(), arrived_ns, limits_); !s) {
     return finish(context, what, invalid(s.error()));
   }
-  if (jog->motion) {
+  if (jog->motion && guard_) {
+    // The target is resolved here, checked with its path, and handed to the driver as a joint
+    // target, so the arm goes exactly where the check said it may.
+    const core::RobotState state = driver_.snapshot().state;
+    const core::MotionOutcome planned = core::apply_motion(*driver_.model(), state.q, *jog->motion);
+    if (!planned.accepted) return finish(context, what, invalid(Error{planned.rejection.message}));
+    if (Status s = guard_->check_jog(*driver_.model(), state.q, planned.q, state.gripper); !s) {
+      return finish(context, what, invalid(s.error()));
+    }
+    auto outcome = driver_.jog(core::JointTarget{planned.q}, request->expires_ns());
+    if (!outcome) {
+      return finish(context, what, {driver_rejection_code(), outcome.error().message});
+    }
+    const Eigen::VectorXd& q = outcome->q;
+    response->mutable_target_q()->Assign(q.data(), q.data() + q.size());
+    if (planned.singularity) response->set_singularity_warning(planned.singularity->message);
+    response->set_ik_config(planned.ik_config);
+  } else if (jog->motion) {
     auto outcome = driver_.jog(*jog->motion, request->expires_ns());
     if (!outcome) {
       return finish(context, what, {driver_rejection_code(), outcome.error().message});
@@ -285,8 +310,24 @@ grpc::Status RobotService::Jog(grpc::ServerContext* context, const v1::JogReques
     response->mutable_target_q()->Assign(q.data(), q.data() + q.size());
     if (outcome->singularity) response->set_singularity_warning(outcome->singularity->message);
     response->set_ik_config(outcome->ik_config);
-  } else if (Status s = driver_.jog_velocity(jog->velocity, request->expires_ns()); !s) {
-    return finish(context, what, {driver_rejection_code(), s.error().message});
+  } else {
+    if (guard_) {
+      // The arm moves at this velocity until the jog expires (or a joint reaches its limit):
+      // check the line to where it would be then.
+      const core::RobotState state = driver_.snapshot().state;
+      const double horizon_s =
+          static_cast<double>(std::max<std::int64_t>(request->expires_ns() - arrived_ns, 0)) * 1e-9;
+      const core::RobotModel& model = *driver_.model();
+      const Eigen::VectorXd q_end = (state.q + jog->velocity * horizon_s)
+                                        .cwiseMax(model.lower_limits())
+                                        .cwiseMin(model.upper_limits());
+      if (Status s = guard_->check_jog(*driver_.model(), state.q, q_end, state.gripper); !s) {
+        return finish(context, what, invalid(s.error()));
+      }
+    }
+    if (Status s = driver_.jog_velocity(jog->velocity, request->expires_ns()); !s) {
+      return finish(context, what, {driver_rejection_code(), s.error().message});
+    }
   }
   return finish(context, what, grpc::Status::OK);
 }
@@ -300,7 +341,7 @@ std::optional<RobotService::Execution> RobotService::first_acceptance(const std:
 }
 
 grpc::Status RobotService::start(const std::string& id, const core::TimedWaypoints& waypoints,
-                                 Execution& execution) {
+                                 const core::Trajectory* timed, Execution& execution) {
   const core::RobotState state = driver_.snapshot().state;
   if (state.estop) {
     return {grpc::StatusCode::FAILED_PRECONDITION, "trajectory " + quoted(id) +
@@ -319,6 +360,11 @@ grpc::Status RobotService::start(const std::string& id, const core::TimedWaypoin
                                    driver_.start_tolerance());
       !s) {
     return invalid(s.error());
+  }
+  if (guard_) {
+    Status s = timed ? guard_->check_trajectory(*timed, state.gripper)
+                     : guard_->check_samples(*driver_.model(), waypoints, state.gripper);
+    if (!s) return invalid(Error{"trajectory " + quoted(id) + " rejected: " + s.error().message});
   }
   auto accepted = driver_.execute(id, waypoints);
   if (!accepted) return {driver_rejection_code(), accepted.error().message};
@@ -358,7 +404,8 @@ grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
   auto waypoints = timed_waypoints_from_request(*driver_.model(), *request, limits_);
   if (!waypoints) return finish(context, what, invalid(waypoints.error()));
   Execution execution;
-  if (grpc::Status s = start(id, *waypoints, execution); !s.ok()) return finish(context, what, s);
+  if (grpc::Status s = start(id, *waypoints, nullptr, execution); !s.ok())
+    return finish(context, what, s);
   fill(execution);
   return finish(context, what + ", " + core::format_number(execution.duration_s, "%.3f s"),
                 grpc::Status::OK);
@@ -399,7 +446,8 @@ grpc::Status RobotService::ExecutePlan(grpc::ServerContext* context,
     return finish(context, what,
                   invalid(Error{"plan " + quoted(id) + " rejected: " + samples.error().message}));
   Execution execution;
-  if (grpc::Status s = start(id, *samples, execution); !s.ok()) return finish(context, what, s);
+  if (grpc::Status s = start(id, *samples, &received->trajectory, execution); !s.ok())
+    return finish(context, what, s);
   accepted_plan_hashes_[id] = received->hash;
   fill(execution);
   response->set_plan_hash(received->hash);

@@ -55,6 +55,8 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   net::RobotServerOptions robot_options;
   robot_options.listen_address = "127.0.0.1:0";
   robot_options.token = servers->token_;
+  robot_options.robot_description = options.robot_description;
+  robot_options.workspace_file = options.workspace_file;
   auto robot = net::RobotServer::create(std::move(*driver), robot_options);
   if (!robot) return Error{"embedded robot server: " + robot.error().message};
   servers->robot_ = std::move(*robot);

@@ -61,6 +61,11 @@ struct RobotInfo {
   double heartbeat_period_s = 0.25;
   double start_tolerance = 0.0;
   int max_waypoints = 0;
+  // The collision authority (docs/network.md): whether the server checks motions, the
+  // workspace file's text it checks against (empty: none) and the jog safety margin.
+  bool collision_checked = false;
+  std::string workspace_yaml;
+  double safety_margin_m = 0.0;
 };
 
 // One state message, as the client received it.

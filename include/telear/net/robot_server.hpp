@@ -17,11 +17,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "telear/core/result.hpp"
+#include "telear/core/robot_description.hpp"
 #include "telear/core/robot_driver.hpp"
 #include "telear/net/lease_manager.hpp"
+#include "telear/net/motion_collision_guard.hpp"
 #include "telear/net/robot_command_validation.hpp"
 
 namespace telear::net {
@@ -39,6 +42,15 @@ struct RobotServerOptions {
   LeaseOptions lease;
   CommandLimits limits;
   double shutdown_deadline_s = 1.0;
+
+  // The collision authority (telear/net/motion_collision_guard.hpp). With the driver's robot
+  // description every trajectory, plan and jog is checked for self-collision before motion;
+  // with a workspace file (YAML, core/workspace.hpp; it needs the description) also against
+  // the workspace, and GetInfo hands the file's text to clients. Neither: no checks.
+  std::optional<core::RobotDescription> robot_description;
+  std::string workspace_file;
+  // Jogs may not bring a link closer than this to a workspace object (m, >= 0).
+  double safety_margin_m = kDefaultSafetyMarginM;
 
   // Says which field is wrong and why.
   Status validate() const;

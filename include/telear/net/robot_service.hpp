@@ -6,6 +6,7 @@
 //   the lease (telear/net/lease_manager.hpp; not EStop)  -> PERMISSION_DENIED
 //   validation (telear/net/robot_command_validation.hpp) -> INVALID_ARGUMENT
 //   the arm's state (e-stop, busy)                -> FAILED_PRECONDITION
+//   collisions (telear/net/motion_collision_guard.hpp)   -> INVALID_ARGUMENT
 //
 // and only then reaches the driver, so a rejected command never moves the arm. Every command
 // is logged once (spdlog, info when accepted, warn when not):
@@ -37,6 +38,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -45,6 +47,7 @@
 #include "telear/net/bearer_auth.hpp"
 #include "telear/net/client_name.hpp"
 #include "telear/net/lease_manager.hpp"
+#include "telear/net/motion_collision_guard.hpp"
 #include "telear/net/robot_command_validation.hpp"
 #include "telear/v1/robot.grpc.pb.h"
 
@@ -56,8 +59,9 @@ inline constexpr double kPlanExecutionRateHz = 100.0;
 class RobotService final : public v1::RobotService::Service {
  public:
   // `driver` must outlive the service.
+  // Without a guard no motion is collision-checked.
   RobotService(core::RobotDriver& driver, BearerAuth auth, LeaseOptions lease_options,
-               CommandLimits limits);
+               CommandLimits limits, std::unique_ptr<MotionCollisionGuard> guard = nullptr);
   ~RobotService() override;
 
   // Ends every state stream and refuses new ones; stops the lease watchdog.
@@ -110,8 +114,10 @@ class RobotService final : public v1::RobotService::Service {
   std::optional<Execution> first_acceptance(const std::string& id) const;
   // The arm's state (e-stop, busy, start state), then the driver; records the acceptance
   // (execute_mutex_ held). The status is the refusal, if any.
+  // `timed`, when given, is what the waypoints sample: it is collision-checked instead of
+  // the straight lines between the samples.
   grpc::Status start(const std::string& id, const core::TimedWaypoints& waypoints,
-                     Execution& execution);
+                     const core::Trajectory* timed, Execution& execution);
 
   // Authentication, then the lease; logs and returns the refusal, if any.
   grpc::Status admit(grpc::ServerContext* context, const std::string& what,
@@ -125,6 +131,7 @@ class RobotService final : public v1::RobotService::Service {
   core::RobotDriver& driver_;
   const BearerAuth auth_;
   const CommandLimits limits_;
+  const std::unique_ptr<MotionCollisionGuard> guard_;  // null: no collision checks
   LeaseManager lease_;
 
   std::mutex execute_mutex_;  // one trajectory acceptance at a time

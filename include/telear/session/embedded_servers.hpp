@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "telear/core/result.hpp"
@@ -35,6 +36,11 @@ struct EmbeddedServersOptions {
   int supersample = 1;       // the video's anti-aliasing (1 is fastest)
   double noise_sigma = 1.0;  // grey levels
   std::uint64_t seed = 1;
+  // The robot server's collision authority (net/robot_server.hpp): the robot checked and its
+  // workspace (empty: self-collision only); neither: no checks. serve_robot does not set them
+  // yet: the demo's grasp touches the box, which the server's static workspace would refuse.
+  std::optional<core::RobotDescription> robot_description;
+  std::string workspace_file;
 };
 
 // Options that serve this robot: its URDF and tip on GetInfo (so that a client draws the same
