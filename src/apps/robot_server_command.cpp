@@ -55,7 +55,10 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   server_options.allow_observers = options.allow_observers;
   server_options.tls_cert_file = options.tls_cert;
   server_options.tls_key_file = options.tls_key;
-  server_options.robot_description = *description;
+  // Collision checking (workspace and self) comes with --workspace: the shipped PUMA's body
+  // primitives touch each other at ordinary poses (docs/collision.md, "Known limits"), so
+  // self-collision alone would refuse everyday motions of the default robot.
+  if (!options.workspace.empty()) server_options.robot_description = *description;
   server_options.workspace_file = options.workspace;
   server_options.safety_margin_m = options.safety_margin_m;
   const std::int64_t heartbeat_ns = std::int64_t{options.heartbeat_ms} * 1'000'000;

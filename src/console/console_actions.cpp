@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "telear/core/angles.hpp"
+#include "telear/session/plan_collision.hpp"
 
 namespace telear::console {
 
@@ -110,6 +111,9 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
     case ActionKind::kValidate: {
       const session::ValidationReport report = s.validate_plan();
       ui.validation_text = report.summary();
+      ui.validation_collision =
+          report.collision ? session::collision_summary(*report.collision) : std::string();
+      ui.validation_collision_free = !report.collision || report.collision->collision_free();
       if (!report.ok()) return Error{report.summary()};
       ui.last_message = "validation: " + report.summary();
       return Status::Ok();

@@ -29,6 +29,7 @@
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
+#include "telear/geometry/workspace_meshes.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/framebuffer_readback.hpp"
@@ -175,9 +176,12 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
                                          ? core::default_workspace_file(arm->description.name)
                                          : options.workspace;
   if (!options.workspace.empty() || std::filesystem::exists(workspace_file)) {
-    auto workspace = core::load_workspace_file(workspace_file);
+    auto workspace = geometry::load_workspace(workspace_file);  // meshes too: checked
     if (!workspace) return workspace.error();
     impl->workspace = std::move(*workspace);
+    // The session checks the plan and the ghost against the operator's copy of the scene.
+    impl->session_options.description = arm->description;
+    impl->session_options.workspace = impl->workspace;
   }
 
   // [SECTION] calibration and servers

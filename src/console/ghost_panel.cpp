@@ -108,6 +108,15 @@ void draw_ghost_panel(PanelContext& ctx, const PanelLayout& layout) {
   draw_cartesian_jog(ctx, ActionKind::kGhostCartesian);
   const Eigen::Vector3d p = s.ghost().T_base_tool().translation();
   ImGui::Text("tool at (%.3f, %.3f, %.3f) m", p.x(), p.y(), p.z());
+  if (s.checks_collisions()) {
+    // The ghost's clearance where it is drawn: red on contact, amber under the safety margin.
+    using Level = session::ClearanceState::Level;
+    const session::ClearanceState& c = s.ghost_clearance();
+    const ImVec4 colour = c.level == Level::kContact        ? ImVec4(1.0f, 0.3f, 0.3f, 1)
+                          : c.level == Level::kWithinMargin ? ImVec4(1.0f, 0.7f, 0.1f, 1)
+                                                            : ImVec4(0.6f, 0.9f, 0.6f, 1);
+    ImGui::TextColored(colour, "%s", c.summary().c_str());
+  }
   section("Gripper and configurations");
   if (ImGui::Button("Open")) ctx.act({.kind = ActionKind::kGhostGripper, .value = 1.0});
   ImGui::SameLine();

@@ -115,6 +115,11 @@ void draw_plan_panel(PanelContext& ctx, const PanelLayout& layout) {
   if (ImGui::Button("Cancel")) ctx.act(simple(ActionKind::kCancel));
   ImGui::SameLine();
   ImGui::TextWrapped("%s", ui.validation_text.c_str());
+  if (!ui.validation_collision.empty()) {
+    ImGui::TextColored(
+        ui.validation_collision_free ? ImVec4(0.6f, 0.9f, 0.6f, 1) : ImVec4(1.0f, 0.3f, 0.3f, 1),
+        "%s", ui.validation_collision.c_str());
+  }
   if (const session::ExecutionMonitor* monitor = s.monitor()) {
     const session::TrackingStatus& st = monitor->status();
     char overlay[64];

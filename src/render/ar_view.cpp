@@ -106,6 +106,12 @@ void ArView::draw_eye(int index, const ArViewInput& input, bool video_ok) {
   ghost.style = options_.ghost_style;
   ghost.alpha = options_.ghost_alpha;
   ghost.colour = options_.ghost_colour;
+  ghost.highlight_colour = options_.contact_colour;
+  for (int k = 0; k < body_.part_count(); ++k) {
+    const auto& frames = input.ghost_highlight_frames;
+    if (std::find(frames.begin(), frames.end(), body_.parts[k].link) != frames.end())
+      ghost.highlight_parts.push_back(k);
+  }
   DrawOptions reported;
   reported.alpha = options_.reported_alpha;
   reported.colour = options_.reported_colour;

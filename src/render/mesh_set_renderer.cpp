@@ -1,5 +1,7 @@
 #include "telear/render/mesh_set_renderer.hpp"
 
+#include <algorithm>
+
 #include <cassert>
 #include <cstddef>
 
@@ -96,12 +98,21 @@ void MeshSetRenderer::set_matrix(int part, const Eigen::Matrix4f& T_base_part) {
   matrices_.set_sub_data(GL_UNIFORM_BUFFER, part * kMat4Bytes, kMat4Bytes, T_base_part.data());
 }
 
-void MeshSetRenderer::draw_parts(bool lines) const {
+void MeshSetRenderer::draw_parts(bool lines, const DrawOptions& options) const {
   for (std::size_t k = 0; k < parts_.size(); ++k) {
     const Part& part = parts_[k];
     const GLsizei count = lines ? part.line_indices : part.triangle_indices;
     if (count == 0) continue;
     glUniform1i(u_part_, static_cast<GLint>(k));
+    const bool highlight = std::find(options.highlight_parts.begin(), options.highlight_parts.end(),
+                                     static_cast<int>(k)) != options.highlight_parts.end();
+    if (highlight) {
+      glUniform1i(u_use_colour_, 1);
+      glUniform3fv(u_colour_, 1, options.highlight_colour.data());
+    } else if (!options.highlight_parts.empty()) {  // back to the set's own colour
+      glUniform1i(u_use_colour_, options.colour ? 1 : 0);
+      if (options.colour) glUniform3fv(u_colour_, 1, options.colour->data());
+    }
     part.vao.bind();
     const std::size_t offset =
         lines ? static_cast<std::size_t>(part.triangle_indices) * sizeof(std::uint32_t) : 0;
@@ -140,7 +151,7 @@ void MeshSetRenderer::draw(const Eigen::Matrix4f& projection, const Eigen::Matri
     glDisable(GL_CULL_FACE);
   }
   if (options.alpha >= 1.0f) {
-    draw_parts(lines);
+    draw_parts(lines, options);
     glDisable(GL_CULL_FACE);
     return;
   }
@@ -150,12 +161,12 @@ void MeshSetRenderer::draw(const Eigen::Matrix4f& projection, const Eigen::Matri
   if (!lines) {
     // Depth of the nearest ghost surface first, then blend only that surface.
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    draw_parts(false);
+    draw_parts(false, options);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
   }
-  draw_parts(lines);
+  draw_parts(lines, options);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);

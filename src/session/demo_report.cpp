@@ -1,11 +1,13 @@
 #include "telear/session/demo_report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "telear/core/number_format.hpp"
 #include "telear/net/latency_stages.hpp"
 #include "telear/net/latency_summary.hpp"
+#include "telear/session/plan_collision.hpp"
 #include "telear/vision/calibration_file.hpp"
 
 namespace telear::session {
@@ -36,6 +38,27 @@ nlohmann::json latency_json(const std::vector<double>& v) {
 
 double ratio(std::uint64_t numerator, std::uint64_t denominator) {
   return denominator > 0 ? static_cast<double>(numerator) / static_cast<double>(denominator) : 0.0;
+}
+
+// A plan's check: its first contact, or its smallest clearance to the workspace.
+nlohmann::json check_json(const geometry::TrajectoryCheckReport& check) {
+  nlohmann::json j;
+  j["collision_free"] = check.collision_free();
+  if (!check.collision_free()) {
+    const geometry::PlanCollision& c = check.collisions.front();
+    j["time_s"] = c.time_s;
+    j["link"] = c.body;
+    j["object"] = c.other;
+    j["depth_m"] = c.depth_m;
+    j["contacts"] = check.collisions.size();
+  } else {
+    const geometry::PlanClearance& m = check.min_workspace_clearance;
+    j["min_clearance_m"] = std::isfinite(m.distance_m) ? nlohmann::json(m.distance_m) : nullptr;
+    j["time_s"] = m.time_s;
+    j["link"] = m.body;
+    j["object"] = m.other;
+  }
+  return j;
 }
 
 }  // namespace
@@ -106,6 +129,13 @@ std::string demo_report_json(const DemoFacts& facts) {
                        {"video_warning", r.video_warning},
                        {"video_frames", r.video_frames},
                        {"key_frames", r.key_frames}};
+  if (facts.first_rehearsal_check || facts.final_plan_check) {
+    nlohmann::json collision;
+    if (facts.first_rehearsal_check)
+      collision["first_rehearsal"] = check_json(*facts.first_rehearsal_check);
+    if (facts.final_plan_check) collision["final_plan"] = check_json(*facts.final_plan_check);
+    report["collision"] = collision;
+  }
   report["seconds"] = facts.seconds;
   return report.dump(2) + "\n";
 }
@@ -161,6 +191,10 @@ std::string demo_report_markdown(const DemoFacts& facts) {
           " mrad of the preview";
   }
   md += ")";
+  if (facts.first_rehearsal_check && facts.final_plan_check) {
+    md += "\n- collision: the first rehearsal, " + collision_summary(*facts.first_rehearsal_check) +
+          "; the executed plan, " + collision_summary(*facts.final_plan_check);
+  }
   md += "\n- display: " + std::to_string(facts.ar_to_vr) + " AR -> VR and " +
         std::to_string(facts.vr_to_ar) + " VR -> AR switches (injected delay " +
         std::to_string(facts.injected_delay_ms) + " ms)\n- total " + fixed(facts.seconds, 1) +

@@ -1,7 +1,9 @@
 #include "telear/session/demo_task.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
+#include <utility>
 
 #include "telear/core/number_format.hpp"
 
@@ -9,6 +11,8 @@ namespace telear::session {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+constexpr double kMaxLift_m = 0.015;  // the most a step is raised off the table
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -33,6 +37,44 @@ Status start(Session& session, SessionRecorder& recorder, const DemoTaskInputs& 
   recorder.ticks(static_cast<int>(inputs.fps));
   if (auto k = recorder.key_frame("keyframe_1_start"); !k) return k.error();
   return Status::Ok();
+}
+
+// The rehearsal that goes wrong: start, above the box, then down through the table top beside
+// it. Validation must fail on the contact; the preview is stopped just inside it for the key
+// frame, then the plan is discarded. Returns the plan's collision check.
+Result<geometry::TrajectoryCheckReport> rehearse_into_the_table(
+    Session& session, SessionRecorder& recorder, const DemoTaskInputs& inputs,
+    const GraspChoice& grasp, const std::function<void(const std::string&)>& note) {
+  const core::RobotModel& model = session.model();
+  const Eigen::Vector3d beside = inputs.box_base_m + Eigen::Vector3d(0.0, -0.1, 0.0);
+  const Eigen::Vector3d above(beside.x(), beside.y(), inputs.box_base_m.z() + 0.12);
+  const Eigen::Vector3d into(beside.x(), beside.y(), inputs.table_surface_z_m - 0.05);
+  if (Status s = session.add_ghost_waypoint(0.0, "start"); !s) return s.error();
+  for (const auto& [label, position] : {std::pair{"above the table", above}, {"down", into}}) {
+    const core::MotionOutcome moved = session.move_ghost(
+        core::CartesianTarget{grasp.T_base_tool(model, inputs.grip_in_link_m, position)});
+    if (!moved.accepted) return Error{std::string(label) + ": " + moved.rejection.message};
+    if (Status s = session.add_ghost_waypoint(0.0, label); !s) return s.error();
+    recorder.ticks(static_cast<int>(inputs.fps / 3));
+  }
+  const ValidationReport validation = session.validate_plan();
+  note("validation of the first rehearsal: " + validation.summary());
+  if (!validation.collision) return Error{"the plan was not checked for collisions"};
+  const geometry::TrajectoryCheckReport check = *validation.collision;
+  if (!check.collision_free()) {
+    // Just inside the contact (its start is where the surfaces meet: nothing to see yet).
+    const geometry::PlanCollision& first = check.collisions.front();
+    if (Status s = session.start_preview({.loop = false, .speed = 1.0}); !s) return s.error();
+    session.preview()->seek(std::min(first.time_s + 0.15, session.preview()->duration()));
+    session.preview()->pause();
+    recorder.ticks(static_cast<int>(inputs.fps / 2));
+    note("contact shown: " + session.ghost_clearance().summary());
+    if (auto k = recorder.key_frame("keyframe_2a_collision"); !k) return k.error();
+    session.stop_preview();
+  }
+  session.plan().clear();
+  if (Status s = session.ghost_to_real(); !s) return s.error();
+  return check;
 }
 
 }  // namespace
@@ -78,12 +120,30 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
   outcome.grasp = *grasp;
   note("grasp: " + grasp->note());
   (void)session.plan().set_scales(0.5, 0.5);
+  if (session.checks_collisions()) {
+    auto check = rehearse_into_the_table(session, recorder, inputs, *grasp, note);
+    if (!check) return phase_error("rehearsal: into the table", check.error().message);
+    outcome.first_rehearsal_check = std::move(*check);
+  }
   if (Status s = session.add_ghost_waypoint(0.0, "start"); !s)
     return phase_error("rehearsal", s.error().message);
   for (const TaskStep& task : steps) {
     const core::MotionOutcome moved = session.move_ghost(core::CartesianTarget{
         grasp->T_base_tool(model, inputs.grip_in_link_m, task.grip_position_base_m)});
     if (!moved.accepted) return phase_error("rehearsal: " + task.label, moved.rejection.message);
+    // The correction the first rehearsal taught: where the ghost touches the table (the
+    // fingertips reach below the box's centre), raise it 5 mm at a time, as an operator
+    // watching the clearance would, within the grasp model's 2 cm capture distance.
+    for (double lift = 0.005; session.ghost_clearance().level == ClearanceState::Level::kContact &&
+                              lift <= kMaxLift_m + 1e-9;
+         lift += 0.005) {
+      const core::MotionOutcome raised = session.move_ghost(core::CartesianTarget{
+          grasp->T_base_tool(model, inputs.grip_in_link_m,
+                             task.grip_position_base_m + Eigen::Vector3d(0.0, 0.0, lift))});
+      if (!raised.accepted) break;
+      note(task.label + ": raised " + core::format_number(lift * 1e3, "%.0f") +
+           " mm off the table (" + session.ghost_clearance().summary() + ")");
+    }
     if (task.gripper) (void)session.ghost().set_gripper(*task.gripper);
     if (Status s = session.add_ghost_waypoint(0.0, task.label); !s)
       return phase_error("rehearsal: " + task.label, s.error().message);
@@ -121,6 +181,7 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
   step(6, "validating, executing on the robot and monitoring");
   const ValidationReport validation = session.validate_plan();
   outcome.validation_summary = validation.summary();
+  outcome.final_plan_check = validation.collision;
   note("validation: " + outcome.validation_summary);
   if (!validation.ok())
     return phase_error("execution", "the plan is not valid: " + outcome.validation_summary);

@@ -11,6 +11,7 @@
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
+#include "telear/geometry/workspace_meshes.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/session/calibration_pipeline.hpp"
@@ -119,11 +120,17 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   auto marker = robot->marker();
   if (!marker) return marker.error();
   session_options.marker = GripperMarker{marker->id, marker->corners_flange()};
-  auto workspace = core::load_workspace_file(core::default_workspace_file(robot->description.name));
+  auto workspace = geometry::load_workspace(core::default_workspace_file(robot->description.name));
   if (!workspace) return workspace.error();
   const core::WorkspaceObject* graspable = workspace->first_graspable();
   if (!graspable) return Error{"the workspace " + workspace->source + " has nothing to pick"};
   const Eigen::Vector3d box = graspable->T_base_object.translation();
+  const double table_z = workspace->support_height(box.head<2>(), box.z());
+  // Not yet: with SessionOptions::description and workspace set the session would check the
+  // plan against this scene, and run_demo_task would first rehearse into the table. The
+  // PUMA's pick-and-place path does not pass that check today (its upper arm sweeps through
+  // the table top on the way from the ready pose, and the body file's pedestal touches the
+  // upper arm at the grasp: docs/demo.md, "Collision check"), so the demo would stop there.
   auto session_or = Session::create(model, session_options);
   if (!session_or) return session_or.error();
   Session& session = **session_or;
@@ -152,6 +159,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   task.camera_base_m = cameras.left.T_cam_base.inverse().translation();
   task.fps = options.fps;
   task.delay_ms = options.delay_ms;
+  task.table_surface_z_m = table_z;
   auto outcome = run_demo_task(session, recorder, task, progress);
   if (!outcome) return outcome.error();
 
@@ -178,6 +186,8 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   }
   facts.plan_duration_s = outcome->plan_duration_s;
   facts.waypoints = outcome->waypoints;
+  facts.first_rehearsal_check = outcome->first_rehearsal_check;
+  facts.final_plan_check = outcome->final_plan_check;
   facts.ar_to_vr = session.display().ar_to_vr_switches();
   facts.vr_to_ar = session.display().vr_to_ar_switches();
   facts.switches = session.display().switches();

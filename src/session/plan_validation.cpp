@@ -43,13 +43,16 @@ std::string segment_name(int segment) {
 // each says where (segment and time) and what (link and object).
 template <typename Error, typename Warning>
 void check_collisions(geometry::CollisionChecker& checker, const core::Trajectory& trajectory,
-                      double safety_margin_m, const Error& error, const Warning& warning) {
+                      const ValidationOptions& options,
+                      std::optional<geometry::TrajectoryCheckReport>& out, const Error& error,
+                      const Warning& warning) {
+  const double safety_margin_m = options.safety_margin_m;
   if (!(safety_margin_m >= 0.0) || !std::isfinite(safety_margin_m)) {
     error(-1, -1,
           "safety_margin_m must be a finite number >= 0, got " + format("%g", safety_margin_m));
     return;
   }
-  auto report = geometry::check_trajectory(checker, trajectory);
+  auto report = geometry::check_trajectory(checker, trajectory, options.collision_check);
   if (!report) {
     error(-1, -1, "the plan could not be checked for collisions: " + report.error().message);
     return;
@@ -67,6 +70,7 @@ void check_collisions(geometry::CollisionChecker& checker, const core::Trajector
                 " mm from " + m.other + " (" + m.body + ") at t = " + format("%.2f", m.time_s) +
                 " s, within the safety margin of " + format("%.0f", safety_margin_m * 1e3) + " mm");
   }
+  out = std::move(*report);
 }
 
 }  // namespace
@@ -114,8 +118,10 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
   auto warning = [&](int waypoint, int joint, std::string message) {
     warnings.push_back({IssueSeverity::kWarning, waypoint, joint, std::move(message)});
   };
+  std::optional<geometry::TrajectoryCheckReport> collision;
   auto finish = [&]() {
     ValidationReport report;
+    report.collision = std::move(collision);
     report.issues = std::move(errors);
     report.issues.insert(report.issues.end(), warnings.begin(), warnings.end());
     return report;
@@ -180,8 +186,7 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
   }
 
   if (options.collision_checker)
-    check_collisions(*options.collision_checker, *trajectory, options.safety_margin_m, error,
-                     warning);
+    check_collisions(*options.collision_checker, *trajectory, options, collision, error, warning);
 
   // Near-singular segments: one warning per segment, at its closest sample.
   core::KinematicsData data(model);

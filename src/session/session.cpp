@@ -47,7 +47,28 @@ Result<std::unique_ptr<Session>> Session::create(core::RobotModelPtr model,
   if (!(options.monitor.tolerance > 0.0)) {
     return Error{"session: the execution monitor's tolerance must be > 0"};
   }
+  if (!(std::isfinite(options.safety_margin_m) && options.safety_margin_m >= 0.0)) {
+    return Error{"session: safety_margin_m must be a finite number >= 0"};
+  }
+  if (Status s = options.plan_check.validate(); !s) {
+    return Error{"session: plan_check: " + s.error().message};
+  }
+  std::unique_ptr<geometry::CollisionChecker> checker;
+  if (options.description && options.workspace) {
+    // The graspable objects are the task's targets, not obstacles: the fingers touch the box
+    // at the grasp on purpose. (A carried object is then not checked against the scene.)
+    core::Workspace obstacles = *options.workspace;
+    std::erase_if(obstacles.objects, [](const core::WorkspaceObject& o) { return o.graspable; });
+    auto made = geometry::make_collision_checker(*options.description, obstacles);
+    if (!made) return Error{"session: collision checker: " + made.error().message};
+    checker = std::make_unique<geometry::CollisionChecker>(std::move(*made));
+  }
   std::unique_ptr<Session> session(new Session(std::move(model), std::move(options)));
+  if (checker) {
+    session->checker_ = std::move(checker);
+    session->clearance_.emplace(*session->checker_, session->options_.safety_margin_m);
+    session->update_clearance(session->ghost_.q(), session->ghost_.gripper());
+  }
   session->robot_ = std::make_unique<net::RobotClient>(session->options_.robot);
   session->vision_ = std::make_unique<net::VisionClient>(session->options_.vision);
   if (session->options_.cameras && session->options_.marker) {
@@ -143,7 +164,18 @@ core::MotionOutcome Session::move_ghost(const core::MotionCommand& command) {
   } else if (outcome.singularity) {
     log(SessionEvent::Kind::kWarning, "ghost: " + outcome.singularity->message);
   }
+  if (outcome.accepted && !preview_ && !executing_) update_clearance(ghost_.q(), ghost_.gripper());
   return outcome;
+}
+
+const ClearanceState& Session::ghost_clearance() const {
+  static const ClearanceState unchecked;
+  return clearance_ ? clearance_->state() : unchecked;
+}
+
+void Session::update_clearance(const Eigen::VectorXd& q, double gripper) {
+  if (!clearance_ || q.size() != model_->dof()) return;
+  view_.ghost_contact_frames = clearance_->update(q, gripper).contact_frames;
 }
 
 std::optional<Eigen::VectorXd> Session::real_q() const {
@@ -157,6 +189,7 @@ Status Session::ghost_to_real() {
   if (!state) return Error{"ghost = real: no state from the robot server yet"};
   Status s = ghost_.reset_to(state->state.q, state->state.gripper);
   if (!s.ok()) log(SessionEvent::Kind::kError, "ghost = real: " + s.error().message);
+  if (s.ok() && !preview_ && !executing_) update_clearance(ghost_.q(), ghost_.gripper());
   return s;
 }
 
@@ -219,6 +252,9 @@ ValidationReport Session::validate_plan() const {
   ValidationOptions options;
   if (start_tolerance_) options.start_tolerance = *start_tolerance_;
   options.sample_rate_hz = options_.sample_rate_hz;
+  options.collision_checker = checker_.get();
+  options.safety_margin_m = options_.safety_margin_m;
+  options.collision_check = options_.plan_check;
   return session::validate_plan(plan_, real_q(), options);
 }
 
@@ -310,6 +346,7 @@ void Session::update(double dt) {
     view_.ghost_q = ghost_.q();
     view_.ghost_gripper = ghost_.gripper();
   }
+  update_clearance(view_.ghost_q, view_.ghost_gripper);
 
   update_frame(t);
   update_registration(t);

@@ -13,6 +13,7 @@ render::ArViewInput ar_view_input(const SessionView& view) {
   }
   input.ghost_q = view.ghost_q;
   input.ghost_gripper = view.ghost_gripper;
+  input.ghost_highlight_frames = view.ghost_contact_frames;
   if (view.real) {
     input.reported_q = view.real->state.q;
     input.reported_gripper = view.real->state.gripper;

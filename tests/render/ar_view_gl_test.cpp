@@ -131,5 +131,38 @@ TEST_F(ArViewTest, TheReportedGhostIsDrawnWhereTheRobotIs) {
   EXPECT_EQ(test::count_covered(view->eye(0).read_rgb(), kRed), ghost_only);
 }
 
+// Pixels clearly red (red well above green and blue): the contact highlight, not the ghost's
+// blue tint nor the grey VR background.
+long count_contact_red(const core::Image& image) {
+  long n = 0;
+  for (std::size_t i = 0; i + 2 < image.pixels.size(); i += 3) {
+    const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+    if (r > g + 50 && r > b + 50) ++n;
+  }
+  return n;
+}
+
+TEST_F(ArViewTest, GhostLinksInContactAreDrawnRed) {
+  auto view = ArView::create(*model, body, cameras, {},
+                             {.layout = StereoLayout::kSeparate, .status_border_px = 0});
+  ASSERT_TRUE(view) << view.error().message;
+  ArViewInput input;
+  input.mode = ViewMode::kVr;  // no (red) video under the ghost
+  input.ghost_q = model->named_configuration("qn").value();
+  view->render(input);
+  EXPECT_EQ(count_contact_red(view->eye(0).read_rgb()), 0);
+
+  input.ghost_highlight_frames = {3};  // the forearm
+  view->render(input);
+  const long forearm = count_contact_red(view->eye(0).read_rgb());
+  EXPECT_GT(forearm, 100);
+  input.ghost_highlight_frames = {0, 1, 2, 3, 4, 5, 6};  // the whole arm: more of it is red
+  view->render(input);
+  EXPECT_GT(count_contact_red(view->eye(0).read_rgb()), forearm + 100);
+  input.ghost_highlight_frames.clear();
+  view->render(input);
+  EXPECT_EQ(count_contact_red(view->eye(0).read_rgb()), 0);
+}
+
 }  // namespace
 }  // namespace telear::render

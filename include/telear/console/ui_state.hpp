@@ -63,7 +63,10 @@ struct UiState {
 
   // [SECTION] feedback and automation
   std::string validation_text;  // the last validation's summary
-  std::string last_message;     // the result of the last action, shown in the status bar
+  // Its collision check in one line (first contact or clearance; empty: not checked).
+  std::string validation_collision;
+  bool validation_collision_free = true;
+  std::string last_message;  // the result of the last action, shown in the status bar
   bool last_failed = false;
   std::string calibration_note;  // where the drawn calibration came from
   std::optional<std::string> screenshot_request;

@@ -8,6 +8,7 @@
 //   - the reported ghost: where the robot *reported* it is now, fainter (reported_alpha), so
 //     the operator sees how far the video lags the robot (the video should show the arm
 //     where the reported ghost is, minus the video's age).
+// Ghost links in contact (ArViewInput::ghost_highlight_frames) are drawn red.
 // VR mode (late or stopped video): no video; the whole scene is drawn virtually — the
 // workspace objects, the arm opaque at its reported pose, the ghost over it.
 //
@@ -47,6 +48,7 @@ struct ArViewOptions {
   DrawOptions::Style ghost_style = DrawOptions::Style::kSolid;
   float ghost_alpha = 0.55f;
   Eigen::Vector3f ghost_colour{0.2f, 0.75f, 1.0f};
+  Eigen::Vector3f contact_colour{0.95f, 0.08f, 0.08f};  // highlighted ghost links
   bool show_reported_ghost = true;
   float reported_alpha = 0.25f;
   Eigen::Vector3f reported_colour{1.0f, 0.85f, 0.2f};
@@ -61,6 +63,10 @@ struct ArViewInput {
   const core::Image* right = nullptr;
   Eigen::VectorXd ghost_q;     // the ghost (commanded / rehearsed pose)
   double ghost_gripper = 1.0;  // 0 closed .. 1 open
+  // Chain frames (0 = base .. n) whose ghost parts are drawn in the highlight colour
+  // (ArViewOptions::contact_colour): the links in contact at the ghost's pose. A frame's
+  // parts are the link and what rides on it (the gripper's fingers ride on frame n).
+  std::vector<int> ghost_highlight_frames;
   Eigen::VectorXd reported_q;  // empty: not drawn
   double reported_gripper = 1.0;
 };

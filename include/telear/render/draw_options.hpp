@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 namespace telear::render {
 
@@ -29,6 +30,10 @@ struct DrawOptions {
   Style style = Style::kSolid;
   float alpha = 1.0f;                     // 1: opaque; < 1: ghost
   std::optional<Eigen::Vector3f> colour;  // replaces the vertex colours (e.g. a ghost tint)
+  // Parts (indices into the set) drawn in highlight_colour instead, lit and blended like the
+  // rest: the operator's eye goes to them (the ghost's links in contact with an obstacle).
+  std::vector<int> highlight_parts;
+  Eigen::Vector3f highlight_colour{0.95f, 0.08f, 0.08f};
   Lighting lighting;
   // Skip triangles facing away from the camera (counter-clockwise = front, with a projection
   // following view_math.hpp). The body's meshes are closed and wound outwards, so this only

@@ -53,7 +53,7 @@ class MeshSetRenderer {
     GLsizei triangle_indices = 0;
     GLsizei line_indices = 0;
   };
-  void draw_parts(bool lines) const;
+  void draw_parts(bool lines, const DrawOptions& options) const;
 
   std::vector<Part> parts_;
   Buffer matrices_;  // uniform buffer, kMaxParts mat4

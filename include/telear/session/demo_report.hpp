@@ -12,7 +12,9 @@
 // max_command_deviation_rad, plan_duration_s, waypoints, previewed_hash, executed_hash,
 // executed_is_previewed}, display.{ar_to_vr, vr_to_ar,
 // injected_delay_ms, switches}, outputs.{video, video_codec, video_warning, video_frames,
-// key_frames}, seconds. Latency stages: the keys of net::kLatencyStages
+// key_frames}, collision.{first_rehearsal, final_plan}.{collision_free, time_s, link, object,
+// depth_m (the first contact) | min_clearance_m, link, object (the workspace clearance)}
+// (absent without a collision check), seconds. Latency stages: the keys of net::kLatencyStages
 // (include/telear/net/latency_stages.hpp), capture_to_encode, encode, send_queue, network, decode,
 // total (nearest-rank percentiles).
 
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "telear/core/result.hpp"
+#include "telear/geometry/trajectory_collision.hpp"
 #include "telear/net/command_bytes.hpp"
 #include "telear/session/display_mode.hpp"
 #include "telear/session/execution_monitor.hpp"
@@ -52,6 +55,10 @@ struct DemoFacts {
   std::vector<ModeSwitch> switches;
   int injected_delay_ms = 0;
   double seconds = 0.0;  // the whole demo so far
+  // The collision checks of the first rehearsal (into the table) and of the executed plan,
+  // when the session checked collisions.
+  std::optional<geometry::TrajectoryCheckReport> first_rehearsal_check;
+  std::optional<geometry::TrajectoryCheckReport> final_plan_check;
 };
 
 std::string demo_report_json(const DemoFacts& facts);

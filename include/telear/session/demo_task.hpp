@@ -4,12 +4,20 @@
 // with a window of injected video delay, recording every display tick and the key frames
 // through a SessionRecorder (include/telear/session/session_recorder.hpp).
 //
+// With a collision-checking session (SessionOptions::description and workspace) a first
+// rehearsal goes wrong on purpose: from above the box the gripper is lowered 5 cm into the
+// table top, 0.1 m along -y of the box; validation fails naming the contact, the preview is
+// stopped just after the contact starts (the links in contact are drawn red: key frame
+// keyframe_2a_collision), and that plan is discarded. While the real task is rehearsed, a step
+// where the ghost touches something is raised 5 mm at a time (up to 15 mm).
+//
 // The task: approach 0.12 m above the box, grasp (close the gripper, dwell 1.2 s), lift, carry
 // to 0.2 m along -y of the base, place (open, dwell 1.2 s), retreat 0.12 m up; the gripper's
 // rotation is chosen once for all steps (include/telear/session/grasp_choice.hpp). The plan is
 // timed at half the arm's speed and acceleration limits, previewed at 2x; during execution,
 // from 40 % of the plan's duration for 3 s, the video is held back by `delay_ms` (the display
-// switches to VR and back). Key frames: keyframe_1_start, keyframe_2_rehearsal_grasp,
+// switches to VR and back). Key frames: keyframe_1_start, keyframe_2a_collision (with a
+// checker), keyframe_2_rehearsal_grasp,
 // keyframe_3_preview, keyframe_4_execution, keyframe_5_vr_while_video_late (when VR was
 // shown), keyframe_6_done. Runs on the recorder's (OpenGL) thread; seconds of wall time.
 
@@ -50,6 +58,9 @@ struct DemoTaskInputs {
   double fps = 15.0;                                         // the recorder's tick rate
   int delay_ms = 400;                                        // injected video delay; 0: none
   double connect_timeout_s = 30.0;  // for the first robot state and video frame
+  // Height (base z) of the table's top under the box: the first rehearsal, when the session
+  // checks collisions, lowers the gripper 5 cm below it.
+  double table_surface_z_m = 0.0;
 };
 
 struct DemoTaskOutcome {
@@ -63,6 +74,10 @@ struct DemoTaskOutcome {
   std::string previewed_hash;    // the plan_hash of the trajectory the preview showed
   std::string executed_hash;     // the robot server's hash of the trajectory it ran
   std::string execution_result;  // Session::last_execution_result()
+  // With a collision-checking session: the first rehearsal's check (into the table) and the
+  // executed plan's.
+  std::optional<geometry::TrajectoryCheckReport> first_rehearsal_check;
+  std::optional<geometry::TrajectoryCheckReport> final_plan_check;
 };
 
 // Errors name the phase ("start", "rehearsal: grasp", "preview", "execution") and the

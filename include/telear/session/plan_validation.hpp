@@ -33,11 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "telear/geometry/trajectory_collision.hpp"
 #include "telear/session/plan.hpp"
-
-namespace telear::geometry {
-class CollisionChecker;
-}
 
 namespace telear::session {
 
@@ -52,6 +49,9 @@ struct ValidationIssue {
 
 struct ValidationReport {
   std::vector<ValidationIssue> issues;  // errors first, then warnings, each in plan order
+  // The continuous collision check's result, when a checker was given and the plan could be
+  // checked: the contacts (time, link, object, depth) and clearances behind the messages.
+  std::optional<geometry::TrajectoryCheckReport> collision;
 
   bool ok() const { return error_count() == 0; }  // executable (warnings allowed)
   int error_count() const;
@@ -75,6 +75,7 @@ struct ValidationOptions {
   geometry::CollisionChecker* collision_checker = nullptr;
   // A clearance to a workspace object below this (m, >= 0) is a warning.
   double safety_margin_m = 0.03;
+  geometry::TrajectoryCheckOptions collision_check;  // how finely the plan is checked
 };
 
 // `q_real`: the real robot's current joint vector, when known (from its state stream; an

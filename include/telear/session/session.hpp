@@ -12,7 +12,8 @@
 //   plan()              waypoints recorded from ghost poses (add_ghost_waypoint)
 //   start_preview()     the ghost animates along the time-parameterized plan (play, pause,
 //                       scrub through preview()); update() advances it
-//   validate_plan()     limits, speeds, sampling, and the plan's start vs the real robot now
+//   validate_plan()     limits, speeds, sampling, the plan's start vs the real robot now and,
+//                       with a collision checker, contacts and clearance along the plan
 //   execute_plan()      validates again and sends the plan itself (ExecutePlan: waypoints,
 //                       timing options and the plan_hash of the trajectory the preview showed,
 //                       docs/trajectory.md); the server times it with the same function and
@@ -50,7 +51,10 @@
 
 #include "telear/core/motion_command.hpp"
 #include "telear/core/result.hpp"
+#include "telear/core/robot_description.hpp"
 #include "telear/core/robot_model.hpp"
+#include "telear/core/workspace.hpp"
+#include "telear/geometry/collision_checker.hpp"
 #include "telear/net/latency_stages.hpp"
 #include "telear/net/latency_summary.hpp"
 #include "telear/net/robot_client.hpp"
@@ -58,6 +62,7 @@
 #include "telear/session/display_mode.hpp"
 #include "telear/session/execution_monitor.hpp"
 #include "telear/session/ghost_arm.hpp"
+#include "telear/session/ghost_clearance.hpp"
 #include "telear/session/plan.hpp"
 #include "telear/session/plan_preview.hpp"
 #include "telear/session/plan_validation.hpp"
@@ -84,6 +89,15 @@ struct SessionOptions {
   // 1.2 s of a lost operator).
   double lease_heartbeat_s = 0.0;
   std::size_t max_events = 200;
+  // Collision checking (docs/collision.md). With the robot's description and the operator's
+  // workspace (mesh objects loaded: geometry::load_workspace) the session builds a checker:
+  // validate_plan() checks the plan continuously (contacts are errors, a clearance under
+  // safety_margin_m a warning) and ghost_clearance() follows the ghost. The workspace's
+  // graspable objects are not obstacles: the gripper closes on them on purpose.
+  std::optional<core::RobotDescription> description;
+  std::optional<core::Workspace> workspace;
+  double safety_margin_m = 0.03;
+  geometry::TrajectoryCheckOptions plan_check;  // how finely validate_plan() checks
 };
 
 struct SessionEvent {
@@ -102,6 +116,9 @@ struct SessionView {
   double real_state_age_s = 0.0;
   bool previewing = false;
   bool executing = false;
+  // Chain frames of the ghost's links in contact at ghost_q (drawn red); empty without a
+  // collision checker.
+  std::vector<int> ghost_contact_frames;
 };
 
 using net::LatencySummary;
@@ -151,6 +168,11 @@ class Session {
       const core::MotionCommand& command);  // rejections become events too
   Status ghost_to_real();                   // "ghost = real"
 
+  // The ghost's clearance where it is drawn (view().ghost_q: the preview's pose during a
+  // preview), re-checked when it moves; level kUnchecked without a collision checker.
+  const ClearanceState& ghost_clearance() const;
+  bool checks_collisions() const { return checker_ != nullptr; }
+
   // [SECTION] real robot (the conventional mode)
   Result<net::JogAck> jog_real(const core::MotionCommand& command);
   Status set_real_gripper(double opening);
@@ -197,6 +219,7 @@ class Session {
   void update_frame(double now);
   void update_monitor();
   void update_registration(double now);
+  void update_clearance(const Eigen::VectorXd& q, double gripper);
   std::optional<Eigen::VectorXd> real_q() const;
 
   core::RobotModelPtr model_;
@@ -207,6 +230,8 @@ class Session {
   bool ghost_synced_ = false;  // the ghost starts where the real robot first reports itself
   std::optional<double> start_tolerance_;  // the server's, once GetInfo answered
   GhostArm ghost_;
+  std::unique_ptr<geometry::CollisionChecker> checker_;  // null: no collision checking
+  std::optional<GhostClearance> clearance_;
   Plan plan_;
   std::optional<PlanPreview> preview_;
   std::optional<ExecutionMonitor> monitor_;
