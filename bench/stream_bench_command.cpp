@@ -202,8 +202,8 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
 struct RobotResult {
   Quantiles ping_ms, set_gripper_ms;
   int calls = 0;
-  net::CommandBytes bytes_100hz;  // plan sampled at the jog rate
-  net::CommandBytes bytes_10hz;   // plan sampled at 10 Hz (still validates: same profile)
+  net::CommandBytes bytes_100hz;         // plan sampled at the jog rate
+  net::CommandBytes bytes_10hz;          // plan sampled at 10 Hz (still validates: same profile)
   std::uint64_t plan_message_bytes = 0;  // the plan itself (ExecutePlan, docs/trajectory.md)
   double motion_s = 0;
 };
