@@ -26,6 +26,18 @@ std::string describe(const geometry::PlanCollision& c, double time_s) {
 // away (the checker samples the path, so a flat minimum reads a hair below the start).
 constexpr double kMovingAwayToleranceM = 1e-4;
 
+// The continuous check of `trajectory` from the gripper opening at the command (the caller
+// holds the guard's mutex: the checker caches poses).
+Result<geometry::TrajectoryCheckReport> check_path(geometry::CollisionChecker& checker,
+                                                   const core::Trajectory& trajectory,
+                                                   double gripper_fraction) {
+  geometry::TrajectoryCheckOptions options;
+  options.initial_gripper_fraction = std::clamp(gripper_fraction, 0.0, 1.0);
+  auto report = geometry::check_trajectory(checker, trajectory, options);
+  if (!report) return Error{"collision check failed: " + report.error().message};
+  return report;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<MotionCollisionGuard>> MotionCollisionGuard::create(
@@ -49,11 +61,9 @@ MotionCollisionGuard::MotionCollisionGuard(geometry::CollisionChecker checker,
 
 Status MotionCollisionGuard::check_trajectory(const core::Trajectory& trajectory,
                                               double gripper_fraction) {
-  geometry::TrajectoryCheckOptions options;
-  options.initial_gripper_fraction = std::clamp(gripper_fraction, 0.0, 1.0);
   std::lock_guard lock(mutex_);
-  auto report = geometry::check_trajectory(checker_, trajectory, options);
-  if (!report) return Error{"collision check failed: " + report.error().message};
+  auto report = check_path(checker_, trajectory, gripper_fraction);
+  if (!report) return report.error();
   if (!report->collision_free()) {
     const auto& c = report->collisions.front();
     return Error{"trajectory collides: " + describe(c, c.time_s)};
@@ -77,11 +87,9 @@ Status MotionCollisionGuard::check_samples(const core::RobotModel& model,
   timing.max_waypoints = static_cast<int>(waypoints.size()) + 1;
   auto trajectory = core::Trajectory::create(model, std::move(waypoints), timing);
   if (!trajectory) return Error{"collision check failed: " + trajectory.error().message};
-  geometry::TrajectoryCheckOptions options;
-  options.initial_gripper_fraction = std::clamp(gripper_fraction, 0.0, 1.0);
   std::lock_guard lock(mutex_);
-  auto report = geometry::check_trajectory(checker_, *trajectory, options);
-  if (!report) return Error{"collision check failed: " + report.error().message};
+  auto report = check_path(checker_, *trajectory, gripper_fraction);
+  if (!report) return report.error();
   if (report->collision_free()) return Status::Ok();
   const auto& c = report->collisions.front();
   double time_s = c.time_s;
@@ -100,11 +108,9 @@ Status MotionCollisionGuard::check_jog(const core::RobotModel& model, const Eige
                                        const Eigen::VectorXd& q_to, double gripper_fraction) {
   auto trajectory = core::Trajectory::create(model, {{q_from}, {q_to}});
   if (!trajectory) return Error{"collision check failed: " + trajectory.error().message};
-  geometry::TrajectoryCheckOptions options;
-  options.initial_gripper_fraction = std::clamp(gripper_fraction, 0.0, 1.0);
   std::lock_guard lock(mutex_);
-  auto report = geometry::check_trajectory(checker_, *trajectory, options);
-  if (!report) return Error{"collision check failed: " + report.error().message};
+  auto report = check_path(checker_, *trajectory, gripper_fraction);
+  if (!report) return report.error();
   if (!report->collision_free()) {
     const auto& c = report->collisions.front();
     return Error{"jog collides: link '" + c.body + "' would touch " + (c.self ? "link '" : "'") +
@@ -113,7 +119,7 @@ Status MotionCollisionGuard::check_jog(const core::RobotModel& model, const Eige
   const geometry::PlanClearance& path = report->min_workspace_clearance;
   if (path.distance_m >= margin_m_) return Status::Ok();
   // Inside the margin: allowed only when moving away (no closer than where it starts).
-  checker_.set_configuration(q_from, options.initial_gripper_fraction);
+  checker_.set_configuration(q_from, std::clamp(gripper_fraction, 0.0, 1.0));
   double start_m = std::numeric_limits<double>::infinity();
   for (const auto& pair : checker_.pairs()) {
     if (pair.other_object >= 0) start_m = std::min(start_m, checker_.distance(pair).distance_m);

@@ -68,6 +68,16 @@ std::chrono::steady_clock::time_point steady_time(std::int64_t ns) {
   return std::chrono::steady_clock::time_point(std::chrono::nanoseconds(ns));
 }
 
+// An execution's acceptance into ExecuteTrajectory's or ExecutePlan's response (the same four
+// fields in both).
+template <typename Response, typename Execution>
+void fill_execution(Response& response, const Execution& e) {
+  response.set_duplicate(e.duplicate);
+  response.set_status(to_proto(e.status));
+  response.set_duration_s(e.duration_s);
+  response.set_accepted_ns(e.accepted_ns);
+}
+
 }  // namespace
 
 RobotService::RobotService(core::RobotDriver& driver, BearerAuth auth, LeaseOptions lease_options,
@@ -390,14 +400,8 @@ grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
   }
   std::lock_guard lock(execute_mutex_);
   response->set_trajectory_id(id);
-  auto fill = [&](const Execution& e) {
-    response->set_duplicate(e.duplicate);
-    response->set_status(to_proto(e.status));
-    response->set_duration_s(e.duration_s);
-    response->set_accepted_ns(e.accepted_ns);
-  };
   if (const auto first = first_acceptance(id)) {
-    fill(*first);
+    fill_execution(*response, *first);
     return finish(context, what + ": a duplicate of the first acceptance, not executed again",
                   grpc::Status::OK);
   }
@@ -406,7 +410,7 @@ grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
   Execution execution;
   if (grpc::Status s = start(id, *waypoints, nullptr, execution); !s.ok())
     return finish(context, what, s);
-  fill(execution);
+  fill_execution(*response, execution);
   return finish(context, what + ", " + core::format_number(execution.duration_s, "%.3f s"),
                 grpc::Status::OK);
 }
@@ -423,14 +427,8 @@ grpc::Status RobotService::ExecutePlan(grpc::ServerContext* context,
   std::lock_guard lock(execute_mutex_);
   response->set_plan_id(id);
   response->set_algorithm(std::string(core::kTrajectoryAlgorithm));
-  auto fill = [&](const Execution& e) {
-    response->set_duplicate(e.duplicate);
-    response->set_status(to_proto(e.status));
-    response->set_duration_s(e.duration_s);
-    response->set_accepted_ns(e.accepted_ns);
-  };
   if (const auto first = first_acceptance(id)) {
-    fill(*first);
+    fill_execution(*response, *first);
     if (const auto hash = accepted_plan_hashes_.find(id); hash != accepted_plan_hashes_.end()) {
       response->set_plan_hash(hash->second);
     }
@@ -449,7 +447,7 @@ grpc::Status RobotService::ExecutePlan(grpc::ServerContext* context,
   if (grpc::Status s = start(id, *samples, &received->trajectory, execution); !s.ok())
     return finish(context, what, s);
   accepted_plan_hashes_[id] = received->hash;
-  fill(execution);
+  fill_execution(*response, execution);
   response->set_plan_hash(received->hash);
   return finish(context,
                 what + ", " + core::format_number(execution.duration_s, "%.3f s") + ", hash " +
