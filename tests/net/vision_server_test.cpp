@@ -370,11 +370,17 @@ TEST(VisionClient, ReconnectsWhenTheServerComesBack) {
   again.source = synthetic(160, 120, 60);
   auto restarted = VisionServer::create(std::move(again));
   ASSERT_TRUE(restarted) << restarted.error().message;
-  // The new server's frames count from 1 again; any frame after the restart will do.
-  auto next = client.wait_frame(first->second, 10.0);
-  ASSERT_TRUE(next);
+  // Frames the old server sent before it stopped may still be decoded after `first`, so a frame
+  // proves nothing until the client has counted a reconnection; then one more must arrive.
+  const auto deadline = std::chrono::steady_clock::now() + 10s;
+  while (client.reconnect_stats().successes == 0 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(5ms);
+  }
   const ReconnectStats stats = client.reconnect_stats();
-  EXPECT_GE(stats.successes, 1u);
+  ASSERT_GE(stats.successes, 1u);
+  const std::uint64_t decoded = client.frames_decoded();
+  auto next = client.wait_frame(decoded, 10.0);
+  ASSERT_TRUE(next);
   EXPECT_GE(stats.attempts, stats.successes);
   EXPECT_THAT(stats.last_error, HasSubstr("stream: "));
   client.stop();
