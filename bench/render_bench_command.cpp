@@ -63,9 +63,22 @@ std::string generate_arms_script() {
   return TELEAR_GENERATE_ARMS_SCRIPT;
 }
 
-RenderBenchCase mesh_arm_case(const std::string& name, const std::string& robot_file) {
-  RenderBenchCase c{"video, mesh " + name, true, false, 0, false, true, true, "", robot_file};
-  return c;
+RenderBenchCase mesh_arm_case(const std::string& name, const std::string& robot_file,
+                              double visual_tolerance_m) {
+  const std::string detail =
+      visual_tolerance_m > 0.0
+          ? " (level of detail " + core::format_fixed(visual_tolerance_m * 1000.0, 2) + " mm)"
+          : " (as loaded)";
+  return {"video, mesh " + name + detail,
+          true,
+          false,
+          0,
+          false,
+          true,
+          true,
+          "",
+          robot_file,
+          visual_tolerance_m};
 }
 
 std::string mesh_arm_baseline_case() {
@@ -111,7 +124,9 @@ Result<std::unique_ptr<RenderBenchScene>> RenderBenchScene::create(const RenderB
   } else {
     core::RobotSpec spec;
     spec.name_or_path = c.robot_file;
-    auto assets = geometry::load_robot_assets(spec);
+    geometry::GeometryOptions geometry_options;
+    geometry_options.visual_tolerance_m = c.visual_tolerance_m;
+    auto assets = geometry::load_robot_assets(spec, geometry_options);
     if (!assets) return assets.error();
     m.model = assets->model();
     m.body = core::build_arm_body(assets->body);
@@ -355,11 +370,17 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
     if (!options.json) {
       out << "mesh arm: generated with " << mesh_arm->command << " (removed after the run)\n";
     }
-    cases.push_back(mesh_arm_case(options.mesh_arm, mesh_arm->robot_file));
+    cases.push_back(mesh_arm_case(options.mesh_arm, mesh_arm->robot_file, 0.0));
+    if (options.mesh_tolerance_m > 0.0) {
+      cases.push_back(
+          mesh_arm_case(options.mesh_arm, mesh_arm->robot_file, options.mesh_tolerance_m));
+    }
   }
 
   std::vector<Measured> results;
-  std::size_t mesh_triangles = 0, mesh_vertices = 0;
+  // Triangles and vertices per view of the mesh arm as loaded ([0]) and at its level of
+  // detail ([1]).
+  std::size_t mesh_triangles[2] = {0, 0}, mesh_vertices[2] = {0, 0};
   for (const RenderBenchCase& c : cases) {
     auto scene = RenderBenchScene::create(c, options.width, options.height);
     if (!scene) {
@@ -367,8 +388,9 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
       return 1;
     }
     if (!c.robot_file.empty()) {
-      mesh_triangles = (*scene)->triangle_count();
-      mesh_vertices = (*scene)->vertex_count();
+      const int level = c.visual_tolerance_m > 0.0 ? 1 : 0;
+      mesh_triangles[level] = (*scene)->triangle_count();
+      mesh_vertices[level] = (*scene)->vertex_count();
     }
     for (int i = 0; i < 10; ++i) (*scene)->frame();  // warm-up: shaders, caches
     Measured m{c};
@@ -388,9 +410,13 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
   }
 
   // The mesh arm beside the PUMA's case of the same frame (stereo, video, read-back).
+  // `mesh` is the arm as drawn (its level of detail when there is one), `as_loaded` the
+  // same arm with every triangle of its files.
   const Measured* mesh = nullptr;
+  const Measured* as_loaded = nullptr;
   const Measured* puma = nullptr;
   for (const Measured& m : results) {
+    if (!m.c.robot_file.empty() && m.c.visual_tolerance_m <= 0.0) as_loaded = &m;
     if (!m.c.robot_file.empty()) mesh = &m;
     if (m.c.robot_file.empty() && m.c.video && m.c.stereo && m.c.name == mesh_arm_baseline_case())
       puma = &m;
@@ -417,8 +443,12 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
     if (mesh && puma) {
       j["mesh_arm"] = {{"robot", options.mesh_arm},
                        {"detail", options.mesh_detail},
-                       {"triangles", mesh_triangles},
-                       {"vertices", mesh_vertices},
+                       {"triangles", mesh_triangles[0]},
+                       {"vertices", mesh_vertices[0]},
+                       {"tolerance_m", mesh->c.visual_tolerance_m},
+                       {"triangles_drawn", mesh_triangles[mesh == as_loaded ? 0 : 1]},
+                       {"vertices_drawn", mesh_vertices[mesh == as_loaded ? 0 : 1]},
+                       {"fps_as_loaded", as_loaded ? as_loaded->fps() : 0.0},
                        {"generator", mesh_arm->command},
                        {"fps", mesh->fps()},
                        {"baseline", mesh_arm_baseline_case() + ", stereo"},
@@ -446,9 +476,15 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
         << " |\n";
   }
   if (mesh && puma) {
-    out << "\nmesh arm " << options.mesh_arm << ": " << mesh_triangles << " triangles, "
-        << mesh_vertices << " vertices (generate_arms.py --detail " << options.mesh_detail
-        << "), stereo AR frame at " << core::format_fixed(mesh->fps(), 0)
+    out << "\nmesh arm " << options.mesh_arm << ": " << mesh_triangles[0] << " triangles, "
+        << mesh_vertices[0] << " vertices (generate_arms.py --detail " << options.mesh_detail
+        << ")";
+    if (mesh != as_loaded) {
+      out << ", drawn as " << mesh_triangles[1] << " triangles, " << mesh_vertices[1]
+          << " vertices (level of detail "
+          << core::format_fixed(mesh->c.visual_tolerance_m * 1000.0, 2) << " mm)";
+    }
+    out << ", stereo AR frame at " << core::format_fixed(mesh->fps(), 0)
         << " fps = " << core::format_fixed(ratio, 2) << " x the PUMA's '"
         << mesh_arm_baseline_case() << "' stereo (" << core::format_fixed(puma->fps(), 0)
         << " fps)\n";

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "telear/core/result.hpp"
+#include "telear/geometry/robot_geometry.hpp"
 
 namespace telear::cli {
 
@@ -42,6 +43,9 @@ struct RenderBenchCase {
   // A robot file (e.g. a generated arm7.yaml) whose URDF meshes are drawn instead of the
   // PUMA 560's primitive body (segments is then unused); empty: the PUMA.
   std::string robot_file;
+  // The visual meshes' level of detail (geometry::GeometryOptions::visual_tolerance_m; 0: as
+  // loaded).
+  double visual_tolerance_m = 0.0;
 };
 
 // The rows of the table, in order.
@@ -75,15 +79,18 @@ struct RenderBenchOptions {
   bool json = false;
   std::string mesh_arm;  // "ur6" or "arm7": add the mesh-arm case; empty: none
   int mesh_detail = 64;  // generate_arms.py --detail (segments around a surface of revolution)
+  // The mesh arm's level of detail (metres); the arm is also drawn as loaded, for comparison.
+  double mesh_tolerance_m = geometry::GeometryOptions{}.visual_tolerance_m;
 };
 
 // The generator of the mesh arms (the source tree's scripts/generate_arms.py, run with
 // /usr/bin/python3); not installed with telear.
 std::string generate_arms_script();
 
-// The case added by --mesh-arm NAME, drawing `robot_file`, and the PUMA case it is compared
-// with.
-RenderBenchCase mesh_arm_case(const std::string& name, const std::string& robot_file);
+// The cases added by --mesh-arm NAME, drawing `robot_file` at a level of detail (tolerance in
+// metres; 0: as loaded), and the PUMA case they are compared with.
+RenderBenchCase mesh_arm_case(const std::string& name, const std::string& robot_file,
+                              double visual_tolerance_m);
 std::string mesh_arm_baseline_case();
 
 int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::ostream& err);

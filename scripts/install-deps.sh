@@ -12,6 +12,8 @@ packages=(
   libssl-dev
   # geometry: mesh files (STL, COLLADA, OBJ); collision checking and distances (FCL 0.7)
   libassimp-dev libfcl-dev
+  # geometry: a level of detail for fine visual meshes (edge-collapse simplification)
+  libmeshoptimizer-dev
   # apps
   libcli11-dev libspdlog-dev
   # vision: camera models, distortion maps, calibration

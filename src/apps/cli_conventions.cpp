@@ -111,6 +111,12 @@ void add_bench_commands(CLI::App& app, Commands& commands) {
       ->add_option("--mesh-detail", bench_render_options.mesh_detail,
                    "generate_arms.py --detail of the mesh arm (64: > 100k triangles)")
       ->capture_default_str();
+  bench_render
+      ->add_option("--mesh-tolerance", bench_render_options.mesh_tolerance_m,
+                   "the mesh arm's level of detail, metres the surface may move (0: only the "
+                   "arm as loaded)")
+      ->check(CLI::Range(0.0, 0.01))
+      ->capture_default_str();
   auto kin_options = std::make_shared<BenchKinOptions>();
   BenchKinOptions& bench_kin_options = *kin_options;
   CLI::App* bench_kin = bench_app->add_subcommand(

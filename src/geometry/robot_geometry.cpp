@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "telear/core/resource_uri.hpp"
+#include "telear/geometry/mesh_simplification.hpp"
 
 namespace telear::geometry {
 namespace {
@@ -96,7 +97,8 @@ core::Mesh stand_in(const core::RobotLink& link, const GeometryElement& visual,
 
 // Every visual of `link` as one mesh in the link's frame.
 Result<core::Mesh> visual_mesh(const core::RobotLink& link, const core::ResourceSearchPaths& search,
-                               const GeometryOptions& o, std::vector<std::string>& warnings) {
+                               const GeometryOptions& o, RobotBody& body) {
+  std::vector<std::string>& warnings = body.warnings;
   core::Mesh out;
   for (const GeometryElement& e : link.visuals) {
     if (e.kind != GeometryElement::Kind::kMesh) {
@@ -114,8 +116,11 @@ Result<core::Mesh> visual_mesh(const core::RobotLink& link, const core::Resource
     }
     Result<core::Mesh> mesh = load_mesh_file(*r.path, load_options(e, o));
     if (!mesh) return Error{link_prefix(link) + mesh.error().message};
-    mesh->transform(e.T_link_geometry.matrix().cast<float>());
-    out.append(*mesh);
+    SimplifiedMesh drawn = simplify_mesh(*mesh, o.visual_tolerance_m, o.feature_angle_deg);
+    body.mesh_file_triangles += mesh->triangle_count();
+    body.drawn_mesh_triangles += drawn.mesh.triangle_count();
+    drawn.mesh.transform(e.T_link_geometry.matrix().cast<float>());
+    out.append(drawn.mesh);
   }
   return out;
 }
@@ -141,6 +146,10 @@ Status check_attachment(const core::RobotDescription& d, const core::RobotLink& 
 Status GeometryOptions::validate() const {
   if (segments < core::kMinCylinderSegments) {
     return Error{"segments must be at least 3, got " + std::to_string(segments)};
+  }
+  if (!(visual_tolerance_m >= 0.0 && visual_tolerance_m <= 0.01)) {
+    return Error{"visual_tolerance_m must be in [0, 0.01] m, got " +
+                 std::to_string(visual_tolerance_m)};
   }
   MeshLoadOptions m;
   m.limits = limits;
@@ -199,7 +208,7 @@ Result<RobotBody> body_for(const core::RobotDescription& d, const GeometryOption
   for (std::size_t i = 0; i < d.links.size(); ++i) {
     const core::RobotLink& link = d.links[i];
     if (Status s = check_attachment(d, link, n); !s) return s.error();
-    Result<core::Mesh> mesh = visual_mesh(link, search, o, out.warnings);
+    Result<core::Mesh> mesh = visual_mesh(link, search, o, out);
     if (!mesh) return mesh.error();
     if (mesh->empty()) continue;
     if (link.moves_with_gripper()) {

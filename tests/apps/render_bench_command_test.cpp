@@ -70,7 +70,8 @@ TEST(RenderBenchCommandTest, MeshArmIsGeneratedDrawnAndComparedWithThePuma) {
   const std::string text = out.str();
   EXPECT_THAT(text, HasSubstr("generate_arms.py --detail 8 --out "));
   EXPECT_THAT(text, HasSubstr("| video, arm, 8 seg | stereo |"));
-  EXPECT_THAT(text, HasSubstr("| video, mesh ur6 | stereo |"));
+  EXPECT_THAT(text, HasSubstr("| video, mesh ur6 (as loaded) | stereo |"));
+  EXPECT_THAT(text, HasSubstr("| video, mesh ur6 (level of detail 0.50 mm) | stereo |"));
   EXPECT_THAT(text, Not(HasSubstr("| graphics,")));
   EXPECT_THAT(text, HasSubstr("mesh arm ur6: "));
   EXPECT_THAT(text, HasSubstr("x the PUMA's 'video, arm, 8 seg' stereo"));
@@ -90,7 +91,18 @@ TEST(RenderBenchCommandTest, MeshArmIsGeneratedDrawnAndComparedWithThePuma) {
   EXPECT_EQ(j["mesh_arm"]["robot"], "ur6");
   EXPECT_GT(j["mesh_arm"]["triangles"].get<long>(), 1000);
   EXPECT_GT(j["mesh_arm"]["ratio_to_baseline"].get<double>(), 0.0);
-  EXPECT_EQ(j["cases"].size(), 2u);
+  EXPECT_GT(j["mesh_arm"]["fps_as_loaded"].get<double>(), 0.0);
+  EXPECT_EQ(j["mesh_arm"]["tolerance_m"].get<double>(), 0.0005);
+  EXPECT_LT(j["mesh_arm"]["triangles_drawn"].get<long>(), j["mesh_arm"]["triangles"].get<long>());
+  EXPECT_EQ(j["cases"].size(), 3u);
+
+  // --mesh-tolerance 0: the arm as loaded only.
+  options.mesh_tolerance_m = 0.0;
+  std::ostringstream full_out;
+  ASSERT_EQ(run_bench_render(options, full_out, err), 0) << err.str();
+  const nlohmann::json full = nlohmann::json::parse(full_out.str());
+  EXPECT_EQ(full["cases"].size(), 2u);
+  EXPECT_EQ(full["mesh_arm"]["triangles_drawn"], full["mesh_arm"]["triangles"]);
 }
 
 TEST(RenderBenchCommandTest, MeshArmErrorsNameTheProblem) {
