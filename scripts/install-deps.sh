@@ -16,8 +16,8 @@ packages=(
   libmeshoptimizer-dev
   # apps
   libcli11-dev libspdlog-dev
-  # vision: camera models, distortion maps, calibration
-  libopencv-dev
+  # vision: camera models, distortion maps, calibration; hand-eye bundle adjustment (Ceres)
+  libopencv-dev libceres-dev
   # render: GL headers and loader, headless EGL with Mesa's llvmpipe, GLFW windows, stb images
   libgl-dev libegl-dev libepoxy-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libstb-dev
   # net: gRPC services and clients, TurboJPEG for the video stream; the Python example client
