@@ -8,7 +8,11 @@ Result<geometry::RobotAssets> load_rig_robot(const StereoRig& rig, const core::R
                                              const geometry::GeometryOptions& options) {
   core::RobotSpec spec = robot;
   if (spec.name_or_path.empty()) spec.name_or_path = rig.robot;
-  auto assets = geometry::load_robot_assets(spec, options);
+  // The simulator is the ground truth: its "real" arm keeps every triangle of the mesh files,
+  // whatever level of detail the operator's ghost is drawn at.
+  geometry::GeometryOptions truth = options;
+  truth.visual_tolerance_m = 0.0;
+  auto assets = geometry::load_robot_assets(spec, truth);
   if (!assets) return Error{"rig '" + rig.name + "': robot: " + assets.error().message};
   if (!rig.body_file.empty()) {
     auto body = core::load_body_yaml_file(rig.body_file, *assets->model());

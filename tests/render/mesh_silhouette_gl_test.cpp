@@ -146,11 +146,14 @@ int pixels_near_border(const cv::Mat& mask, int margin) {
   return cv::countNonZero(mask) - cv::countNonZero(mask(inner));
 }
 
-// A shipped robot file (data/robots/NAME.yaml), meshes from its package.
+// A shipped robot file (data/robots/NAME.yaml), meshes from its package as they are (no level
+// of detail: the test compares telear's drawing with the files' own triangles).
 Result<geometry::RobotAssets> load_shipped(const std::string& robot) {
   core::RobotSpec spec;
   spec.name_or_path = telear::test::data_path("robots/" + robot + ".yaml");
-  return geometry::load_robot_assets(spec);
+  geometry::GeometryOptions as_loaded;
+  as_loaded.visual_tolerance_m = 0.0;
+  return geometry::load_robot_assets(spec, as_loaded);
 }
 
 struct Pose {

@@ -15,7 +15,8 @@
 
 namespace telear::sim {
 
-// `robot` overrides the rig's robot when its name_or_path is not empty (e.g. --robot).
+// `robot` overrides the rig's robot when its name_or_path is not empty (e.g. --robot). The
+// meshes are loaded as they are (options.visual_tolerance_m is ignored: no level of detail).
 Result<geometry::RobotAssets> load_rig_robot(const StereoRig& rig,
                                              const core::RobotSpec& robot = {},
                                              const geometry::GeometryOptions& options = {});
