@@ -226,6 +226,7 @@ Result<CameraInfoReply> VisionClient::get_camera_info() {
   reply.source_height = info.source_height();
   reply.source_fps = info.source_fps();
   if (!reply.found) return reply;
+  reply.calibration_yaml = info.calibration_yaml();
   // The file itself carries everything (poses included); the fields are the fallback.
   auto file = vision::parse_camera_yaml(info.calibration_yaml(), "vision server calibration");
   if (file && file->is_stereo()) {

@@ -56,6 +56,7 @@ struct DecodedStereoFrame {
 struct CameraInfoReply {
   bool found = false;
   vision::StereoCameraModel cameras;  // valid when found
+  std::string calibration_yaml;       // the server's calibration file as it is (when found)
   std::string source;
   int source_width = 0, source_height = 0;
   double source_fps = 0;

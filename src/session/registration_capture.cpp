@@ -1,0 +1,372 @@
+#include "telear/session/registration_capture.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <random>
+#include <thread>
+
+#include "telear/core/angles.hpp"
+#include "telear/core/clock.hpp"
+#include "telear/core/kinematics.hpp"
+#include "telear/core/number_format.hpp"
+#include "telear/core/trajectory.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/capture_observations.hpp"
+#include "telear/vision/hand_eye_registration.hpp"
+#include "telear/vision/marker_detection.hpp"
+
+namespace telear::session {
+namespace {
+
+constexpr double kArmRangeRad = 0.35;    // the first three joints' spread around the start
+constexpr double kWristRangeRad = 0.8;   // the others'
+constexpr double kMarginPx = 30.0;       // corners this far inside both images
+constexpr double kMaxViewAngleDeg = 50;  // the marker faces each camera within this
+constexpr double kPoll = 0.01;           // s
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+bool sees(const vision::CameraModel& camera, const Eigen::Isometry3d& T_base_marker,
+          const core::MarkerMount& marker) {
+  const Eigen::Vector3d centre = T_base_marker.translation();
+  const Eigen::Vector3d camera_centre = camera.T_cam_base.inverse().translation();
+  const Eigen::Vector3d normal = T_base_marker.linear().col(2);
+  const double cos_view = normal.dot((camera_centre - centre).normalized());
+  if (cos_view < std::cos(core::radians_from_degrees(kMaxViewAngleDeg))) return false;
+  for (const Eigen::Vector3d& p : vision::marker_target_points(marker)) {
+    const auto uv = camera.project(T_base_marker * p);
+    if (!uv || uv->x() < kMarginPx || uv->y() < kMarginPx || uv->x() > camera.width - kMarginPx ||
+        uv->y() > camera.height - kMarginPx) {
+      return false;
+    }
+  }
+  return true;
+}
+
+double rotation_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return std::abs(Eigen::AngleAxisd(Eigen::Matrix3d(a.transpose() * b)).angle());
+}
+
+cv::Mat bgr_of(const core::Image& image) {
+  const cv::Mat rgb(image.height, image.width, CV_8UC3,
+                    const_cast<std::uint8_t*>(image.pixels.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  return bgr;
+}
+
+cv::Mat rgb_view(const core::Image& image) {
+  return cv::Mat(image.height, image.width, CV_8UC3,
+                 const_cast<std::uint8_t*>(image.pixels.data()));
+}
+
+// The newest frame captured (both eyes) after `after_ns` (client clock), waiting up to timeout.
+std::shared_ptr<const net::DecodedStereoFrame> frame_after(net::VisionClient& vision,
+                                                           std::int64_t after_ns,
+                                                           std::uint64_t after_id,
+                                                           double timeout_s) {
+  const auto start = Clock::now();
+  while (seconds_since(start) < timeout_s) {
+    if (auto frame = vision.latest_frame()) {
+      const auto& f = **frame;
+      if (f.frame_id > after_id && std::min(f.capture_ns_left, f.capture_ns_right) > after_ns) {
+        return *frame;
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::duration<double>(kPoll));
+  }
+  return nullptr;
+}
+
+// Sends the move as a plan and waits for rest near `target`; the measured state at rest.
+Result<net::RobotStateSample> move_to(const core::RobotModel& model, net::RobotClient& robot,
+                                      const Eigen::VectorXd& target, const std::string& plan_id,
+                                      const RegistrationCaptureOptions& options) {
+  const auto state = robot.wait_state(0, 5.0);
+  if (!state) return Error{"no robot state from the robot server within 5 s"};
+  core::TrajectoryOptions timing;
+  timing.velocity_scale = options.velocity_scale;
+  timing.acceleration_scale = options.velocity_scale;
+  auto trajectory = core::Trajectory::create(model, {{state->state.q}, {target}}, timing);
+  if (!trajectory) return trajectory.error();
+  if (auto ack = robot.execute_plan(plan_id, *trajectory); !ack) return ack.error();
+  const auto start = Clock::now();
+  std::uint64_t sequence = state->sequence;
+  while (seconds_since(start) < options.pose_timeout_s) {
+    const auto s = robot.wait_state(sequence, 1.0);
+    if (!s) continue;
+    sequence = s->sequence;
+    if (s->state.estop) return Error{"the robot is e-stopped: " + s->state.estop_reason};
+    if (s->state.mode == core::RobotMode::kIdle && s->state.trajectory_id.empty() &&
+        (s->state.q - target).cwiseAbs().maxCoeff() <= options.rest_tolerance_rad) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(options.settle_s));
+      const auto settled = robot.wait_state(sequence, 1.0);
+      if (!settled) return Error{"no robot state after settling"};
+      if (settled->state.mode != core::RobotMode::kIdle) {
+        return Error{"the arm moved again while settling (mode " +
+                     std::string(core::to_string(settled->state.mode)) + ")"};
+      }
+      return *settled;
+    }
+    if (s->last_trajectory_id == plan_id &&
+        (s->last_trajectory_status == core::TrajectoryStatus::kCancelled ||
+         s->last_trajectory_status == core::TrajectoryStatus::kAborted)) {
+      return Error{"the move was " + std::string(core::to_string(s->last_trajectory_status))};
+    }
+  }
+  return Error{"the arm did not come to rest at the pose within " +
+               core::format_fixed(options.pose_timeout_s, 0) + " s"};
+}
+
+// Rough camera poses from the marker at the current pose (auto poses).
+Result<vision::StereoCameraModel> rough_cameras(const core::RobotModel& model,
+                                                const net::RobotStateSample& state,
+                                                const net::DecodedStereoFrame& frame,
+                                                vision::StereoCameraModel cameras,
+                                                const core::MarkerMount& marker) {
+  core::KinematicsData data(model);
+  core::forward_kinematics(model, data, state.state.q);
+  const Eigen::Isometry3d T_base_marker = data.T_base_link.back() * marker.T_flange_marker;
+  const std::vector<Eigen::Vector3d> points = vision::marker_target_points(marker);
+  for (auto [eye, camera, image] : {std::tuple{"left", &cameras.left, &frame.left},
+                                    std::tuple{"right", &cameras.right, &frame.right}}) {
+    const std::vector<Eigen::Vector2d> corners =
+        vision::detect_aruco_marker(rgb_view(*image), marker.id);
+    std::vector<vision::TargetPixel> pixels;
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      pixels.push_back({static_cast<int>(k), corners[k]});
+    }
+    const auto T_cam_marker = vision::target_pose_in_camera(*camera, points, pixels);
+    if (!T_cam_marker) {
+      return Error{std::string("the marker (ArUco id ") + std::to_string(marker.id) +
+                   ") is not seen by the " + eye +
+                   " camera at the arm's current pose: jog the arm until both cameras see the "
+                   "marker, then capture again"};
+    }
+    camera->T_cam_base = *T_cam_marker * T_base_marker.inverse();
+  }
+  return cameras;
+}
+
+}  // namespace
+
+Status RegistrationCaptureOptions::validate() const {
+  auto bad = [](const std::string& what) { return Error{"capture: " + what}; };
+  if (directory.empty()) return bad("give the folder to write (-o DIR)");
+  if (auto_poses == 0 && poses.empty()) return bad("no poses: give auto:N or a poses file");
+  if (auto_poses < 0 || auto_poses > 200)
+    return bad("auto:" + std::to_string(auto_poses) + ": the number of poses must be 1..200");
+  if (frames_per_pose < 1 || frames_per_pose > 30)
+    return bad("--frames " + std::to_string(frames_per_pose) + " must be 1..30");
+  if (!(velocity_scale > 0.0 && velocity_scale <= 1.0))
+    return bad("--speed " + core::format_number(velocity_scale) + " must be in (0, 1]");
+  if (!(settle_s >= 0.0 && settle_s <= 10.0))
+    return bad("--settle " + core::format_number(settle_s) + " must be 0..10 s");
+  if (!(rest_tolerance_rad > 0.0)) return bad("the rest tolerance must be positive");
+  if (!(pose_timeout_s > 0.0)) return bad("the pose timeout must be positive");
+  return {};
+}
+
+std::vector<Eigen::VectorXd> choose_capture_poses(const core::RobotModel& model,
+                                                  const Eigen::VectorXd& q_start,
+                                                  const vision::StereoCameraModel& rough,
+                                                  const core::MarkerMount& marker, int count,
+                                                  std::uint64_t seed) {
+  struct Candidate {
+    Eigen::VectorXd q;
+    Eigen::Isometry3d T_base_marker;
+  };
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  core::KinematicsData data(model);
+  const auto marker_at = [&](const Eigen::VectorXd& q) {
+    core::forward_kinematics(model, data, q);
+    return Eigen::Isometry3d(data.T_base_link.back() * marker.T_flange_marker);
+  };
+  std::vector<Candidate> candidates;
+  const int tries = std::min(20000, 80 * count);
+  for (int t = 0; t < tries; ++t) {
+    Eigen::VectorXd q = q_start;
+    for (int j = 0; j < model.dof(); ++j) {
+      q[j] += unit(rng) * (j < 3 ? kArmRangeRad : kWristRangeRad);
+      const double lo = model.lower_limits()[j], hi = model.upper_limits()[j];
+      if (std::isfinite(lo) && std::isfinite(hi)) q[j] = std::clamp(q[j], lo + 0.01, hi - 0.01);
+    }
+    const Eigen::Isometry3d T = marker_at(q);
+    if (sees(rough.left, T, marker) && sees(rough.right, T, marker)) candidates.push_back({q, T});
+  }
+  // Farthest-point sampling: rotation angle plus position (2 rad per metre), from the start.
+  std::vector<Eigen::Isometry3d> chosen_poses = {marker_at(q_start)};
+  std::vector<Eigen::VectorXd> chosen;
+  std::vector<double> nearest(candidates.size(), std::numeric_limits<double>::infinity());
+  while (static_cast<int>(chosen.size()) < count && !candidates.empty()) {
+    const Eigen::Isometry3d& last = chosen_poses.back();
+    std::size_t best = 0;
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      const Eigen::Isometry3d& T = candidates[c].T_base_marker;
+      const double d = rotation_distance(last.linear(), T.linear()) +
+                       2.0 * (last.translation() - T.translation()).norm();
+      nearest[c] = std::min(nearest[c], d);
+      if (nearest[c] > nearest[best]) best = c;
+    }
+    if (!(nearest[best] > 0.0)) break;
+    chosen.push_back(candidates[best].q);
+    chosen_poses.push_back(candidates[best].T_base_marker);
+    nearest[best] = 0.0;
+  }
+  // Visit them in nearest-neighbour order from the start.
+  std::vector<Eigen::VectorXd> ordered;
+  Eigen::VectorXd at = q_start;
+  while (!chosen.empty()) {
+    auto next = std::min_element(chosen.begin(), chosen.end(), [&](const auto& a, const auto& b) {
+      return (a - at).norm() < (b - at).norm();
+    });
+    at = *next;
+    ordered.push_back(*next);
+    chosen.erase(next);
+  }
+  return ordered;
+}
+
+Result<RegistrationCaptureResult> capture_for_registration(
+    const core::RobotModel& model, net::RobotClient& robot, net::VisionClient& vision,
+    const RegistrationCaptureOptions& options,
+    const std::function<void(const CaptureProgress&)>& progress) {
+  if (Status s = options.validate(); !s) return s.error();
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(options.directory, ec);
+  if (ec) return Error{"capture: cannot create '" + options.directory + "': " + ec.message()};
+  if (fs::exists(fs::path(options.directory) / "capture.yaml")) {
+    return Error{"capture: '" + options.directory +
+                 "' already holds a capture (capture.yaml): give a new folder"};
+  }
+  auto info = vision.get_camera_info();
+  if (!info) return Error{"capture: camera info: " + info.error().message};
+  if (!info->found) {
+    return Error{
+        "capture: the vision server has no camera calibration (start it with "
+        "--calibration FILE): registration needs the intrinsics"};
+  }
+  const bool lease_was_held = robot.lease_held();
+  if (!lease_was_held) {
+    if (Status s = robot.acquire_lease(); !s) return Error{"capture: lease: " + s.error().message};
+  }
+  struct ReleaseLease {
+    net::RobotClient& robot;
+    bool release;
+    ~ReleaseLease() {
+      if (release) (void)robot.release_lease();
+    }
+  } release{robot, !lease_was_held};
+
+  RegistrationCaptureResult out;
+  out.capture.robot = model.name();
+  out.capture.target = "aruco:" + options.marker.dictionary + ":" +
+                       std::to_string(options.marker.id) + ":" +
+                       core::format_number(options.marker.side_m);
+  std::vector<Eigen::VectorXd> poses = options.poses;
+  if (options.auto_poses > 0) {
+    const auto state = robot.wait_state(0, 5.0);
+    if (!state) return Error{"capture: no robot state from the robot server within 5 s"};
+    const auto frame = frame_after(vision, core::monotonic_ns(), 0, 5.0);
+    if (!frame) return Error{"capture: no video frame from the vision server within 5 s"};
+    auto rough = rough_cameras(model, *state, *frame, info->cameras, options.marker);
+    if (!rough) return Error{"capture: " + rough.error().message};
+    poses = choose_capture_poses(model, state->state.q, *rough, options.marker, options.auto_poses,
+                                 options.seed);
+    if (poses.empty()) {
+      return Error{
+          "capture: no pose around the current one keeps the marker in both cameras' "
+          "view: move the arm so the marker faces both cameras, then capture again"};
+    }
+    if (static_cast<int>(poses.size()) < options.auto_poses) {
+      out.notes.push_back("only " + std::to_string(poses.size()) + " of " +
+                          std::to_string(options.auto_poses) +
+                          " automatic poses keep the marker in view");
+    }
+  }
+
+  const int count = static_cast<int>(poses.size());
+  std::uint64_t last_frame_id = 0;
+  for (int p = 0; p < count; ++p) {
+    CaptureProgress report{p + 1, count, false, ""};
+    const std::string label = "pose " + std::to_string(p + 1) + "/" + std::to_string(count);
+    const std::string plan_id =
+        "capture-" + std::to_string(core::monotonic_ns()) + "-" + std::to_string(p);
+    auto rest = move_to(model, robot, poses[static_cast<std::size_t>(p)], plan_id, options);
+    if (!rest) {
+      report.message = label + " skipped: " + rest.error().message;
+      out.notes.push_back(report.message);
+      if (progress) progress(report);
+      continue;
+    }
+    const int index = static_cast<int>(out.capture.poses.size());
+    vision::CapturedPose pose;
+    pose.q_commanded = poses[static_cast<std::size_t>(p)];
+    pose.q = rest->state.q;
+    pose.joint_time_ns = rest->capture_ns;
+    const std::int64_t rest_ns = rest->capture_client_ns();
+    const auto start = Clock::now();
+    while (static_cast<int>(pose.frames.size()) < options.frames_per_pose &&
+           seconds_since(start) < options.pose_timeout_s) {
+      const auto frame = frame_after(vision, rest_ns, last_frame_id, 2.0);
+      if (!frame) continue;
+      last_frame_id = frame->frame_id;
+      if (std::abs(frame->capture_ns_left - frame->capture_ns_right) > options.max_sync_skew_ns) {
+        continue;  // not one stereo exposure
+      }
+      vision::CapturedFrame captured;
+      captured.frame_id = frame->frame_id;
+      captured.left_time_ns = frame->capture_ns_left;
+      captured.right_time_ns = frame->capture_ns_right;
+      const int f = static_cast<int>(pose.frames.size());
+      captured.left_image = vision::captured_image_path(index, f, true);
+      captured.right_image = vision::captured_image_path(index, f, false);
+      if (Status s = vision::write_captured_images(options.directory, captured, bgr_of(frame->left),
+                                                   bgr_of(frame->right));
+          !s) {
+        return Error{"capture: " + s.error().message};
+      }
+      pose.frames.push_back(captured);
+    }
+    if (pose.frames.empty()) {
+      report.message = label + " skipped: no synchronized stereo frame after the arm settled";
+      out.notes.push_back(report.message);
+      if (progress) progress(report);
+      continue;
+    }
+    out.capture.poses.push_back(std::move(pose));
+    report.captured = true;
+    report.message =
+        label + ": " + std::to_string(out.capture.poses.back().frames.size()) + " frames";
+    if (progress) progress(report);
+  }
+  if (out.capture.poses.empty()) {
+    return Error{"capture: no pose was captured (" +
+                 (out.notes.empty() ? std::string("no poses") : out.notes.back()) + ")"};
+  }
+  // The calibration the poses were captured with, so `register --captures DIR` needs no --rig.
+  if (!info->calibration_yaml.empty()) {
+    const std::string path = (fs::path(options.directory) / "cameras.yaml").string();
+    if (Status s = vision::write_files_atomically({{path, info->calibration_yaml}}); !s) {
+      return Error{"capture: " + s.error().message};
+    }
+    out.capture.camera_file = "cameras.yaml";
+  }
+  if (Status s = vision::write_capture_manifest(out.capture, options.directory); !s) {
+    return Error{"capture: " + s.error().message};
+  }
+  return out;
+}
+
+}  // namespace telear::session
