@@ -7,6 +7,7 @@
 #include <string>
 
 #include "telear/core/ik_numeric.hpp"
+#include "telear/core/ik_ur.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/motion_command.hpp"
@@ -69,6 +70,62 @@ Status positive(const char* field, double value) {
                format_number(value)};
 }
 
+// Moves each revolute joint of q (wrapped to (-pi, pi]) to its 2 pi equivalent within the
+// limits nearest zero: the wrapped value when it is inside, else the lowest or highest inside
+// equivalent, whichever is nearer zero. False when some joint has none.
+bool move_into_limits(const RobotModel& model, Eigen::VectorXd& q) {
+  bool inside = true;
+  for (int j = 0; j < model.dof(); ++j) {
+    const double lo = model.lower_limits()[j], hi = model.upper_limits()[j];
+    if (model.joint(j).type != JointType::kRevolute) {
+      inside = inside && q[j] >= lo && q[j] <= hi;
+      continue;
+    }
+    if (q[j] >= lo && q[j] <= hi) continue;
+    const auto low = angle_equivalent_within(q[j], lo, hi);
+    if (!low) {
+      inside = false;
+      continue;
+    }
+    double best = *low;
+    for (double v = *low; v <= hi; v += kTwoPi) {
+      if (std::abs(v) < std::abs(best)) best = v;
+    }
+    q[j] = best;
+  }
+  return inside;
+}
+
+Status check_input(const RobotModel& model, const Eigen::Isometry3d& T_base_tool,
+                   const IkBranchOptions& options) {
+  if (Status s = check_ik_branch_options(options); !s) return s;
+  if (!T_base_tool.matrix().allFinite()) return Error{"solve_ik_all: target pose is not finite"};
+  if (model.dof() > 6) {
+    return Error{"solve_ik_all: " + model.name() + " has " + std::to_string(model.dof()) +
+                 " joints, so a reachable pose has a continuum of solutions, not branches; use "
+                 "solve_ik_nearest (null-space preference)"};
+  }
+  return Status::Ok();
+}
+
+// The closed form's solutions as a listing: those repeating an earlier one (within the
+// distinct tolerance: they meet at singularities) dropped, joints moved into the limits.
+Result<std::vector<IkSolution>> closed_form_listing(const RobotModel& model, AnalyticIkResult all,
+                                                    const IkBranchOptions& options) {
+  if (all.status == IkStatus::kUnreachable) return Error{"solve_ik_all: " + all.message};
+  std::vector<IkSolution> out;
+  out.reserve(all.solutions.size());
+  for (IkSolution& s : all.solutions) {
+    const bool repeat = std::any_of(out.begin(), out.end(), [&](const IkSolution& b) {
+      return same_branch(model, b.q, s.q, options.distinct_tolerance_rad);
+    });
+    if (repeat) continue;
+    s.within_limits = move_into_limits(model, s.q);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 }  // namespace
 
 Status check_ik_branch_options(const IkBranchOptions& o) {
@@ -93,16 +150,10 @@ Status check_ik_branch_options(const IkBranchOptions& o) {
   return Status::Ok();
 }
 
-Result<std::vector<IkSolution>> solve_ik_all(const RobotModel& model,
-                                             const Eigen::Isometry3d& T_base_tool,
-                                             const IkBranchOptions& options) {
-  if (Status s = check_ik_branch_options(options); !s) return s.error();
-  if (!T_base_tool.matrix().allFinite()) return Error{"solve_ik_all: target pose is not finite"};
-  if (model.dof() > 6) {
-    return Error{"solve_ik_all: " + model.name() + " has " + std::to_string(model.dof()) +
-                 " joints, so a reachable pose has a continuum of solutions, not branches; use "
-                 "solve_ik_nearest (null-space preference)"};
-  }
+Result<std::vector<IkSolution>> search_ik_branches(const RobotModel& model,
+                                                   const Eigen::Isometry3d& T_base_tool,
+                                                   const IkBranchOptions& options) {
+  if (Status s = check_input(model, T_base_tool, options); !s) return s.error();
   auto free = free_model(model);
   if (!free) return free.error();
   NumericIkOptions lm;
@@ -169,32 +220,26 @@ Result<std::vector<IkSolution>> solve_ik_all(const RobotModel& model,
     s.config = "b";
     s.config += std::to_string(i);
     s.q = found[i];
-    s.within_limits = true;
-    for (int j = 0; j < n; ++j) {
-      if (model.joint(j).type != JointType::kRevolute) {
-        s.within_limits = s.within_limits && s.q[j] >= model.lower_limits()[j] &&
-                          s.q[j] <= model.upper_limits()[j];
-        continue;
-      }
-      // The equivalent within the limits nearest zero: the wrapped value when it is inside,
-      // else the lowest or highest inside equivalent, whichever is nearer zero.
-      const double lo = model.lower_limits()[j], hi = model.upper_limits()[j];
-      if (s.q[j] >= lo && s.q[j] <= hi) continue;
-      const auto low = angle_equivalent_within(s.q[j], lo, hi);
-      if (!low) {
-        s.within_limits = false;
-        continue;
-      }
-      double best = *low;
-      for (double v = *low; v <= hi; v += kTwoPi) {
-        if (std::abs(v) < std::abs(best)) best = v;
-      }
-      s.q[j] = best;
-    }
+    s.within_limits = move_into_limits(model, s.q);
     s.singular = jacobian_min_singular_value(model, data, s.q) < options.singular_threshold;
     out.push_back(std::move(s));
   }
   return out;
+}
+
+Result<std::vector<IkSolution>> solve_ik_all(const RobotModel& model,
+                                             const Eigen::Isometry3d& T_base_tool,
+                                             const IkBranchOptions& options) {
+  if (Status s = check_input(model, T_base_tool, options); !s) return s.error();
+  if (model.dof() == 6) {
+    if (auto puma = puma_geometry(model)) {
+      return closed_form_listing(model, solve_analytic_ik(model, *puma, T_base_tool), options);
+    }
+    if (auto ur = ur_geometry(model)) {
+      return closed_form_listing(model, solve_ur_analytic_ik(model, *ur, T_base_tool), options);
+    }
+  }
+  return search_ik_branches(model, T_base_tool, options);
 }
 
 }  // namespace telear::core

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "telear/core/ik_numeric.hpp"
+#include "telear/core/ik_ur.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/pose.hpp"
@@ -51,10 +52,11 @@ bool nearest_equivalent_within_limits(const RobotModel& model, const Eigen::Vect
   return inside;
 }
 
-Result<IkSolution> nearest_analytic(const RobotModel& model, const PumaGeometry& geometry,
-                                    const Eigen::Isometry3d& T_base_tool,
-                                    const Eigen::VectorXd& q_current) {
-  AnalyticIkResult all = solve_analytic_ik(model, geometry, T_base_tool);
+// The nearest in-limit solution of a closed form's. `puma` is given for the PUMA's, whose
+// exact wrist singularity sets q4 = 0 (moved to q_current here); the UR class's solver was
+// given q_current for the joints a singularity leaves free.
+Result<IkSolution> nearest_analytic(const RobotModel& model, AnalyticIkResult all,
+                                    const Eigen::VectorXd& q_current, const PumaGeometry* puma) {
   if (all.status == IkStatus::kUnreachable) return Error{all.message};
   double best_distance = std::numeric_limits<double>::infinity();
   int best = -1;
@@ -63,8 +65,9 @@ Result<IkSolution> nearest_analytic(const RobotModel& model, const PumaGeometry&
   for (size_t i = 0; i < all.solutions.size(); ++i) {
     IkSolution& s = all.solutions[i];
     Eigen::VectorXd q = s.q;
-    const double theta5 = (geometry.mirrored ? -1.0 : 1.0) * (q[4] + geometry.offset[4]);
-    if (s.singular && std::abs(std::sin(theta5)) < kWristDegenerate) {
+    const double theta5 =
+        puma != nullptr ? (puma->mirrored ? -1.0 : 1.0) * (q[4] + puma->offset[4]) : 1.0;
+    if (puma != nullptr && s.singular && std::abs(std::sin(theta5)) < kWristDegenerate) {
       // Only q4 + q6 (cos theta5 > 0) or q4 - q6 is determined: keep q4 where it is.
       const double shift = q_current[3] - q[3];
       q[3] += shift;
@@ -170,7 +173,16 @@ Result<IkSolution> solve_ik_nearest(const RobotModel& model, const Eigen::Isomet
   assert(q_current.size() == model.dof() && "solve_ik_nearest(): wrong joint vector size");
   if (!T_base_tool.matrix().allFinite()) return Error{"target pose is not finite"};
   if (auto geometry = puma_geometry(model)) {
-    return nearest_analytic(model, *geometry, T_base_tool, q_current);
+    return nearest_analytic(model, solve_analytic_ik(model, *geometry, T_base_tool), q_current,
+                            &*geometry);
+  }
+  if (model.dof() == 6) {
+    if (auto geometry = ur_geometry(model)) {
+      const Vector6d q_free = q_current;
+      return nearest_analytic(model,
+                              solve_ur_analytic_ik(model, *geometry, T_base_tool, "", q_free),
+                              q_current, nullptr);
+    }
   }
   return nearest_numeric(model, T_base_tool, q_current, redundancy);
 }

@@ -75,7 +75,7 @@ TEST(IkBranches, FindsAllEightBranchesOfGenericUrTypePoses) {
       {2.5, -2.2, 0.9, 1.2, -1.4, 0.3}, {-1.3, -0.6, 1.9, -1.0, 2.0, -2.5}};
   for (const auto& values : configurations) {
     const Eigen::VectorXd q_true = Eigen::Map<const Eigen::VectorXd>(values, 6);
-    auto all = solve_ik_all(model, tool_pose(model, q_true));
+    auto all = search_ik_branches(model, tool_pose(model, q_true));
     ASSERT_TRUE(all) << all.error().message;
     EXPECT_EQ(all->size(), 8u) << "q_true = " << q_true.transpose();
     expect_valid_listing(model, q_true, *all);
@@ -92,8 +92,8 @@ TEST(IkBranches, DefaultSearchIsAsCompleteAsALongerOneOnRandomPoses) {
   int eights = 0;
   for (const Eigen::VectorXd& q_true : generic_configurations(model, 25)) {
     const Eigen::Isometry3d T = tool_pose(model, q_true);
-    auto all = solve_ik_all(model, T);
-    auto more = solve_ik_all(model, T, longer);
+    auto all = search_ik_branches(model, T);
+    auto more = search_ik_branches(model, T, longer);
     ASSERT_TRUE(all && more) << q_true.transpose();
     EXPECT_EQ(all->size(), more->size()) << q_true.transpose();
     EXPECT_EQ(all->size() % 2, 0u);
@@ -112,7 +112,7 @@ TEST(IkBranches, MatchesThePumaClosedForm) {
   const Eigen::Isometry3d T = tool_pose(*puma, q);
   const AnalyticIkResult analytic = solve_analytic_ik(*puma, geometry, T);
   ASSERT_EQ(analytic.solutions.size(), 8u);
-  auto numeric = solve_ik_all(*puma, T);
+  auto numeric = search_ik_branches(*puma, T);
   ASSERT_TRUE(numeric) << numeric.error().message;
   ASSERT_EQ(numeric->size(), 8u);
   for (const IkSolution& a : analytic.solutions) {
@@ -127,14 +127,48 @@ TEST(IkBranches, MatchesThePumaClosedForm) {
   }
 }
 
+// solve_ik_all takes the closed form where the arm has one: the PUMA's eight and the UR
+// class's (tests/core/ik_ur_test.cpp), labelled, in label order, moved into the limits.
+TEST(IkBranches, SolveIkAllUsesTheClosedFormWhereThereIsOne) {
+  const RobotModelPtr puma = test::puma560();
+  Eigen::VectorXd q(6);
+  q << 0.3, 0.5, -0.4, 0.6, 0.7, -0.2;
+  const Eigen::Isometry3d T = tool_pose(*puma, q);
+  const AnalyticIkResult analytic = solve_analytic_ik(*puma, *puma_geometry(*puma), T);
+  auto all = solve_ik_all(*puma, T);
+  ASSERT_TRUE(all) << all.error().message;
+  ASSERT_EQ(all->size(), analytic.solutions.size());
+  for (size_t i = 0; i < all->size(); ++i) {
+    EXPECT_EQ((*all)[i].config, analytic.solutions[i].config);
+    EXPECT_TRUE(same_modulo_turns((*all)[i].q, analytic.solutions[i].q, 1e-12));
+    EXPECT_EQ((*all)[i].within_limits, analytic.solutions[i].within_limits);
+  }
+  const RobotModel narrow = test_arms::ur_type(-0.5, 0.5);
+  q << 0.2, -1.1, 1.3, -0.7, 1.2, 0.4;
+  auto ur = solve_ik_all(narrow, tool_pose(narrow, q));
+  ASSERT_TRUE(ur) << ur.error().message;
+  ASSERT_EQ(ur->size(), 8u);
+  EXPECT_EQ(ur->front().config, "lun");
+  EXPECT_EQ(ur->back().config, "rdf");
+  int inside = 0;
+  for (const IkSolution& s : *ur) {
+    EXPECT_EQ(s.within_limits, std::abs(wrapped(s.q[0])) <= 0.5) << s.config;
+    if (s.within_limits) {
+      EXPECT_LE(std::abs(s.q[0]), 0.5) << s.config;
+    }
+    inside += s.within_limits;
+  }
+  EXPECT_EQ(inside, 4);  // one shoulder's four
+}
+
 TEST(IkBranches, ListsBranchesOutsideTheLimitsFlagged) {
   const RobotModel free = test_arms::ur_type();
   const RobotModel narrow = test_arms::ur_type(-0.5, 0.5);  // shoulder pan limited
   Eigen::VectorXd q(6);
   q << 0.2, -1.1, 1.3, -0.7, 1.2, 0.4;
   const Eigen::Isometry3d T = tool_pose(free, q);
-  auto all_free = solve_ik_all(free, T);
-  auto all_narrow = solve_ik_all(narrow, T);
+  auto all_free = search_ik_branches(free, T);
+  auto all_narrow = search_ik_branches(narrow, T);
   ASSERT_TRUE(all_free && all_narrow);
   ASSERT_EQ(all_narrow->size(), 8u);
   int inside = 0;
@@ -157,8 +191,8 @@ TEST(IkBranches, IsDeterministicAndSorted) {
   Eigen::VectorXd q(6);
   q << -0.4, -1.9, 1.1, 0.3, -0.8, 2.0;
   const Eigen::Isometry3d T = tool_pose(model, q);
-  auto a = solve_ik_all(model, T);
-  auto b = solve_ik_all(model, T);
+  auto a = search_ik_branches(model, T);
+  auto b = search_ik_branches(model, T);
   ASSERT_TRUE(a && b);
   ASSERT_EQ(a->size(), b->size());
   for (size_t i = 0; i < a->size(); ++i) {
@@ -172,7 +206,7 @@ TEST(IkBranches, IsDeterministicAndSorted) {
   // Another seed finds the same set in the same order.
   IkBranchOptions other;
   other.seed = 12345;
-  auto c = solve_ik_all(model, T, other);
+  auto c = search_ik_branches(model, T, other);
   ASSERT_TRUE(c);
   ASSERT_EQ(c->size(), a->size());
   for (size_t i = 0; i < a->size(); ++i) {
@@ -185,7 +219,7 @@ TEST(IkBranches, RejectsBadInputWithMessages) {
   const Eigen::Isometry3d T = tool_pose(model, Eigen::VectorXd::Constant(6, 0.3));
   IkBranchOptions o;
   o.attempts = 0;
-  auto r = solve_ik_all(model, T, o);
+  auto r = search_ik_branches(model, T, o);
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().message, "IkBranchOptions::attempts must be positive, got 0");
   o = {};
@@ -199,19 +233,19 @@ TEST(IkBranches, RejectsBadInputWithMessages) {
 
   Eigen::Isometry3d bad = T;
   bad(0, 3) = std::nan("");
-  EXPECT_THAT(solve_ik_all(model, bad).error().message, HasSubstr("not finite"));
+  EXPECT_THAT(search_ik_branches(model, bad).error().message, HasSubstr("not finite"));
 
   Eigen::Isometry3d far = T;
   far.translation() = Eigen::Vector3d(3.0, 0.0, 0.0);  // reach is about 1 m
   IkBranchOptions quick;
   quick.attempts = 8;
-  auto unreachable = solve_ik_all(model, far, quick);
+  auto unreachable = search_ik_branches(model, far, quick);
   ASSERT_FALSE(unreachable);
   EXPECT_THAT(unreachable.error().message,
               HasSubstr("target unreachable: none of 8 seeded attempts converged"));
 
   const RobotModel arm7 = test_arms::panda_like();
-  auto redundant = solve_ik_all(arm7, tool_pose(arm7, test_arms::panda_ready()));
+  auto redundant = search_ik_branches(arm7, tool_pose(arm7, test_arms::panda_ready()));
   ASSERT_FALSE(redundant);
   EXPECT_THAT(redundant.error().message, HasSubstr("has 7 joints"));
   EXPECT_THAT(redundant.error().message, HasSubstr("solve_ik_nearest"));

@@ -1,8 +1,10 @@
 #pragma once
-// Arms built in code for the IK tests: a UR-type 6-DOF arm (standard DH, no closed form in
-// telear) and a Panda-like 7-DOF arm (modified DH, published joint limits). The shipped 7-DOF
-// arm will be data/robots/arm7.yaml (a robot file with a URDF); until it lands, the tests and
-// the benchmark build this one in code.
+// Arms built in code for the IK tests: a UR-type 6-DOF arm (standard DH: the UR class's
+// closed form, core/ik_ur.hpp, read from a DH table, and the numeric search's reference arm)
+// and a Panda-like 7-DOF arm (modified DH, published joint limits). They are for what a
+// robot file cannot vary (a narrowed joint 1, reversed axes); the shipped arms
+// (data/robots/ur6.yaml, arm7.yaml: URDFs) are loaded as every command loads them by
+// tests/core/ik_ur_test.cpp, shipped_arms_ik_test.cpp and tests/session/ghost_arm_test.cpp.
 
 #include <cmath>
 #include <numbers>

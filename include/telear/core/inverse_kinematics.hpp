@@ -2,10 +2,13 @@
 // Inverse kinematics as motion commands use it: the solution nearest the current
 // configuration that respects the joint limits.
 //
-// Arms with PUMA geometry (ik_analytic.hpp) use the closed form: all 8 solutions, and for each
-// joint the 2*pi-equivalent value within the limits nearest q_current; the solution nearest
-// q_current (Euclidean joint distance) wins. At an exact wrist singularity only q4 +- q6 is
-// determined, so q4 stays at its current value. Other arms use NumericIkSolver seeded at
+// Arms with PUMA geometry (ik_analytic.hpp) or UR geometry (ik_ur.hpp: three parallel middle
+// axes, detected from the joints whatever file they came from) use their closed form: all
+// solutions (8 at most), and for each joint the 2*pi-equivalent value within the limits
+// nearest q_current; the solution nearest q_current (Euclidean joint distance) wins. At an
+// exact wrist singularity only q4 +- q6 (PUMA) or q6 and q2 + q3 + q4 together (UR) are
+// determined, so q4 (PUMA) or q6 (UR) stays at its current value. Other arms use
+// NumericIkSolver seeded at
 // q_current, then random restarts, asking for 1e-9 m / 1e-9 rad and settling for the solver's
 // default 1e-6 where that fails (slow convergence next to a singular target); revolute joints
 // are then moved to their 2*pi-equivalent nearest q_current within the limits, and `singular`
@@ -15,8 +18,8 @@
 // manifold to the null-space preference of `redundancy` (ik_redundant.hpp: near q_current by
 // default, or near a rest pose, away from the joint limits), config "redundant"; since that
 // search restores the pose to 1e-10 itself, their LM asks for its default 1e-6 first, and the
-// 1e-9 route above runs only where the result does not reach 1e-9. Six-joint arms
-// without a closed form can list all their branches with solve_ik_all (ik_branches.hpp).
+// 1e-9 route above runs only where the result does not reach 1e-9. Six-joint arms list all
+// their branches with solve_ik_all (ik_branches.hpp): the closed form's, or found by search.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -28,9 +31,10 @@
 
 namespace telear::core {
 
-// The nearest in-limit solution (config "lun" ... or "numeric"; `singular` set near a
-// singularity), or an error saying the target is unreachable or every solution leaves the
-// joint limits, and why. q_current must pass check_joint_vector.
+// The nearest in-limit solution (config "lun" ... "rdf" from a closed form, "numeric" or
+// "redundant"; `singular` set near a singularity), or an error saying the target is
+// unreachable or every solution leaves the joint limits, and why. q_current must pass
+// check_joint_vector.
 Result<IkSolution> solve_ik_nearest(const RobotModel& model, const Eigen::Isometry3d& T_base_tool,
                                     const Eigen::VectorXd& q_current);
 
