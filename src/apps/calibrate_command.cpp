@@ -1,14 +1,14 @@
 #include "apps/calibrate_command.hpp"
 
-#include <cmath>
-#include <cstdio>
 #include <ostream>
 #include <utility>
 #include <vector>
 
+#include "telear/core/number_format.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/calibration_images.hpp"
 #include "telear/vision/calibration_report.hpp"
+#include "telear/vision/image_calibration.hpp"
 
 namespace telear::cli {
 namespace {
@@ -23,26 +23,9 @@ int fail(std::ostream& err, const std::string& message, int code = 2) {
 vision::DetectionCallback progress_printer(std::ostream& out) {
   return [&out](const vision::DetectionProgress& p) {
     const int width = static_cast<int>(std::to_string(p.count).size());
-    char counter[32];
-    std::snprintf(counter, sizeof counter, "[%*zu/%zu] ", width, p.index, p.count);
-    out << counter << p.name << ": " << p.outcome << std::endl;  // flushed: live progress
+    out << core::format_values("[%*zu/%zu] ", width, p.index, p.count) << p.name << ": "
+        << p.outcome << std::endl;  // flushed: live progress
   };
-}
-
-// "; 11 of 13 pairs were skipped (see the lines above)" when views were lost on the way.
-std::string skipped_note(std::size_t skipped, std::size_t given, const char* what) {
-  if (skipped == 0) return "";
-  return "; " + std::to_string(skipped) + " of " + std::to_string(given) + " " + what +
-         " were skipped (see the lines above)";
-}
-
-// ROS camera_info files of the result: (path, text) pairs.
-std::vector<std::pair<std::string, std::string>> camera_info_files(
-    const std::string& prefix, const vision::CalibrationReport& r) {
-  if (prefix.empty()) return {};
-  if (r.mono) return {{prefix + ".yaml", vision::ros_mono_camera_info_yaml(*r.mono, "camera")}};
-  return {{prefix + "_left.yaml", vision::ros_stereo_camera_info_yaml(*r.stereo, false, "left")},
-          {prefix + "_right.yaml", vision::ros_stereo_camera_info_yaml(*r.stereo, true, "right")}};
 }
 
 std::vector<std::string> output_paths(const CalibrateOptions& o) {
@@ -89,42 +72,18 @@ int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostre
   auto left = vision::expand_image_glob(options.left, "--left");
   if (!left) return fail(err, left.error().message);
 
-  vision::CalibrationReport report;
-  report.pattern = *pattern;
-  const bool stereo = !options.right.empty();
-  if (stereo) {
-    auto right = vision::expand_image_glob(options.right, "--right");
-    if (!right) return fail(err, right.error().message);
-    out << "detecting " << pattern->spec() << " in " << left->size() << " image pairs\n";
-    auto views = vision::detect_in_image_pairs(*left, *right, *pattern, progress_printer(out));
-    if (!views) return fail(err, views.error().message);
-    report.image_size = views->image_size;
-    report.views_given = left->size();
-    report.skipped = views->rejected;
-    report.reordered_pairs = views->reordered_pairs;
-    out << "calibrating the stereo pair from " << views->views.size() << " pairs" << std::endl;
-    auto result = vision::calibrate_stereo(*pattern, views->views, views->image_size, calibration);
-    if (!result) {
-      return fail(err, result.error().message +
-                           skipped_note(views->rejected.size(), left->size(), "pairs"));
-    }
-    report.stereo = std::move(*result);
-  } else {
-    out << "detecting " << pattern->spec() << " in " << left->size() << " images\n";
-    auto views = vision::detect_in_images(*left, *pattern, progress_printer(out));
-    if (!views) return fail(err, views.error().message);
-    report.image_size = views->image_size;
-    report.views_given = left->size();
-    report.skipped = views->rejected;
-    out << "calibrating the camera from " << views->views.size() << " images" << std::endl;
-    auto result =
-        vision::calibrate_mono(*pattern, views->views, views->image_size, calibration.calibration);
-    if (!result) {
-      return fail(err, result.error().message +
-                           skipped_note(views->rejected.size(), left->size(), "images"));
-    }
-    report.mono = std::move(*result);
+  std::vector<std::string> right;
+  if (!options.right.empty()) {
+    auto expanded = vision::expand_image_glob(options.right, "--right");
+    if (!expanded) return fail(err, expanded.error().message);
+    right = std::move(*expanded);
   }
+  vision::ImageCalibrationProgress progress;
+  progress.stage = [&out](const std::string& text) { out << text << std::endl; };
+  progress.detection = progress_printer(out);
+  auto calibrated = vision::calibrate_image_files(*left, right, *pattern, calibration, progress);
+  if (!calibrated) return fail(err, calibrated.error().message);
+  const vision::CalibrationReport& report = *calibrated;
 
   out << "\n" << vision::calibration_summary(report);
 
@@ -134,7 +93,7 @@ int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostre
                                          : mono_calibration_yaml(*report.mono, *pattern));
   if (!options.report.empty())
     files.emplace_back(options.report, vision::calibration_report_json(report));
-  for (auto& file : camera_info_files(options.camera_info, report))
+  for (auto& file : vision::ros_camera_info_files(options.camera_info, report))
     files.push_back(std::move(file));
   if (Status s = vision::write_files_atomically(files); !s) return fail(err, s.error().message, 1);
   out << "\nwrote";

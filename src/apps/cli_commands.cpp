@@ -27,9 +27,7 @@ void add_demo_command(CLI::App& app, Commands& commands) {
   DemoOptions& demo = *options;
   CLI::App* demo_app = app.add_subcommand(
       "demo", "the whole workflow on the simulated robot and rig: rehearse, preview, execute");
-  demo_app
-      ->add_option("--robot", demo.robot, "a shipped arm with a simulated rig: puma560, ur6, arm7")
-      ->capture_default_str();
+  add_robot_arguments(demo_app, demo, true);  // an arm with a rig: puma560, ur6, arm7
   demo_app->add_option("--out", demo.out, "output folder (video, key frames, report)")
       ->capture_default_str();
   demo_app->add_option("--cache", demo.cache, "calibration cache folder (default OUT/cache)");

@@ -32,6 +32,13 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   demo.width = size->width;
   demo.height = size->height;
   demo.robot = options.robot;
+  demo.tip = options.tip;
+  auto geometry = options.geometry_options();
+  if (!geometry) {
+    err << "telear demo: " << geometry.error().message << "\n";
+    return 2;
+  }
+  demo.geometry = *geometry;
   demo.out_dir = options.out;
   demo.cache_dir = options.cache;
   demo.delay_ms = options.delay_ms;

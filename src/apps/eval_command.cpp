@@ -1,8 +1,5 @@
 #include "apps/eval_command.hpp"
 
-#include <array>
-#include <cmath>
-#include <cstdio>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -23,12 +20,6 @@ constexpr const char* kCommand = "telear eval: ";
 int fail(std::ostream& err, const std::string& message, int code = 2) {
   err << kCommand << message << "\n";
   return code;
-}
-
-std::string format(const char* fmt, double a, double b = 0, double c = 0, double d = 0) {
-  char line[200];
-  std::snprintf(line, sizeof line, fmt, a, b, c, d);
-  return line;
 }
 
 }  // namespace
@@ -63,47 +54,9 @@ int run_eval(const EvalOptions& options, std::ostream& out, std::ostream& err) {
   const vision::AccuracyReport report =
       vision::evaluate_accuracy(*model, body, *truth, *estimate, accuracy_options);
 
-  out << "accuracy of '" << options.estimate << "' against '" << options.truth << "'\n";
-  for (const auto* eye : {&report.left, &report.right}) {
-    const vision::CameraModel& t = eye->truth;
-    const vision::CameraModel& e = eye->estimate;
-    out << "\n"
-        << (eye == &report.left ? "left" : "right")
-        << " camera            truth       estimate      error\n";
-    out << format("  fx             %12.4f  %12.4f  %+9.4f %%\n", t.fx, e.fx,
-                  100.0 * (e.fx - t.fx) / t.fx);
-    out << format("  fy             %12.4f  %12.4f  %+9.4f %%\n", t.fy, e.fy,
-                  100.0 * (e.fy - t.fy) / t.fy);
-    out << format("  cx             %12.4f  %12.4f  %+9.4f px\n", t.cx, e.cx, e.cx - t.cx);
-    out << format("  cy             %12.4f  %12.4f  %+9.4f px\n", t.cy, e.cy, e.cy - t.cy);
-    const std::array<double, 5> kt = t.kc.as_array();
-    const std::array<double, 5> ke = e.kc.as_array();
-    const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
-    for (int i : {0, 1, 4, 2, 3}) {
-      out << "  " << names[i]
-          << format("             %12.6f  %12.6f  %+9.6f\n", kt[i], ke[i], ke[i] - kt[i]);
-    }
-    out << format("  registration   %9.4f mm  %9.5f deg\n", eye->registration.position_mm,
-                  eye->registration.rotation_deg);
-    out << format("  overlay        RMS %.4f px  max %.4f px  (%.0f point projections)\n",
-                  eye->overlay.rms_px, eye->overlay.max_px,
-                  static_cast<double>(eye->overlay.points));
-  }
-  out << format("\nbaseline         truth %.4f mm  estimate %.4f mm  error %+.4f mm\n",
-                1000.0 * report.baseline_truth_m, 1000.0 * report.baseline_estimate_m,
-                1000.0 * (report.baseline_estimate_m - report.baseline_truth_m));
-  out << "overlay: " << report.configurations << " arm configurations x "
-      << report.samples_per_configuration << " body points\n";
-
   const std::vector<vision::AccuracyCheck> checks = vision::accuracy_checks(report);
-  out << "\ntargets (issue 4 item 7)\n";
-  for (const vision::AccuracyCheck& c : checks) {
-    char line[160];
-    std::snprintf(line, sizeof line, "  %-24s %10.4f  <= %-7g %s\n", c.name.c_str(), c.value,
-                  c.limit, c.pass() ? "PASS" : "FAIL");
-    out << line;
-  }
-  out << "overall: " << (vision::all_pass(checks) ? "PASS" : "FAIL") << "\n";
+  out << "accuracy of '" << options.estimate << "' against '" << options.truth << "'\n"
+      << vision::accuracy_report_text(report, checks);
 
   if (!options.json.empty()) {
     const std::string json = vision::accuracy_report_json(report, checks);

@@ -1,6 +1,5 @@
 #include "apps/register_command.hpp"
 
-#include <cstdio>
 #include <ostream>
 
 #include "telear/core/robot_loader.hpp"
@@ -18,13 +17,6 @@ constexpr const char* kCommand = "telear register: ";
 int fail(std::ostream& err, const std::string& message, int code = 2) {
   err << kCommand << message << "\n";
   return code;
-}
-
-std::string residual_line(const char* label, const vision::EyeResiduals& r) {
-  char line[160];
-  std::snprintf(line, sizeof line, "  %-22s %6d points  RMS %8.4f px  max %8.4f px\n", label,
-                r.observations, r.rms_px, r.max_px);
-  return line;
 }
 
 }  // namespace
@@ -75,20 +67,8 @@ int run_register(const RegisterOptions& options, std::ostream& out, std::ostream
   out << "registered " << options.rig << " to " << options.robot << " from "
       << observations->configurations.size() << " configurations (" << result->configurations_used
       << " distinct) of " << observations->point_in_flange.size() << " point(s) each\n";
-  for (const std::string& note : result->notes) out << "  note: " << note << "\n";
-  out << "residuals after the PnP start:\n"
-      << residual_line("left", result->initial_left)
-      << residual_line("right", result->initial_right) << "residuals after refinement ("
-      << result->iterations << " Levenberg-Marquardt iterations):\n"
-      << residual_line("left", result->left) << residual_line("right", result->right);
-  const Eigen::Vector3d c_left = result->T_left_base.inverse().translation();
-  const Eigen::Vector3d c_right = result->T_right_base.inverse().translation();
-  char line[200];
-  std::snprintf(line, sizeof line,
-                "camera centres in the base frame (m): left [%.4f, %.4f, %.4f], right "
-                "[%.4f, %.4f, %.4f]\n",
-                c_left.x(), c_left.y(), c_left.z(), c_right.x(), c_right.y(), c_right.z());
-  out << line << "wrote " << options.output << "\n";
+  out << vision::registration_summary(*result);
+  out << "wrote " << options.output << "\n";
   return 0;
 }
 

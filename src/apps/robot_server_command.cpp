@@ -5,15 +5,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "apps/cli_parsing.hpp"
+#include "telear/core/joint_values.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/net/robot_server.hpp"
 #include "telear/net/server_log.hpp"
 #include "telear/sim/sim_robot_driver.hpp"
 
 namespace telear::cli {
-
-namespace {}  // namespace
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,
                      std::ostream& err) {
@@ -32,16 +30,12 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   driver_options.urdf = core::urdf_text_for_clients(*description);
   driver_options.tip_link = description->tip_link;
   if (!options.initial_q.empty()) {
-    if (auto named = (*model)->named_configuration(options.initial_q)) {
-      driver_options.robot.initial_q = *named;
-    } else {
-      auto values = parse_number_list(options.initial_q, "--q", (*model)->dof());
-      if (!values) {
-        err << "telear robot-server: " << values.error().message << "\n";
-        return 1;
-      }
-      driver_options.robot.initial_q = to_vector(*values);
+    auto q = core::parse_joint_values(**model, options.initial_q, "--q", false);
+    if (!q) {
+      err << "telear robot-server: " << q.error().message << "\n";
+      return 1;
     }
+    driver_options.robot.initial_q = *q;
   }
   if (options.heartbeat_ms <= 0) {
     err << "telear robot-server: --heartbeat-ms must be positive, got " << options.heartbeat_ms

@@ -1,14 +1,12 @@
 #include "apps/sim_frame_command.hpp"
 
-#include "telear/sim/rig_robot.hpp"
-
-#include "apps/cli_parsing.hpp"
-#include "telear/core/angles.hpp"
 #include "telear/core/arm_body.hpp"
+#include "telear/core/joint_values.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/image_io.hpp"
+#include "telear/sim/rig_robot.hpp"
 #include "telear/sim/scene_renderer.hpp"
 #include "telear/sim/stereo_rig.hpp"
 
@@ -28,15 +26,8 @@ int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostrea
   auto loaded = sim::load_rig_robot(*rig);
   if (!loaded) return fail(loaded.error().message, 2);
   const core::RobotModel& robot = *loaded->model();
-  Eigen::VectorXd q;
-  if (auto named = robot.named_configuration(options.q)) {
-    q = *named;
-  } else {
-    auto values = parse_number_list(options.q, "--q", robot.dof());
-    if (!values) return fail(values.error().message, 2);
-    q = to_vector(*values);
-    if (options.degrees) q = q.unaryExpr([](double v) { return core::radians_from_degrees(v); });
-  }
+  auto q = core::parse_joint_values(robot, options.q, "--q", options.degrees);
+  if (!q) return fail(q.error().message, 2);
   const core::BodyDescription* body = &loaded->body;
 
   auto context = render::create_headless_context();
@@ -47,7 +38,7 @@ int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostrea
   scene_options.marker = loaded->description.marker;
   auto scene = sim::SceneRenderer::create(*rig, robot, *body, scene_options);
   if (!scene) return fail(scene.error().message, 1);
-  scene->set_configuration(q);
+  scene->set_configuration(*q);
   scene->set_gripper_opening(static_cast<float>(options.gripper));
   for (const auto& [eye, suffix] :
        {std::pair{sim::Eye::kLeft, "_left.png"}, std::pair{sim::Eye::kRight, "_right.png"}}) {

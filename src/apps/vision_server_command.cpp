@@ -1,14 +1,13 @@
 #include "apps/vision_server_command.hpp"
 
-#include "telear/core/image_size.hpp"
-
 #include <spdlog/spdlog.h>
 
 #include <csignal>
 #include <memory>
 #include <optional>
 
-#include "apps/cli_parsing.hpp"
+#include "telear/core/image_size.hpp"
+#include "telear/core/number_list.hpp"
 #include "telear/net/bearer_auth.hpp"
 #include "telear/net/robot_client.hpp"
 #include "telear/net/server_log.hpp"
@@ -106,7 +105,7 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
     if (!opened) return fail(opened.error().message, 2);
     source = std::move(*opened);
   } else if (options.source == "v4l2") {
-    auto indices = parse_number_list(options.cameras, "--cameras", 2);
+    auto indices = core::parse_number_list(options.cameras, "--cameras", 2);
     if (!indices) return fail(indices.error().message, 2);
     vision::CameraSourceOptions cameras;
     cameras.left_index = static_cast<int>((*indices)[0]);

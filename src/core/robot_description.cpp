@@ -14,9 +14,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 
+#include "telear/core/angles.hpp"
 #include "telear/core/companion_file.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/yaml_reader.hpp"
@@ -286,7 +286,7 @@ Result<RobotDescription> from_robot_file(const std::string& path, const YAML::No
       for (std::size_t i = 0; i < values->size(); ++i) {
         const bool revolute = model.joints[i].type == JointType::kRevolute;
         q[static_cast<Eigen::Index>(i)] =
-            degrees && revolute ? (*values)[i] * std::numbers::pi / 180.0 : (*values)[i];
+            degrees && revolute ? radians_from_degrees((*values)[i]) : (*values)[i];
       }
       auto& named = model.named_configurations;
       named.erase(std::remove_if(named.begin(), named.end(),

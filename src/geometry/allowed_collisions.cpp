@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "telear/core/random_configuration.hpp"
+#include "telear/core/yaml_reader.hpp"
 #include "telear/geometry/collision_checker.hpp"
 
 namespace telear::geometry {
@@ -68,12 +69,9 @@ std::string AllowedCollisionMatrix::to_yaml() const {
 
 Result<AllowedCollisionMatrix> AllowedCollisionMatrix::from_yaml(const std::string& text,
                                                                  const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    return Error{source + ": not valid YAML: " + e.msg};
-  }
+  auto loaded = core::load_yaml(text, source + ": ");
+  if (!loaded) return loaded.error();
+  const YAML::Node root = *loaded;
   AllowedCollisionMatrix m;
   if (!root || root.IsNull()) return m;
   if (!root.IsSequence()) return Error{source + ": must be a list of [body, body, reason]"};

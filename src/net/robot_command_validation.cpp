@@ -1,29 +1,26 @@
 #include "telear/net/robot_command_validation.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "telear/core/clock.hpp"
 #include "telear/core/joint_limits.hpp"
+#include "telear/core/number_format.hpp"
 
 namespace telear::net {
 
 namespace {
 
-std::string number(double value, const char* format = "%.4g") {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
+// Values in refusals: four significant digits unless a field needs another form.
+constexpr const char* kValue = "%.4g";
 
 std::string milliseconds(std::int64_t ns) {
-  return number(static_cast<double>(ns) * 1e-6, "%.1f") + " ms";
+  return core::format_number(static_cast<double>(ns) * 1e-6, "%.1f") + " ms";
 }
 
 // "0.120 rad" or "0.0300 m": the value in SI units, as the wire carries it.
 std::string si_value(const core::RobotModel& model, int joint, double value) {
   const bool prismatic = model.joint(joint).type == core::JointType::kPrismatic;
-  return number(value, prismatic ? "%.4f" : "%.3f") + (prismatic ? " m" : " rad");
+  return core::format_number(value, prismatic ? "%.4f" : "%.3f") + (prismatic ? " m" : " rad");
 }
 
 template <typename Repeated>
@@ -36,7 +33,7 @@ Result<Eigen::VectorXd> finite_vector(const Repeated& values, int size, const st
   for (int i = 0; i < size; ++i) {
     if (!std::isfinite(values[i])) {
       return Error{what + "[" + std::to_string(i) +
-                   "] is not a finite number: " + number(values[i])};
+                   "] is not a finite number: " + core::format_number(values[i], kValue)};
     }
     v[i] = values[i];
   }
@@ -139,7 +136,8 @@ Result<JogCommand> jog_command_from_request(const core::RobotModel& model,
                      " joints)"};
       }
       if (!std::isfinite(inc.delta())) {
-        return Error{"jog rejected: the increment is not a finite number: " + number(inc.delta())};
+        return Error{"jog rejected: the increment is not a finite number: " +
+                     core::format_number(inc.delta(), kValue)};
       }
       jog.motion = core::JointIncrement{inc.joint(), inc.delta()};
       jog.description = "joint increment: " + core::joint_label(model, inc.joint()) + " by " +
@@ -162,7 +160,8 @@ Result<JogCommand> jog_command_from_request(const core::RobotModel& model,
       const core::MotionFrame frame = frame_from_proto(inc.frame());
       jog.motion = core::CartesianIncrement{frame, *dX, *dM};
       jog.description = std::string("Cartesian increment in the ") + to_string(frame) +
-                        " frame: " + number(dX->norm()) + " m, " + number(dM->norm()) + " rad";
+                        " frame: " + core::format_number(dX->norm(), kValue) + " m, " +
+                        core::format_number(dM->norm(), kValue) + " rad";
       return jog;
     }
     case v1::JogRequest::kCartesianTarget: {
@@ -203,7 +202,7 @@ Status check_jog_expiry(std::int64_t expires_ns, std::int64_t now_ns, const Comm
 
 Status check_gripper_opening(double opening) {
   if (!(std::isfinite(opening) && opening >= 0.0 && opening <= 1.0)) {
-    return Error{"gripper command rejected: opening " + number(opening) +
+    return Error{"gripper command rejected: opening " + core::format_number(opening, kValue) +
                  " is outside [0, 1] (0 closed, 1 open)"};
   }
   return Status::Ok();

@@ -15,6 +15,7 @@
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/calibration_images.hpp"
 #include "telear/vision/calibration_report.hpp"
+#include "telear/vision/image_calibration.hpp"
 #include "telear/vision/observations_file.hpp"
 #include "telear/vision/overlay_accuracy.hpp"
 #include "telear/vision/registered_camera_file.hpp"
@@ -41,20 +42,12 @@ Status calibrate(const sim::CalibrationCapture& capture, const std::string& patt
                  const std::string& output, const std::string& report_file) {
   auto pattern = vision::parse_calibration_pattern(pattern_spec);
   if (!pattern) return pattern.error();
-  auto views = vision::detect_in_image_pairs(capture.left_images, capture.right_images, *pattern);
-  if (!views) return views.error();
-  vision::CalibrationReport report;
-  report.pattern = *pattern;
-  report.image_size = views->image_size;
-  report.views_given = capture.left_images.size();
-  report.skipped = views->rejected;
-  report.reordered_pairs = views->reordered_pairs;
-  auto result = vision::calibrate_stereo(*pattern, views->views, views->image_size, {});
-  if (!result) return result.error();
-  report.stereo = std::move(*result);
+  auto report =
+      vision::calibrate_image_files(capture.left_images, capture.right_images, *pattern, {});
+  if (!report) return report.error();
   return vision::write_files_atomically(
-      {{output, vision::stereo_calibration_yaml(*report.stereo, *pattern)},
-       {report_file, vision::calibration_report_json(report)}});
+      {{output, vision::stereo_calibration_yaml(*report->stereo, *pattern)},
+       {report_file, vision::calibration_report_json(*report)}});
 }
 
 // Step 4: the robot base in both cameras -> registered.yaml.
@@ -157,6 +150,7 @@ Result<CalibrationPipelineResult> run_calibration_pipeline(
         << "\nsupersample " << options.supersample << "\npattern " << options.pattern << "\nrobot "
         << options.robot << "\n";
   }
+  if (!options.tip.empty()) key << "tip " << options.tip << "\n";
   result.cached = fs::exists(result.registered_file, ec) && fs::exists(eval_file, ec) &&
                   fs::exists(key_file, ec) && read_text(key_file) == key.str();
 
@@ -167,7 +161,8 @@ Result<CalibrationPipelineResult> run_calibration_pipeline(
                                      "': " + (ec ? ec.message() : "not a directory"));
     }
     fs::remove(key_file, ec);
-    auto robot = geometry::load_robot_assets({options.robot, {}, {}});
+    auto robot = geometry::load_robot_assets(
+        {options.robot, options.tip, options.geometry.package_paths}, options.geometry);
     if (!robot) return step_error("register", robot.error().message);
     const core::RobotModelPtr model = robot->model();
 
@@ -191,6 +186,8 @@ Result<CalibrationPipelineResult> run_calibration_pipeline(
     sim::MarkerObservationsOptions observe_options;
     observe_options.rig_file = options.rig_file;
     observe_options.robot = options.robot;
+    observe_options.tip = options.tip;
+    observe_options.geometry = options.geometry;
     observe_options.configurations = options.configurations;
     observe_options.seed = options.seed;
     observe_options.supersample = options.supersample;

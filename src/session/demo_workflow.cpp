@@ -63,7 +63,8 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   step(1, "calibrating the simulated stereo rig and registering the robot");
   CalibrationPipelineOptions pipeline;
-  auto robot = geometry::load_robot_assets({options.robot, {}, {}});
+  auto robot = geometry::load_robot_assets(
+      {options.robot, options.tip, options.geometry.package_paths}, options.geometry);
   if (!robot) return robot.error();
   const core::RobotModelPtr model = robot->model();
   EmbeddedServersOptions server_options;
@@ -71,6 +72,8 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   if (Status s = serve_robot(server_options, robot->description); !s) return s.error();
   pipeline.rig_file = server_options.rig;
   pipeline.robot = options.robot;
+  pipeline.tip = options.tip;
+  pipeline.geometry = options.geometry;
   pipeline.cache_dir = options.cache_dir.empty() ? options.out_dir + "/cache" : options.cache_dir;
   pipeline.seed = options.seed;
   auto calibration = run_calibration_pipeline(pipeline);

@@ -1,7 +1,12 @@
 #include "telear/vision/accuracy_check.hpp"
 
+#include <array>
 #include <cmath>
+#include <iomanip>
 #include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "telear/core/number_format.hpp"
 
 namespace telear::vision {
 
@@ -74,6 +79,56 @@ std::string accuracy_report_json(const AccuracyReport& report,
   json["checks"] = json_checks;
   json["pass"] = all_pass(checks);
   return json.dump(2) + "\n";
+}
+
+std::string accuracy_report_text(const AccuracyReport& report,
+                                 const std::vector<AccuracyCheck>& checks) {
+  using core::format_number;
+  std::ostringstream out;
+  // "  fx             1000.0000     1000.1234    +0.0123 %"
+  const auto row = [&out](const std::string& label, double truth, double estimate, double error,
+                          const char* value_format, const char* error_format,
+                          const std::string& unit) {
+    out << "  " << std::left << std::setw(15) << label << format_number(truth, value_format) << "  "
+        << format_number(estimate, value_format) << "  " << format_number(error, error_format)
+        << unit << "\n";
+  };
+  for (const auto* eye : {&report.left, &report.right}) {
+    const CameraModel& t = eye->truth;
+    const CameraModel& e = eye->estimate;
+    out << "\n"
+        << (eye == &report.left ? "left" : "right")
+        << " camera            truth       estimate      error\n";
+    row("fx", t.fx, e.fx, 100.0 * (e.fx - t.fx) / t.fx, "%12.4f", "%+9.4f", " %");
+    row("fy", t.fy, e.fy, 100.0 * (e.fy - t.fy) / t.fy, "%12.4f", "%+9.4f", " %");
+    row("cx", t.cx, e.cx, e.cx - t.cx, "%12.4f", "%+9.4f", " px");
+    row("cy", t.cy, e.cy, e.cy - t.cy, "%12.4f", "%+9.4f", " px");
+    const std::array<double, 5> kt = t.kc.as_array();
+    const std::array<double, 5> ke = e.kc.as_array();
+    const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
+    for (int i : {0, 1, 4, 2, 3})
+      row(names[i], kt[i], ke[i], ke[i] - kt[i], "%12.6f", "%+9.6f", "");
+    out << "  registration   " << format_number(eye->registration.position_mm, "%9.4f") << " mm  "
+        << format_number(eye->registration.rotation_deg, "%9.5f") << " deg\n";
+    out << "  overlay        RMS " << format_number(eye->overlay.rms_px, "%.4f") << " px  max "
+        << format_number(eye->overlay.max_px, "%.4f") << " px  ("
+        << format_number(static_cast<double>(eye->overlay.points), "%.0f")
+        << " point projections)\n";
+  }
+  out << "\nbaseline         truth " << format_number(1000.0 * report.baseline_truth_m, "%.4f")
+      << " mm  estimate " << format_number(1000.0 * report.baseline_estimate_m, "%.4f")
+      << " mm  error "
+      << format_number(1000.0 * (report.baseline_estimate_m - report.baseline_truth_m), "%+.4f")
+      << " mm\n";
+  out << "overlay: " << report.configurations << " arm configurations x "
+      << report.samples_per_configuration << " body points\n";
+  out << "\ntargets (issue 4 item 7)\n";
+  for (const AccuracyCheck& c : checks) {
+    out << "  " << std::left << std::setw(24) << c.name << " " << format_number(c.value, "%10.4f")
+        << "  <= " << format_number(c.limit, "%-7g") << " " << (c.pass() ? "PASS" : "FAIL") << "\n";
+  }
+  out << "overall: " << (all_pass(checks) ? "PASS" : "FAIL") << "\n";
+  return out.str();
 }
 
 }  // namespace telear::vision

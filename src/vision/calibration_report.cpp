@@ -7,6 +7,8 @@
 #include <opencv2/calib3d.hpp>
 
 #include "telear/core/angles.hpp"
+#include "telear/core/number_format.hpp"
+#include "telear/vision/calibration_file.hpp"
 #include "telear/vision/calibration_images.hpp"
 
 namespace telear::vision {
@@ -120,13 +122,6 @@ std::size_t views_rejected(const CalibrationReport& report) {
          (report.mono ? report.mono->rejected.size() : report.stereo->rejected.size());
 }
 
-template <typename... Args>
-std::string format(const char* fmt, Args... args) {
-  char buffer[160];
-  std::snprintf(buffer, sizeof buffer, fmt, args...);
-  return buffer;
-}
-
 double rotation_angle_deg(const cv::Matx33d& R) {
   cv::Vec3d om;
   cv::Rodrigues(R, om);
@@ -143,8 +138,9 @@ std::string padded(std::string text, std::size_t width) {
 
 // "533.093 ± 0.585", with digits suited to the parameter; "0 (held)" for a fixed one.
 std::string value_pm(double value, double std_dev, bool distortion) {
-  if (std_dev == 0.0) return format("%g (held)", value);
-  return distortion ? format("%.5f ± %.5f", value, std_dev) : format("%.3f ± %.3f", value, std_dev);
+  if (std_dev == 0.0) return core::format_values("%g (held)", value);
+  return distortion ? core::format_values("%.5f ± %.5f", value, std_dev)
+                    : core::format_values("%.3f ± %.3f", value, std_dev);
 }
 
 void parameter_rows(std::string& out, const std::vector<const CameraModel*>& cameras,
@@ -239,18 +235,20 @@ std::string calibration_summary(const CalibrationReport& report) {
     const StereoCalibration& s = *report.stereo;
     out += padded("", 12) + padded("left", 26) + "right\n";
     parameter_rows(out, {&s.cameras.left, &s.cameras.right}, {&s.left_std_dev, &s.right_std_dev});
-    out += padded("  RMS", 12) +
-           padded(format("%.3f px (alone %.3f)", s.left_rms_px, s.mono_left_rms_px), 26) +
-           format("%.3f px (alone %.3f)", s.right_rms_px, s.mono_right_rms_px) + "\n\n";
-    out += format("stereo RMS %.3f px (both images); baseline %.6g ± %.2g (pattern units)\n",
-                  s.rms_px, s.baseline(), s.baseline_std);
-    out += format("  T = (%.6g, %.6g, %.6g)   R: %.4f deg\n", s.T[0], s.T[1], s.T[2],
-                  rotation_angle_deg(s.R));
+    out +=
+        padded("  RMS", 12) +
+        padded(core::format_values("%.3f px (alone %.3f)", s.left_rms_px, s.mono_left_rms_px), 26) +
+        core::format_values("%.3f px (alone %.3f)", s.right_rms_px, s.mono_right_rms_px) + "\n\n";
+    out += core::format_values(
+        "stereo RMS %.3f px (both images); baseline %.6g ± %.2g (pattern units)\n", s.rms_px,
+        s.baseline(), s.baseline_std);
+    out += core::format_values("  T = (%.6g, %.6g, %.6g)   R: %.4f deg\n", s.T[0], s.T[1], s.T[2],
+                               rotation_angle_deg(s.R));
   } else {
     const MonoCalibration& m = *report.mono;
     out += padded("", 12) + "camera\n";
     parameter_rows(out, {&m.camera}, {&m.std_dev});
-    out += padded("  RMS", 12) + format("%.3f px\n", m.rms_px);
+    out += padded("  RMS", 12) + core::format_values("%.3f px\n", m.rms_px);
   }
 
   out += "\n";
@@ -263,11 +261,12 @@ std::string calibration_summary(const CalibrationReport& report) {
                                     : file_name_of(v["image"].get<std::string>());
     out += "  " + padded(name, stereo ? 40 : 31);
     if (v["status"] == "used") {
-      out += stereo ? format("%7.3f  %8.3f  used\n", v["rms_px"]["left"].get<double>(),
-                             v["rms_px"]["right"].get<double>())
-                    : format("%6.3f  used\n", v["rms_px"].get<double>());
+      out += stereo ? core::format_values("%7.3f  %8.3f  used\n", v["rms_px"]["left"].get<double>(),
+                                          v["rms_px"]["right"].get<double>())
+                    : core::format_values("%6.3f  used\n", v["rms_px"].get<double>());
     } else {
-      out += (stereo ? format("%7s  %8s  ", "-", "-") : format("%6s  ", "-")) +
+      out += (stereo ? core::format_values("%7s  %8s  ", "-", "-")
+                     : core::format_values("%6s  ", "-")) +
              "rejected: " + v["reason"].get<std::string>() + "\n";
     }
   }
@@ -276,6 +275,14 @@ std::string calibration_summary(const CalibrationReport& report) {
            " pair(s) had the right image's corners numbered from the other end; reordered\n";
   }
   return out;
+}
+
+std::vector<std::pair<std::string, std::string>> ros_camera_info_files(
+    const std::string& prefix, const CalibrationReport& report) {
+  if (prefix.empty()) return {};
+  if (report.mono) return {{prefix + ".yaml", ros_mono_camera_info_yaml(*report.mono, "camera")}};
+  return {{prefix + "_left.yaml", ros_stereo_camera_info_yaml(*report.stereo, false, "left")},
+          {prefix + "_right.yaml", ros_stereo_camera_info_yaml(*report.stereo, true, "right")}};
 }
 
 }  // namespace telear::vision

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <random>
 
+#include "telear/core/angles.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/random_configuration.hpp"
 
@@ -91,7 +91,7 @@ PoseError registration_error(const Eigen::Isometry3d& T_cam_base_truth,
   error.position_mm =
       (T_base_cam_estimate.translation() - T_base_cam_truth.translation()).norm() * 1000.0;
   const Eigen::Matrix3d R = T_base_cam_estimate.linear().transpose() * T_base_cam_truth.linear();
-  error.rotation_deg = Eigen::AngleAxisd(R).angle() * 180.0 / std::numbers::pi;
+  error.rotation_deg = core::degrees_from_radians(Eigen::AngleAxisd(R).angle());
   return error;
 }
 

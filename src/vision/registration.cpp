@@ -7,6 +7,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "telear/core/kinematics.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/vision/opencv_pose.hpp"
 
 namespace telear::vision {
@@ -330,6 +331,36 @@ RegistrationObservations tool_tip_observations(const core::RobotModel& model,
     observations.configurations.push_back(std::move(configuration));
   }
   return observations;
+}
+
+namespace {
+
+// "  left                       412 points  RMS   0.1234 px  max   0.4567 px".
+std::string residual_line(const std::string& label, const EyeResiduals& r) {
+  std::string text = "  " + label;
+  text.append(label.size() < 22 ? 22 - label.size() : 0, ' ');
+  return text + " " + core::format_number(r.observations, "%6.0f") + " points  RMS " +
+         core::format_number(r.rms_px, "%8.4f") + " px  max " +
+         core::format_number(r.max_px, "%8.4f") + " px\n";
+}
+
+std::string centre_text(const Eigen::Isometry3d& T_cam_base) {
+  const Eigen::Vector3d c = T_cam_base.inverse().translation();
+  return "[" + core::format_fixed(c.x(), 4) + ", " + core::format_fixed(c.y(), 4) + ", " +
+         core::format_fixed(c.z(), 4) + "]";
+}
+
+}  // namespace
+
+std::string registration_summary(const RegistrationResult& result) {
+  std::string text;
+  for (const std::string& note : result.notes) text += "  note: " + note + "\n";
+  text += "residuals after the PnP start:\n" + residual_line("left", result.initial_left) +
+          residual_line("right", result.initial_right) + "residuals after refinement (" +
+          std::to_string(result.iterations) + " Levenberg-Marquardt iterations):\n" +
+          residual_line("left", result.left) + residual_line("right", result.right);
+  return text + "camera centres in the base frame (m): left " + centre_text(result.T_left_base) +
+         ", right " + centre_text(result.T_right_base) + "\n";
 }
 
 }  // namespace telear::vision

@@ -2,8 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include "telear/core/number_list.hpp"
+
 namespace telear::cli {
 namespace {
+
+// The one list parser every option uses (moved from apps to core/number_list.hpp).
+using core::parse_number_list;
 
 TEST(ParseNumberList, ParsesCommaSeparatedNumbers) {
   auto v = parse_number_list(" 1, -2.5,3e-1", "--q");

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "telear/core/angles.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/pose.hpp"
 #include "telear/core/version.hpp"
@@ -40,7 +41,7 @@ TEST(CliKin, FkJsonMatchesTheModel) {
   const auto model = test::puma560();
   Eigen::VectorXd q(6);
   q << 0, 45, -60, 10, 20, 30;
-  q *= M_PI / 180.0;
+  q = q.unaryExpr([](double d) { return core::radians_from_degrees(d); });
   const Eigen::Matrix4d expected = test::dh_product(*model->dh(), q);
   ASSERT_EQ(j["T_base_tool"].size(), 4u);
   for (int r_ = 0; r_ < 4; ++r_) {
@@ -214,10 +215,14 @@ TEST(CliKinIk, PoseInDegreesWithAConfiguration) {
   EXPECT_EQ(j["solutions"][0]["config"], "lun");
   const Eigen::VectorXd q_deg = json_vector(j["solutions"][0]["q"]);
   const Eigen::Isometry3d expected =
-      core::pose_from_xyz_rpy({0.5, 0.1, 0.4}, Eigen::Vector3d(10, 80, -20) * M_PI / 180.0);
-  EXPECT_LT(
-      test::max_abs_diff(core::tool_pose(*model, q_deg * M_PI / 180.0).matrix(), expected.matrix()),
-      1e-9);
+      core::pose_from_xyz_rpy({0.5, 0.1, 0.4}, Eigen::Vector3d(core::radians_from_degrees(10),
+                                                               core::radians_from_degrees(80),
+                                                               core::radians_from_degrees(-20)));
+  EXPECT_LT(test::max_abs_diff(core::tool_pose(*model, q_deg.unaryExpr([](double d) {
+                                 return core::radians_from_degrees(d);
+                               })).matrix(),
+                               expected.matrix()),
+            1e-9);
 }
 
 TEST(CliKinIk, HumanReadableOutputWithBlankSeparatedMatrix) {

@@ -51,7 +51,9 @@ TEST(SimFrameCli, BadInputIsOneLineAndWritesNothing) {
   const std::string rig = " --rig " + std::string(TELEAR_TEST_DATA_DIR) + "/rigs/puma560_rig.yaml";
   const auto wrong_count = run_telear("sim frame" + rig + " --q 0,0,0 -o " + prefix);
   EXPECT_EQ(wrong_count.exit_code, 2);
-  EXPECT_EQ(wrong_count.err, "telear sim frame: --q: expected 6 numbers, got 3\n");
+  // The same message as every command's --q (core/joint_values.hpp).
+  EXPECT_EQ(wrong_count.err,
+            "telear sim frame: --q: expected 6 numbers, got 3 (robot 'puma560' has 6 joints)\n");
   const auto gripper = run_telear("sim frame" + rig + " --gripper -1 -o " + prefix);
   EXPECT_EQ(gripper.exit_code, 2);
   EXPECT_EQ(gripper.err, "telear sim frame: --gripper must be an opening between 0 and 0.2 m\n");

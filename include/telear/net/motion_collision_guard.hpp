@@ -1,6 +1,6 @@
 #pragma once
-// The robot server's collision authority (DESIGN.md: "the server holds the workspace and is
-// the collision authority"): every trajectory, plan and jog is checked against the workspace
+// The robot server's collision authority (docs/network.md, "Collisions": the server holds
+// the workspace and is the collision authority): every trajectory, plan and jog is checked against the workspace
 // and the arm itself before the driver sees it, so a client with a stale or missing
 // workspace cannot drive the arm into the table.
 //

@@ -24,17 +24,20 @@
 #include <string>
 
 #include "telear/core/result.hpp"
+#include "telear/geometry/robot_geometry.hpp"
 
 namespace telear::session {
 
 struct CalibrationPipelineOptions {
-  std::string rig_file;   // sim::load_stereo_rig's YAML (the TRUE cameras)
-  std::string cache_dir;  // created if missing
-  std::string robot = "puma560";
-  std::uint64_t seed = 1;   // poses, configurations and sensor noise
-  int views = 20;           // chessboard views (1..100)
-  int configurations = 20;  // marker configurations (1..500)
-  int supersample = 4;      // anti-aliasing of the rendered images, 1..8
+  std::string rig_file;                // sim::load_stereo_rig's YAML (the TRUE cameras)
+  std::string cache_dir;               // created if missing
+  std::string robot = "puma560";       // a shipped name, robot file, DH table or URDF
+  std::string tip;                     // the tip link when the URDF tree has several leaves
+  geometry::GeometryOptions geometry;  // --package-path, --missing-meshes
+  std::uint64_t seed = 1;              // poses, configurations and sensor noise
+  int views = 20;                      // chessboard views (1..100)
+  int configurations = 20;             // marker configurations (1..500)
+  int supersample = 4;                 // anti-aliasing of the rendered images, 1..8
   std::string pattern = "chessboard:9x6:0.03";
 
   // Errors name the field and the violated range.

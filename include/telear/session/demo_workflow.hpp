@@ -16,16 +16,19 @@
 #include <vector>
 
 #include "telear/core/result.hpp"
+#include "telear/geometry/robot_geometry.hpp"
 #include "telear/session/demo_task.hpp"
 
 namespace telear::session {
 
 struct DemoOptions {
   std::string out_dir = "out/demo";
-  std::string cache_dir;          // empty: <out_dir>/cache
-  std::string robot = "puma560";  // a shipped robot with a rig: puma560, ur6, arm7
-  std::string rig_file;           // empty: the data directory's rigs/<robot>_rig.yaml
-  int width = 640;                // the operator's view per eye, px
+  std::string cache_dir;               // empty: <out_dir>/cache
+  std::string robot = "puma560";       // a robot with a rig: puma560, ur6, arm7 or their files
+  std::string tip;                     // the tip link when the URDF tree has several leaves
+  geometry::GeometryOptions geometry;  // --package-path, --missing-meshes
+  std::string rig_file;                // empty: the data directory's rigs/<robot>_rig.yaml
+  int width = 640;                     // the operator's view per eye, px
   int height = 480;
   int delay_ms = 400;  // injected video delay during the execution window, 0..5000
   std::uint64_t seed = 1;

@@ -45,4 +45,10 @@ bool all_pass(const std::vector<AccuracyCheck>& checks);
 std::string accuracy_report_json(const AccuracyReport& report,
                                  const std::vector<AccuracyCheck>& checks);
 
+// The table `telear eval` prints: per eye the intrinsics (truth, estimate, error), the
+// registration and overlay errors; the baseline; the overlay's sample counts; then every
+// check against its target, PASS or FAIL, and the overall verdict.
+std::string accuracy_report_text(const AccuracyReport& report,
+                                 const std::vector<AccuracyCheck>& checks);
+
 }  // namespace telear::vision

@@ -20,6 +20,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "telear/vision/calibration_pattern.hpp"
@@ -45,5 +46,10 @@ std::string calibration_report_json(const CalibrationReport& report);
 // A human-readable summary: parameters with standard deviations, stereo geometry, a per-view
 // table and the views left out with their reasons.
 std::string calibration_summary(const CalibrationReport& report);
+
+// The result as ROS camera_info files, (path, YAML text) pairs: PREFIX.yaml for a mono
+// calibration, PREFIX_left.yaml and PREFIX_right.yaml for a stereo one; none for "".
+std::vector<std::pair<std::string, std::string>> ros_camera_info_files(
+    const std::string& prefix, const CalibrationReport& report);
 
 }  // namespace telear::vision

@@ -76,6 +76,10 @@ Result<RegistrationResult> register_stereo(const core::RobotModel& model, const 
                                            const RegistrationObservations& observations,
                                            const RegistrationOptions& options = {});
 
+// What `telear register` prints after the fit: its notes, the residuals per eye after the PnP
+// start and after the refinement (points, RMS, max), and both camera centres in the base frame.
+std::string registration_summary(const RegistrationResult& result);
+
 // Reprojection residuals of given poses on the observations (both eyes).
 struct StereoResiduals {
   EyeResiduals left;

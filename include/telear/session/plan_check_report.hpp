@@ -1,0 +1,25 @@
+#pragma once
+// What `telear plan check` prints about a saved plan's collision check (plan_collision.hpp):
+// text for the operator -- the verdict, every contact with its time, segment, link, object and
+// depth, and the smallest clearances -- and JSON for scripts (SI units, 2-space indent,
+// trailing newline).
+
+#include <cstddef>
+#include <string>
+
+#include "telear/geometry/trajectory_collision.hpp"
+
+namespace telear::session {
+
+// "plan p.yaml (9 waypoints, 6.120 s) in ws.yaml: COLLISION\n  contact at 1.230 s
+// (segment 2): link6 with table_top, depth 4.2 mm\n  min clearance ...".
+std::string plan_check_text(const std::string& plan_file, std::size_t waypoints, double duration_s,
+                            const std::string& workspace_file,
+                            const geometry::TrajectoryCheckReport& report);
+
+// collision_free, collisions[] (time_s, link, object, self, depth_m, segment), min_clearance
+// and min_workspace_clearance (distance_m: null when nothing was measured), min_clearance_m,
+// duration_s, configurations_checked.
+std::string plan_check_json(const geometry::TrajectoryCheckReport& report, double duration_s);
+
+}  // namespace telear::session
