@@ -147,6 +147,15 @@ void add_plan_commands(CLI::App& app, Commands& commands) {
   check_app->add_flag("--json", check.json, "print JSON");
   commands.push_back(
       {check_app, [options] { return run_plan_check(*options, std::cout, std::cerr); }});
+
+  auto hash_options = std::make_shared<PlanHashOptions>();
+  CLI::App* hash_app = plan_app->add_subcommand(
+      "hash", "the plan's SHA-256 as the plan message carries it (telear/core/plan_hash.hpp)");
+  add_robot_arguments(hash_app, *hash_options, true);
+  hash_app->add_option("--plan", hash_options->plan, "plan file (YAML)")->required();
+  hash_app->add_flag("--json", hash_options->json, "print JSON (hash, algorithm, duration)");
+  commands.push_back(
+      {hash_app, [hash_options] { return run_plan_hash(*hash_options, std::cout, std::cerr); }});
 }
 
 // [SECTION] calibrate, register, eval

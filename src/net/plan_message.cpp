@@ -1,5 +1,6 @@
 #include "telear/net/plan_message.hpp"
 
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -8,28 +9,52 @@
 namespace telear::net {
 namespace {
 
-// The client's hash as shown in a message: untrusted text, so non-printable bytes become '?'
-// and anything past the 64 digits of a SHA-256 is cut.
-std::string shown(const std::string& text) {
-  std::string out = text.substr(0, 64);
-  for (char& c : out) {
-    if (c < 0x20 || c > 0x7e) c = '?';
-  }
-  return text.size() > 64 ? out + "..." : out;
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return -1;
 }
 
 }  // namespace
 
-Status fill_plan_message(const std::string& plan_id, const core::Trajectory& trajectory,
-                         v1::PlanMessage& message) {
-  auto hash = core::plan_hash(trajectory);
-  if (!hash) return hash.error();
+std::string plan_hash_hex(const std::string& bytes) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(2 * bytes.size());
+  for (const char c : bytes) {
+    const auto b = static_cast<unsigned char>(c);
+    out += kDigits[b >> 4];
+    out += kDigits[b & 0xf];
+  }
+  return out;
+}
+
+Result<std::string> plan_hash_bytes(const std::string& hex) {
+  if (hex.size() != 2 * kPlanHashBytes) {
+    return Error{"a plan hash is " + std::to_string(2 * kPlanHashBytes) +
+                 " lowercase hex digits, got " + std::to_string(hex.size()) + " characters"};
+  }
+  std::string out(kPlanHashBytes, '\0');
+  for (std::size_t i = 0; i < kPlanHashBytes; ++i) {
+    const int high = hex_value(hex[2 * i]), low = hex_value(hex[2 * i + 1]);
+    if (high < 0 || low < 0) {
+      return Error{"a plan hash is lowercase hex digits; character " + std::to_string(2 * i + 1) +
+                   " or " + std::to_string(2 * i + 2) + " is not one"};
+    }
+    out[i] = static_cast<char>(high * 16 + low);
+  }
+  return out;
+}
+
+void fill_plan_waypoints(const std::string& plan_id,
+                         const std::vector<core::JointWaypoint>& waypoints,
+                         const core::TrajectoryOptions& options, v1::PlanMessage& message) {
   message.Clear();
   message.set_plan_id(plan_id);
   message.set_algorithm(std::string(core::kTrajectoryAlgorithm));
-  message.set_velocity_scale(trajectory.options().velocity_scale);
-  message.set_acceleration_scale(trajectory.options().acceleration_scale);
-  for (const core::JointWaypoint& w : trajectory.waypoints()) {
+  message.set_velocity_scale(options.velocity_scale);
+  message.set_acceleration_scale(options.acceleration_scale);
+  for (const core::JointWaypoint& w : waypoints) {
     v1::PlanWaypoint* out = message.add_waypoints();
     out->mutable_q()->Add(w.q.data(), w.q.data() + w.q.size());
     out->set_min_duration_s(w.min_duration);
@@ -39,7 +64,16 @@ Status fill_plan_message(const std::string& plan_id, const core::Trajectory& tra
       out->set_gripper_opening(*w.gripper);
     }
   }
-  message.set_plan_hash(*hash);
+}
+
+Status fill_plan_message(const std::string& plan_id, const core::Trajectory& trajectory,
+                         v1::PlanMessage& message) {
+  auto hash = core::plan_hash(trajectory);
+  if (!hash) return hash.error();
+  auto digest = plan_hash_bytes(*hash);
+  if (!digest) return digest.error();
+  fill_plan_waypoints(plan_id, trajectory.waypoints(), trajectory.options(), message);
+  message.set_plan_hash(std::move(*digest));
   return Status::Ok();
 }
 
@@ -52,8 +86,8 @@ Status check_plan_id(const std::string& id, const CommandLimits& limits) {
 }
 
 Result<ReceivedPlan> plan_from_message(const core::RobotModel& model,
-                                       const v1::PlanMessage& message,
-                                       const CommandLimits& limits) {
+                                       const v1::PlanMessage& message, const CommandLimits& limits,
+                                       PlanHashCheck check) {
   const std::string label = "plan '" + message.plan_id() + "' rejected: ";
   if (Status s = check_plan_id(message.plan_id(), limits); !s) return s.error();
   if (message.algorithm() != core::kTrajectoryAlgorithm) {
@@ -85,9 +119,19 @@ Result<ReceivedPlan> plan_from_message(const core::RobotModel& model,
   if (!trajectory) return Error{label + trajectory.error().message};
   auto hash = core::plan_hash(*trajectory);
   if (!hash) return Error{label + hash.error().message};
-  if (*hash != message.plan_hash()) {
-    return Error{label + "its hash does not match: the client's is '" + shown(message.plan_hash()) +
-                 "', the server's is '" + *hash + "' (" + std::string(core::kTrajectoryAlgorithm) +
+  const std::string& client = message.plan_hash();
+  if (check == PlanHashCheck::kCompare &&
+      (client.size() != kPlanHashBytes || plan_hash_hex(client) != *hash)) {
+    // Shown in hex, as plan_hash gives it; a client's field of another length than a digest's
+    // is cut (and its length said) so that the message stays short.
+    std::string shown = "'" + plan_hash_hex(client.substr(0, kPlanHashBytes)) +
+                        (client.size() > kPlanHashBytes ? "...'" : "'");
+    if (client.size() != kPlanHashBytes) {
+      shown += " (" + std::to_string(client.size()) + " bytes, not the " +
+               std::to_string(kPlanHashBytes) + " of a SHA-256 digest)";
+    }
+    return Error{label + "its hash does not match: the client's is " + shown +
+                 ", the server's is '" + *hash + "' (" + std::string(core::kTrajectoryAlgorithm) +
                  "); the two sides timed the waypoints differently, so the arm would not do what "
                  "was previewed"};
   }

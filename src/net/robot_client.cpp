@@ -380,6 +380,15 @@ Result<TrajectoryAck> RobotClient::execute(const std::string& trajectory_id,
                        from_proto(response.status()), response.duration_s()};
 }
 
+namespace {
+
+PlanAck plan_ack(const v1::ExecutePlanResponse& response) {
+  return PlanAck{response.plan_id(), response.duplicate(), from_proto(response.status()),
+                 response.duration_s(), plan_hash_hex(response.plan_hash())};
+}
+
+}  // namespace
+
 Result<PlanAck> RobotClient::execute_plan(const std::string& plan_id,
                                           const core::Trajectory& trajectory) {
   v1::ExecutePlanRequest request;
@@ -390,8 +399,51 @@ Result<PlanAck> RobotClient::execute_plan(const std::string& plan_id,
   v1::ExecutePlanResponse response;
   const grpc::Status status = impl_->call(&Stub::ExecutePlan, request, &response, true);
   if (!status.ok()) return impl_->error("execute plan", status);
-  return PlanAck{response.plan_id(), response.duplicate(), from_proto(response.status()),
-                 response.duration_s(), response.plan_hash()};
+  return plan_ack(response);
+}
+
+Result<PlanAck> RobotClient::execute_plan(const std::string& plan_id,
+                                          const std::vector<core::JointWaypoint>& waypoints,
+                                          const core::TrajectoryOptions& options,
+                                          const std::string& plan_hash) {
+  auto digest = plan_hash_bytes(plan_hash);
+  if (!digest) return Error{"execute plan: " + digest.error().message};
+  v1::ExecutePlanRequest request;
+  request.set_lease_id(impl_->current_lease_id());
+  fill_plan_waypoints(plan_id, waypoints, options, *request.mutable_plan());
+  request.mutable_plan()->set_plan_hash(std::move(*digest));
+  v1::ExecutePlanResponse response;
+  const grpc::Status status = impl_->call(&Stub::ExecutePlan, request, &response, true);
+  if (!status.ok()) return impl_->error("execute plan", status);
+  return plan_ack(response);
+}
+
+Result<PlanPreview> RobotClient::preview_plan(const std::string& plan_id,
+                                              const std::vector<core::JointWaypoint>& waypoints,
+                                              const core::TrajectoryOptions& options,
+                                              bool with_samples) {
+  v1::PreviewPlanRequest request;
+  fill_plan_waypoints(plan_id, waypoints, options, *request.mutable_plan());
+  request.set_with_samples(with_samples);
+  v1::PreviewPlanResponse response;
+  // Not a command: it moves nothing (and the plan message it prepares is counted when sent).
+  const grpc::Status status = impl_->call(&Stub::PreviewPlan, request, &response, false);
+  if (!status.ok()) return impl_->error("preview plan", status);
+  PlanPreview preview;
+  preview.plan_id = response.plan_id();
+  preview.plan_hash = plan_hash_hex(response.plan_hash());
+  preview.algorithm = response.algorithm();
+  preview.duration_s = response.duration_s();
+  preview.samples_omitted = response.samples_omitted();
+  for (const v1::Waypoint& w : response.samples()) {
+    preview.samples.times.push_back(core::ns_to_s(w.time_from_start_ns()));
+    preview.samples.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(w.q().data(), w.q_size()));
+  }
+  for (const v1::GripperCommand& g : response.gripper()) {
+    preview.samples.gripper.push_back(
+        core::GripperEvent{core::ns_to_s(g.time_from_start_ns()), g.opening()});
+  }
+  return preview;
 }
 
 Status RobotClient::cancel(const std::string& reason) {

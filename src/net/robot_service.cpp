@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cstdio>
 #include <utility>
 
@@ -350,8 +351,9 @@ std::optional<RobotService::Execution> RobotService::first_acceptance(const std:
                    first->second.duration_s, first->second.accepted_ns};
 }
 
-grpc::Status RobotService::start(const std::string& id, const core::TimedWaypoints& waypoints,
-                                 const core::Trajectory* timed, Execution& execution) {
+grpc::Status RobotService::check_motion(const std::string& id,
+                                        const core::TimedWaypoints& waypoints,
+                                        const core::Trajectory* timed) const {
   const core::RobotState state = driver_.snapshot().state;
   if (state.estop) {
     return {grpc::StatusCode::FAILED_PRECONDITION, "trajectory " + quoted(id) +
@@ -376,6 +378,12 @@ grpc::Status RobotService::start(const std::string& id, const core::TimedWaypoin
                      : guard_->check_samples(*driver_.model(), waypoints, state.gripper);
     if (!s) return invalid(Error{"trajectory " + quoted(id) + " rejected: " + s.error().message});
   }
+  return grpc::Status::OK;
+}
+
+grpc::Status RobotService::start(const std::string& id, const core::TimedWaypoints& waypoints,
+                                 const core::Trajectory* timed, Execution& execution) {
+  if (grpc::Status s = check_motion(id, waypoints, timed); !s.ok()) return s;
   auto accepted = driver_.execute(id, waypoints);
   if (!accepted) return {driver_rejection_code(), accepted.error().message};
   accepted_[id] = FirstAcceptance{accepted->accepted_ns, accepted->record.duration};
@@ -415,6 +423,24 @@ grpc::Status RobotService::ExecuteTrajectory(grpc::ServerContext* context,
                 grpc::Status::OK);
 }
 
+grpc::Status RobotService::prepare_plan(const v1::PlanMessage& plan, PlanHashCheck check,
+                                        std::optional<PreparedPlan>& prepared) const {
+  // Validated and timed with the client's algorithm, hash compared: nothing moves before.
+  auto received = plan_from_message(*driver_.model(), plan, limits_, check);
+  if (!received) return invalid(received.error());
+  // The arm follows the trajectory's samples, every waypoint on one (Trajectory::sampled).
+  auto samples = received->trajectory.sampled(kPlanExecutionRateHz);
+  if (!samples) {
+    return invalid(
+        Error{"plan " + quoted(plan.plan_id()) + " rejected: " + samples.error().message});
+  }
+  if (grpc::Status s = check_motion(plan.plan_id(), *samples, &received->trajectory); !s.ok()) {
+    return s;
+  }
+  prepared.emplace(PreparedPlan{std::move(*received), std::move(*samples)});
+  return grpc::Status::OK;
+}
+
 grpc::Status RobotService::ExecutePlan(grpc::ServerContext* context,
                                        const v1::ExecutePlanRequest* request,
                                        v1::ExecutePlanResponse* response) {
@@ -430,28 +456,85 @@ grpc::Status RobotService::ExecutePlan(grpc::ServerContext* context,
   if (const auto first = first_acceptance(id)) {
     fill_execution(*response, *first);
     if (const auto hash = accepted_plan_hashes_.find(id); hash != accepted_plan_hashes_.end()) {
-      response->set_plan_hash(hash->second);
+      response->set_plan_hash(*plan_hash_bytes(hash->second));
     }
     return finish(context, what + ": a duplicate of the first acceptance, not executed again",
                   grpc::Status::OK);
   }
-  // Validated and timed with the client's algorithm, hash compared: nothing moves before.
-  auto received = plan_from_message(*driver_.model(), plan, limits_);
-  if (!received) return finish(context, what, invalid(received.error()));
-  // The arm follows the trajectory's samples, every waypoint on one (Trajectory::sampled).
-  auto samples = received->trajectory.sampled(kPlanExecutionRateHz);
-  if (!samples)
-    return finish(context, what,
-                  invalid(Error{"plan " + quoted(id) + " rejected: " + samples.error().message}));
-  Execution execution;
-  if (grpc::Status s = start(id, *samples, &received->trajectory, execution); !s.ok())
+  std::optional<PreparedPlan> prepared;
+  if (grpc::Status s = prepare_plan(plan, PlanHashCheck::kCompare, prepared); !s.ok()) {
     return finish(context, what, s);
-  accepted_plan_hashes_[id] = received->hash;
+  }
+  Execution execution;
+  if (grpc::Status s = start(id, prepared->samples, &prepared->plan.trajectory, execution); !s.ok())
+    return finish(context, what, s);
+  const std::string& hash = prepared->plan.hash;
+  accepted_plan_hashes_[id] = hash;
   fill_execution(*response, execution);
-  response->set_plan_hash(received->hash);
+  response->set_plan_hash(*plan_hash_bytes(hash));
   return finish(context,
                 what + ", " + core::format_number(execution.duration_s, "%.3f s") + ", hash " +
-                    received->hash.substr(0, 12),
+                    hash.substr(0, 12),
+                grpc::Status::OK);
+}
+
+grpc::Status RobotService::PreviewPlan(grpc::ServerContext* context,
+                                       const v1::PreviewPlanRequest* request,
+                                       v1::PreviewPlanResponse* response) {
+  const v1::PlanMessage& plan = request->plan();
+  const std::string& id = plan.plan_id();
+  const std::string what = "preview plan " + quoted(id) + " (" +
+                           std::to_string(plan.waypoints_size()) + " waypoints, " +
+                           (plan.algorithm().empty() ? std::string("the server's algorithm")
+                                                     : printable(plan.algorithm())) +
+                           ")";
+  // Read-only: whoever may read the state may ask what a plan would do (no lease).
+  if (grpc::Status s = auth_.authorize_read(*context); !s.ok()) return finish(context, what, s);
+  if (Status s = check_plan_id(id, limits_); !s) return finish(context, what, invalid(s.error()));
+  // Under the execution lock, so the answer reflects the arm as ExecutePlan would see it.
+  std::lock_guard lock(execute_mutex_);
+  if (accepted_.count(id) != 0) {
+    // ExecutePlan would answer this id with its first acceptance and run nothing new.
+    return finish(context, what,
+                  invalid(Error{"plan " + quoted(id) +
+                                " rejected: its id was already accepted, so ExecutePlan would "
+                                "answer with that first acceptance and not run this plan; "
+                                "choose a new id"}));
+  }
+  // No algorithm named: the server's. A client that leaves the timing to the server need
+  // not know its name; the answer gives it, for ExecutePlan, which requires it.
+  v1::PlanMessage named;
+  if (plan.algorithm().empty()) {
+    named = plan;
+    named.set_algorithm(std::string(core::kTrajectoryAlgorithm));
+  }
+  std::optional<PreparedPlan> prepared;
+  if (grpc::Status s =
+          prepare_plan(plan.algorithm().empty() ? named : plan, PlanHashCheck::kIgnore, prepared);
+      !s.ok()) {
+    return finish(context, what, s);
+  }
+  const core::Trajectory& trajectory = prepared->plan.trajectory;
+  response->set_plan_id(id);
+  response->set_plan_hash(*plan_hash_bytes(prepared->plan.hash));
+  response->set_algorithm(std::string(core::kTrajectoryAlgorithm));
+  response->set_duration_s(trajectory.duration());
+  const core::TimedWaypoints& samples = prepared->samples;
+  if (request->with_samples()) {
+    response->set_sample_rate_hz(kPlanExecutionRateHz);
+    if (samples.q.size() > static_cast<std::size_t>(kMaxPreviewSamples)) {
+      response->set_samples_omitted(true);
+    } else {
+      // The request's form of the samples (nanosecond times, as the driver receives them).
+      v1::ExecuteTrajectoryRequest sampled;
+      fill_trajectory_request(id, samples, sampled);
+      response->mutable_samples()->Swap(sampled.mutable_waypoints());
+      response->mutable_gripper()->Swap(sampled.mutable_gripper());
+    }
+  }
+  return finish(context,
+                what + ": " + core::format_number(trajectory.duration(), "%.3f s") + ", hash " +
+                    prepared->plan.hash.substr(0, 12),
                 grpc::Status::OK);
 }
 

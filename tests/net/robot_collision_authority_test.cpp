@@ -164,6 +164,13 @@ TEST(RobotCollisionAuthority, APlanThroughTheTableIsRefused) {
   EXPECT_THAT(status.error_message(), HasSubstr("trajectory 'plan-into-table' rejected: "
                                                 "trajectory collides: at t="));
   EXPECT_THAT(status.error_message(), HasSubstr("'table_top'"));
+  // PreviewPlan refuses it in the same words: the same check, the collision guard included.
+  v1::PreviewPlanRequest preview;
+  *preview.mutable_plan() = request.plan();
+  v1::PreviewPlanResponse previewed;
+  const grpc::Status preview_status = stub->PreviewPlan(context().get(), preview, &previewed);
+  EXPECT_EQ(preview_status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(preview_status.error_message(), status.error_message());
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   EXPECT_LT((q_of(read_state(*stub)) - above).cwiseAbs().maxCoeff(), 1e-3);
 }

@@ -49,15 +49,17 @@ TEST(RobotPlan, AMatchingPlanIsExecutedAsPreviewed) {
   const core::Trajectory trajectory = via_plan(q_of(read_state(*stub)));
   const std::string hash = *core::plan_hash(trajectory);
   const v1::ExecutePlanRequest request = plan_request("plan-1", trajectory, lease);
-  EXPECT_EQ(request.plan().plan_hash(), hash);
-  EXPECT_EQ(request.plan().algorithm(), "telear-blend-1");
+  // The digest's 32 raw bytes on the wire, its hex in the API.
+  EXPECT_EQ(request.plan().plan_hash().size(), 32u);
+  EXPECT_EQ(plan_hash_hex(request.plan().plan_hash()), hash);
+  EXPECT_EQ(request.plan().algorithm(), core::kTrajectoryAlgorithm);
   v1::ExecutePlanResponse response;
   const grpc::Status status = stub->ExecutePlan(context().get(), request, &response);
   ASSERT_TRUE(status.ok()) << status.error_message();
   EXPECT_EQ(response.plan_id(), "plan-1");
   EXPECT_FALSE(response.duplicate());
-  EXPECT_EQ(response.plan_hash(), hash);
-  EXPECT_EQ(response.algorithm(), "telear-blend-1");
+  EXPECT_EQ(plan_hash_hex(response.plan_hash()), hash);
+  EXPECT_EQ(response.algorithm(), core::kTrajectoryAlgorithm);
   // The server's trajectory is the client's, to the bit.
   EXPECT_EQ(response.duration_s(), trajectory.duration());
 
@@ -70,7 +72,7 @@ TEST(RobotPlan, AMatchingPlanIsExecutedAsPreviewed) {
   v1::ExecutePlanResponse again;
   ASSERT_TRUE(stub->ExecutePlan(context().get(), request, &again).ok());
   EXPECT_TRUE(again.duplicate());
-  EXPECT_EQ(again.plan_hash(), hash);
+  EXPECT_EQ(plan_hash_hex(again.plan_hash()), hash);
   EXPECT_EQ(again.accepted_ns(), response.accepted_ns());
   EXPECT_EQ(read_state(*stub).mode(), v1::ROBOT_MODE_IDLE);
 }
@@ -94,10 +96,28 @@ TEST(RobotPlan, RefusalsSayWhyAndNothingMoves) {
     auto r = plan_request("p-hash", trajectory, lease);
     std::string other = hash;
     other[0] = other[0] == '0' ? '1' : '0';
-    r.mutable_plan()->set_plan_hash(other);
+    r.mutable_plan()->set_plan_hash(*plan_hash_bytes(other));
     cases.push_back({"another hash", r,
                      "plan 'p-hash' rejected: its hash does not match: the client's is '" + other +
-                         "', the server's is '" + hash + "' (telear-blend-1)"});
+                         "', the server's is '" + hash + "' (" +
+                         std::string(core::kTrajectoryAlgorithm) + ")"});
+  }
+  {
+    // The hex digits instead of the digest: cut and its length said.
+    auto r = plan_request("p-hex", trajectory, lease);
+    r.mutable_plan()->set_plan_hash(hash);
+    cases.push_back(
+        {"hex digits sent", r,
+         "its hash does not match: the client's is '" + plan_hash_hex(hash.substr(0, 32)) +
+             "...' (64 bytes, not the 32 of a SHA-256 digest), the server's is '" + hash + "'"});
+  }
+  {
+    auto r = plan_request("p-nohash", trajectory, lease);
+    r.mutable_plan()->clear_plan_hash();
+    cases.push_back({"no hash", r,
+                     "plan 'p-nohash' rejected: its hash does not match: the client's is '' (0 "
+                     "bytes, not the 32 of a SHA-256 digest), the server's is '" +
+                         hash + "'"});
   }
   {
     // The waypoints changed after hashing by a nanoradian: the server's hash differs.
@@ -111,7 +131,8 @@ TEST(RobotPlan, RefusalsSayWhyAndNothingMoves) {
     r.mutable_plan()->set_algorithm("telear-blend-0");
     cases.push_back({"unknown algorithm", r,
                      "plan 'p-algo' rejected: unknown time parameterization 'telear-blend-0': "
-                     "this server times plans with 'telear-blend-1' only"});
+                     "this server times plans with '" +
+                         std::string(core::kTrajectoryAlgorithm) + "' only"});
   }
   {
     auto r = plan_request("p-nan", trajectory, lease);
@@ -180,6 +201,22 @@ TEST(RobotPlan, RefusalsSayWhyAndNothingMoves) {
   v1::ExecutePlanResponse response;
   EXPECT_EQ(stub->ExecutePlan(context().get(), no_lease, &response).error_code(),
             grpc::StatusCode::PERMISSION_DENIED);
+}
+
+TEST(RobotPlan, TheHashTravelsAsTheDigestsBytes) {
+  const std::string hex = "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad";
+  auto bytes = plan_hash_bytes(hex);
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  ASSERT_EQ(bytes->size(), 32u);
+  EXPECT_EQ(static_cast<unsigned char>((*bytes)[0]), 0xbau);
+  EXPECT_EQ(static_cast<unsigned char>((*bytes)[31]), 0xadu);
+  EXPECT_EQ(plan_hash_hex(*bytes), hex);
+  EXPECT_EQ(plan_hash_bytes("abc").error().message,
+            "a plan hash is 64 lowercase hex digits, got 3 characters");
+  std::string upper = hex;
+  upper[10] = 'F';
+  EXPECT_EQ(plan_hash_bytes(upper).error().message,
+            "a plan hash is lowercase hex digits; character 11 or 12 is not one");
 }
 
 TEST(RobotPlan, ThePlanMessageIsAFractionOfTheSamples) {

@@ -13,9 +13,12 @@
 // (size, finite values, limits), min_duration and gripper opening, and the scales
 // (core::validate_waypoints, so the messages name waypoint and joint); the plan's length
 // (what plan_hash can hash); and finally the hash: the server's must equal the client's, and
-// the error gives both. The start state is the caller's to check (it needs the arm's state).
+// the error gives both (in hex). The start state is the caller's to check (it needs the arm's
+// state).
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "telear/core/result.hpp"
 #include "telear/core/robot_model.hpp"
@@ -24,6 +27,20 @@
 #include "telear/v1/robot.pb.h"
 
 namespace telear::net {
+
+// The hash travels as the digest's 32 raw bytes (PlanMessage.plan_hash is `bytes`); the C++
+// API, the logs and the messages show it as plan_hash's 64 lowercase hex digits.
+inline constexpr std::size_t kPlanHashBytes = 32;
+std::string plan_hash_hex(const std::string& bytes);
+// Fails unless `hex` is 64 lowercase hex digits.
+Result<std::string> plan_hash_bytes(const std::string& hex);
+
+// `plan_id`, the waypoints, the options' scales and kTrajectoryAlgorithm into `message`,
+// without a hash: what PreviewPlan takes from a client that does not time plans itself (or
+// a plan too broken to time, so that the server says why).
+void fill_plan_waypoints(const std::string& plan_id,
+                         const std::vector<core::JointWaypoint>& waypoints,
+                         const core::TrajectoryOptions& options, v1::PlanMessage& message);
 
 // `plan_id`, the trajectory's waypoints and options, kTrajectoryAlgorithm and its plan_hash
 // into `message`. Fails only when the trajectory is too long to hash.
@@ -36,10 +53,14 @@ Status check_plan_id(const std::string& id, const CommandLimits& limits);
 
 struct ReceivedPlan {
   core::Trajectory trajectory;
-  std::string hash;  // the server's, equal to the client's
+  std::string hash;  // the server's, hex; equal to the client's unless PlanHashCheck::kIgnore
 };
 
+// kIgnore: PreviewPlan, which answers the hash instead of checking the client's.
+enum class PlanHashCheck { kCompare, kIgnore };
+
 Result<ReceivedPlan> plan_from_message(const core::RobotModel& model,
-                                       const v1::PlanMessage& message, const CommandLimits& limits);
+                                       const v1::PlanMessage& message, const CommandLimits& limits,
+                                       PlanHashCheck check = PlanHashCheck::kCompare);
 
 }  // namespace telear::net

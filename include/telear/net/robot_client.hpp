@@ -101,6 +101,18 @@ struct PlanAck {
   std::string plan_hash;
 };
 
+// PreviewPlan's answer: what ExecutePlan would run now (telear/net/robot_service.hpp).
+struct PlanPreview {
+  std::string plan_id;
+  std::string plan_hash;  // 64 lowercase hex digits, as core::plan_hash gives it
+  std::string algorithm;
+  double duration_s = 0.0;
+  // The 100 Hz samples the arm would follow, when asked for; empty otherwise, and when the
+  // plan is longer than the server returns (samples_omitted).
+  core::TimedWaypoints samples;
+  bool samples_omitted = false;
+};
+
 struct JogAck {
   Eigen::VectorXd target_q;  // empty for a velocity jog
   std::string singularity_warning;
@@ -143,6 +155,18 @@ class RobotClient {
   // The plan is the message: sends the trajectory's waypoints, options and plan_hash
   // (telear/net/plan_message.hpp); the server times them itself and executes only a match.
   Result<PlanAck> execute_plan(const std::string& plan_id, const core::Trajectory& trajectory);
+  // For a client that does not time plans itself: the server times and checks the waypoints
+  // as ExecutePlan would now and answers the hash (or ExecutePlan's refusal); no lease
+  // needed, nothing moves. Then execute_plan with that hash runs exactly the previewed motion.
+  Result<PlanPreview> preview_plan(const std::string& plan_id,
+                                   const std::vector<core::JointWaypoint>& waypoints,
+                                   const core::TrajectoryOptions& options = {},
+                                   bool with_samples = false);
+  // The plan message with a hash the caller got elsewhere (preview_plan's), hex.
+  Result<PlanAck> execute_plan(const std::string& plan_id,
+                               const std::vector<core::JointWaypoint>& waypoints,
+                               const core::TrajectoryOptions& options,
+                               const std::string& plan_hash);
   Status cancel(const std::string& reason = "cancelled by the operator");
   Status set_gripper(double opening);
   Status estop(const std::string& reason = "e-stop from the operator");

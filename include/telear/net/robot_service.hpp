@@ -24,6 +24,9 @@
 // Trajectory::create, compares its plan_hash with the client's, samples the trajectory at
 // kPlanExecutionRateHz and executes the samples like a trajectory's; a mismatch, an unknown
 // algorithm or an invalid waypoint is INVALID_ARGUMENT and nothing moves.
+// PreviewPlan runs the same path (prepare_plan) without comparing the hash and without the
+// driver: it answers the hash, the duration and the samples, or ExecutePlan's refusal. It
+// needs read access only (authorize_read, like the state), not the lease.
 //
 // Trajectory ids: the first acceptance of each id is kept, and a repeated id is answered with
 // it (duplicate = true, the current status) before any other check but authentication and
@@ -48,6 +51,7 @@
 #include "telear/net/client_name.hpp"
 #include "telear/net/lease_manager.hpp"
 #include "telear/net/motion_collision_guard.hpp"
+#include "telear/net/plan_message.hpp"
 #include "telear/net/robot_command_validation.hpp"
 #include "telear/v1/robot.grpc.pb.h"
 
@@ -55,6 +59,9 @@ namespace telear::net {
 
 // The rate at which an accepted plan's trajectory is sampled for the driver.
 inline constexpr double kPlanExecutionRateHz = 100.0;
+// The most samples PreviewPlan returns (300 s at 100 Hz, ~1.7 MB for 6 joints): a longer
+// plan is previewed without them (samples_omitted), within gRPC's 4 MB message default.
+inline constexpr int kMaxPreviewSamples = 30000;
 
 class RobotService final : public v1::RobotService::Service {
  public:
@@ -86,6 +93,8 @@ class RobotService final : public v1::RobotService::Service {
                                  v1::ExecuteTrajectoryResponse* response) override;
   grpc::Status ExecutePlan(grpc::ServerContext* context, const v1::ExecutePlanRequest* request,
                            v1::ExecutePlanResponse* response) override;
+  grpc::Status PreviewPlan(grpc::ServerContext* context, const v1::PreviewPlanRequest* request,
+                           v1::PreviewPlanResponse* response) override;
   grpc::Status Cancel(grpc::ServerContext* context, const v1::CancelRequest* request,
                       v1::CancelResponse* response) override;
   grpc::Status SetGripper(grpc::ServerContext* context, const v1::SetGripperRequest* request,
@@ -110,14 +119,27 @@ class RobotService final : public v1::RobotService::Service {
     std::int64_t accepted_ns = 0;
   };
 
+  // A plan as ExecutePlan would run it: the timed trajectory, its hash and its samples.
+  struct PreparedPlan {
+    ReceivedPlan plan;
+    core::TimedWaypoints samples;  // at kPlanExecutionRateHz
+  };
+
   // The first acceptance of `id`, if any (execute_mutex_ held).
   std::optional<Execution> first_acceptance(const std::string& id) const;
-  // The arm's state (e-stop, busy, start state), then the driver; records the acceptance
-  // (execute_mutex_ held). The status is the refusal, if any.
-  // `timed`, when given, is what the waypoints sample: it is collision-checked instead of
-  // the straight lines between the samples.
+  // The arm's state (e-stop, busy, start state) and collisions (execute_mutex_ held); the
+  // status is the refusal, if any. `timed`, when given, is what the waypoints sample: it is
+  // collision-checked instead of the straight lines between the samples.
+  grpc::Status check_motion(const std::string& id, const core::TimedWaypoints& waypoints,
+                            const core::Trajectory* timed) const;
+  // check_motion, then the driver; records the acceptance (execute_mutex_ held).
   grpc::Status start(const std::string& id, const core::TimedWaypoints& waypoints,
                      const core::Trajectory* timed, Execution& execution);
+  // The one path of ExecutePlan and PreviewPlan (execute_mutex_ held): the message checked
+  // and timed (plan_from_message, the hash compared or not), sampled, then check_motion.
+  // Sets `prepared` when the status is OK.
+  grpc::Status prepare_plan(const v1::PlanMessage& plan, PlanHashCheck check,
+                            std::optional<PreparedPlan>& prepared) const;
 
   // Authentication, then the lease; logs and returns the refusal, if any.
   grpc::Status admit(grpc::ServerContext* context, const std::string& what,
