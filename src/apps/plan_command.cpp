@@ -1,7 +1,9 @@
 #include "apps/plan_command.hpp"
 
+#include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "telear/core/plan_hash.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
@@ -37,6 +39,31 @@ int run_plan_check(const PlanCheckOptions& options, std::ostream& out, std::ostr
                        : session::plan_check_text(options.plan, plan->size(), duration_s,
                                                   workspace_file, *report));
   return report->collision_free() ? 0 : 1;
+}
+
+int run_plan_hash(const PlanHashOptions& options, std::ostream& out, std::ostream& err) {
+  const auto fail = [&err](const std::string& message) {
+    err << "telear plan hash: " << message << "\n";
+    return 2;
+  };
+  auto description = core::load_robot_description(options.robot_spec());
+  if (!description) return fail(description.error().message);
+  auto plan = session::Plan::load(description->model, options.plan);
+  if (!plan) return fail(plan.error().message);
+  auto trajectory = plan->trajectory();
+  if (!trajectory) return fail(trajectory.error().message);
+  auto hash = core::plan_hash(*trajectory);
+  if (!hash) return fail(hash.error().message);
+  if (!options.json) {
+    out << *hash << "\n";
+    return 0;
+  }
+  const nlohmann::json j{{"plan_hash", *hash},
+                         {"algorithm", std::string(core::kTrajectoryAlgorithm)},
+                         {"duration_s", trajectory->duration()},
+                         {"waypoints", plan->size()}};
+  out << j.dump(2) << "\n";
+  return 0;
 }
 
 }  // namespace telear::cli
