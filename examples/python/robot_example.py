@@ -1,6 +1,12 @@
 #!/usr/bin/python3
 """A telear robot client in Python: read the state, take the lease, run a short trajectory.
 
+Then it sends a plan, the waypoints themselves instead of samples ("the plan is the
+message"): PreviewPlan asks the server to time and check three waypoints (one a via point,
+passed without stopping) and answers the SHA-256 of the timed trajectory, which Python could
+not compute without telear's own time parameterization; ExecutePlan with that hash runs
+exactly what was previewed, and the same plan with a tampered hash is refused.
+
 Then, when the server checks collisions against a workspace (GetInfo's collision_checked and
 workspace_yaml; `telear robot-server --workspace data/workspaces/puma560_table.yaml`), it
 sends the PUMA 560 a trajectory that ends with the hand inside the table and prints the
@@ -156,7 +162,65 @@ def main():
                 print("not completed: " + state.last_trajectory_message, file=sys.stderr)
                 return 1
 
-            # 5. Into the table: the server checks the path against its workspace and refuses.
+            # 5. A plan: waypoints, not samples. PreviewPlan times and checks it as ExecutePlan
+            #    would and answers the hash; ExecutePlan with that hash runs exactly that.
+            q1 = list(state.q)
+            via, stop_at = list(q1), list(q1)
+            via[0] += 0.6 * delta
+            via[1] += 0.04
+            stop_at[0] += delta
+            # No algorithm: the server's, named in the preview's answer.
+            plan = pb.PlanMessage(
+                plan_id=f"python-example-plan-{os.getpid()}-{int(time.time())}",
+                velocity_scale=0.5, acceleration_scale=0.5)
+            plan.waypoints.add(q=q1)
+            plan.waypoints.add(q=via, via=True)  # passed through without stopping
+            plan.waypoints.add(q=stop_at)
+            plan.waypoints.add(q=q1, min_duration_s=0.5)  # back, in no less than 0.5 s
+            preview = stub.PreviewPlan(pb.PreviewPlanRequest(plan=plan, with_samples=True),
+                                       metadata=metadata, timeout=5)
+            print(f"plan '{preview.plan_id}' previewed: {len(plan.waypoints)} waypoints, "
+                  f"{preview.duration_s:.3f} s, {len(preview.samples)} samples at "
+                  f"{preview.sample_rate_hz:g} Hz, {preview.algorithm}, hash "
+                  f"{preview.plan_hash.hex()}")
+            plan.algorithm = preview.algorithm
+            plan.plan_hash = preview.plan_hash
+            plan_ack = stub.ExecutePlan(pb.ExecutePlanRequest(lease_id=lease.lease_id, plan=plan),
+                                        metadata=metadata, timeout=5)
+            same = plan_ack.plan_hash == preview.plan_hash
+            print(f"plan '{plan_ack.plan_id}' accepted: {plan.ByteSize()} bytes, "
+                  f"{plan_ack.duration_s:.3f} s, hash {plan_ack.plan_hash.hex()} "
+                  f"({'the previewed one' if same else 'NOT the previewed one'})")
+            if not same:
+                return 1
+            stream = stub.StreamState(pb.StreamStateRequest(rate_hz=50), metadata=metadata,
+                                      timeout=plan_ack.duration_s + 10)
+            for state in stream:
+                if state.last_trajectory_id == plan_ack.plan_id:
+                    break
+            stream.cancel()
+            print(f"plan '{plan_ack.plan_id}': "
+                  f"{pb.TrajectoryStatus.Name(state.last_trajectory_status)}, q = "
+                  f"{[round(v, 4) for v in state.q]}")
+            if state.last_trajectory_status != pb.TRAJECTORY_STATUS_COMPLETED:
+                print("not completed: " + state.last_trajectory_message, file=sys.stderr)
+                return 1
+
+            # 6. The same plan with one bit of its hash flipped: not what was previewed, refused.
+            tampered = pb.PlanMessage()
+            tampered.CopyFrom(plan)
+            tampered.plan_id = plan.plan_id + "-tampered"
+            tampered.plan_hash = bytes([plan.plan_hash[0] ^ 1]) + plan.plan_hash[1:]
+            try:
+                stub.ExecutePlan(pb.ExecutePlanRequest(lease_id=lease.lease_id, plan=tampered),
+                                 metadata=metadata, timeout=5)
+                print("the plan with a tampered hash was accepted", file=sys.stderr)
+                return 1
+            except grpc.RpcError as refusal:
+                print(f"plan with a tampered hash refused ({refusal.code().name}): "
+                      f"{refusal.details()}")
+
+            # 7. Into the table: the server checks the path against its workspace and refuses.
             if not info.workspace_yaml or info.model_name != "puma560":
                 print("the server checks no PUMA 560 workspace: the colliding trajectory is "
                       "skipped (start it with --workspace data/workspaces/puma560_table.yaml)")
@@ -174,7 +238,7 @@ def main():
                     print(f"trajectory into the table refused ({refusal.code().name}): "
                           f"{refusal.details()}")
         finally:
-            # 6. Give the lease back.
+            # 8. Give the lease back.
             stop.set()
             beat.join()
             stub.ReleaseLease(pb.ReleaseLeaseRequest(lease_id=lease.lease_id),
