@@ -547,7 +547,19 @@ def write_marker(path, robot, comment, side_m, xyz, rpy):
     write_text(path, text)
 
 
-def write_robot_file(path, robot, header, package, gripper_open, max_opening, configs):
+def acm_block(robot, pairs):
+    """The allowed-collision matrix block of a robot file, as `telear robot acm --robot ROBOT`
+    prints it (default options: 2000 samples, seed 13, gripper at 0.5); the pairs are what
+    that command found (tests/geometry checks that sampling still finds them)."""
+    lines = ["# The allowed-collision matrix of %s, found by `telear robot acm` "
+             "(docs/collision.md):" % robot,
+             "# 2000 random configurations within the joint limits (seed 13), gripper at 0.5.",
+             "allowed_collisions:"]
+    lines += ["  - [%s, %s, %s]" % pair for pair in pairs]
+    return lines
+
+
+def write_robot_file(path, robot, header, package, gripper_open, max_opening, configs, acm):
     lines = [header.rstrip("\n"),
              "name: %s" % robot,
              "urdf: %s/urdf/%s.urdf" % (package, robot),
@@ -563,6 +575,7 @@ def write_robot_file(path, robot, header, package, gripper_open, max_opening, co
         lines.append("  %s: [%s]%s" % (name, ", ".join(num(x) for x in q),
                                        ("   # " + why) if why else ""))
     lines.append("marker: %s.marker.yaml" % robot)
+    lines += acm_block(robot, acm)
     write_text(path, "\n".join(lines) + "\n")
 
 
@@ -854,10 +867,10 @@ def generate(out_dir, detail):
                  MARKER_SIDE_M, (0.067 + 0.0025, 0.0, 0.03 - P7_TCP_M), MARKER_RPY)
     write_robot_file(os.path.join(out_dir, "ur6.yaml"), "ur6",
                      ROBOT_FILE_HEADER % ("ur6", "a UR-type 6-DOF arm with a parallel gripper"),
-                     "telear_ur6", 0.04, 0.08, UR_CONFIGS)
+                     "telear_ur6", 0.04, 0.08, UR_CONFIGS, UR_ACM)
     write_robot_file(os.path.join(out_dir, "arm7.yaml"), "arm7",
                      ROBOT_FILE_HEADER % ("arm7", "a Panda-type 7-DOF arm with a hand"),
-                     "telear_arm7", 0.04, 0.08, P7_CONFIGS)
+                     "telear_arm7", 0.04, 0.08, P7_CONFIGS, P7_ACM)
     return counts
 
 
@@ -870,6 +883,54 @@ P7_CONFIGS = [
     ("zero", [0, 0, 0, 0, 0, 0, 0], "joint 4's limits exclude 0: out of limits"),
     ("home", [0, -45, 0, -135, 0, 90, 45], "tcp at (0.307, 0, 0.487) m, pointing down"),
     ("ready", [-20, 10, 0, -130, 0, 140, 25], "tcp at (0.502, -0.183, 0.178) m, pointing down"),
+]
+
+# The allowed-collision matrices `telear robot acm --robot ur6|arm7` finds: the adjacent pairs
+# only (no other pair is in contact in every sample).
+UR_ACM = [
+    ("base_link", "shoulder_link", "adjacent"),
+    ("finger_left", "finger_right", "adjacent"),
+    ("finger_left", "gripper_base", "adjacent"),
+    ("finger_left", "marker_plate", "adjacent"),
+    ("finger_left", "wrist_2_link", "adjacent"),
+    ("finger_left", "wrist_3_link", "adjacent"),
+    ("finger_right", "gripper_base", "adjacent"),
+    ("finger_right", "marker_plate", "adjacent"),
+    ("finger_right", "wrist_2_link", "adjacent"),
+    ("finger_right", "wrist_3_link", "adjacent"),
+    ("forearm_link", "upper_arm_link", "adjacent"),
+    ("forearm_link", "wrist_1_link", "adjacent"),
+    ("gripper_base", "marker_plate", "adjacent"),
+    ("gripper_base", "wrist_2_link", "adjacent"),
+    ("gripper_base", "wrist_3_link", "adjacent"),
+    ("marker_plate", "wrist_2_link", "adjacent"),
+    ("marker_plate", "wrist_3_link", "adjacent"),
+    ("shoulder_link", "upper_arm_link", "adjacent"),
+    ("wrist_1_link", "wrist_2_link", "adjacent"),
+    ("wrist_2_link", "wrist_3_link", "adjacent"),
+]
+P7_ACM = [
+    ("finger_left", "finger_right", "adjacent"),
+    ("finger_left", "hand", "adjacent"),
+    ("finger_left", "link6", "adjacent"),
+    ("finger_left", "link7", "adjacent"),
+    ("finger_left", "marker_plate", "adjacent"),
+    ("finger_right", "hand", "adjacent"),
+    ("finger_right", "link6", "adjacent"),
+    ("finger_right", "link7", "adjacent"),
+    ("finger_right", "marker_plate", "adjacent"),
+    ("hand", "link6", "adjacent"),
+    ("hand", "link7", "adjacent"),
+    ("hand", "marker_plate", "adjacent"),
+    ("link0", "link1", "adjacent"),
+    ("link1", "link2", "adjacent"),
+    ("link2", "link3", "adjacent"),
+    ("link3", "link4", "adjacent"),
+    ("link4", "link5", "adjacent"),
+    ("link5", "link6", "adjacent"),
+    ("link6", "link7", "adjacent"),
+    ("link6", "marker_plate", "adjacent"),
+    ("link7", "marker_plate", "adjacent"),
 ]
 
 

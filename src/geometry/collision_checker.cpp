@@ -2,6 +2,7 @@
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
@@ -39,6 +40,25 @@ GeometryPtr mesh_geometry(const core::Mesh& mesh) {
   return model;
 }
 
+// A convex hull (convex_hull.hpp) as FCL's convex polytope: distances by GJK.
+GeometryPtr convex_geometry(const core::Mesh& mesh) {
+  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
+  vertices->reserve(mesh.vertices.size());
+  for (const core::MeshVertex& v : mesh.vertices) {
+    vertices->emplace_back(v.position[0], v.position[1], v.position[2]);
+  }
+  auto faces = std::make_shared<std::vector<int>>();
+  faces->reserve(mesh.triangles.size() / 3 * 4);
+  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
+    faces->push_back(3);
+    for (std::size_t k = 0; k < 3; ++k) faces->push_back(static_cast<int>(mesh.triangles[t + k]));
+  }
+  auto convex =
+      std::make_shared<fcl::Convexd>(vertices, static_cast<int>(mesh.triangle_count()), faces);
+  convex->computeLocalAABB();
+  return convex;
+}
+
 GeometryPtr fcl_geometry(const CollisionShape& s) {
   switch (s.kind) {
     case Kind::kBox:
@@ -48,7 +68,7 @@ GeometryPtr fcl_geometry(const CollisionShape& s) {
     case Kind::kSphere:
       return std::make_shared<fcl::Sphered>(s.radius);
     case Kind::kMesh:
-      return mesh_geometry(s.mesh);
+      return s.convex ? convex_geometry(s.mesh) : mesh_geometry(s.mesh);
   }
   return nullptr;
 }
@@ -84,6 +104,7 @@ Result<CollisionShape> shape_of(const core::WorkspaceObject& o) {
 
 struct ShapeObject {
   Eigen::Isometry3d T_owner_shape = Eigen::Isometry3d::Identity();
+  bool convex = false;  // a convex hull (see distance())
   std::unique_ptr<fcl::CollisionObjectd> object;
 };
 
@@ -92,10 +113,13 @@ struct Owner {
   std::vector<ShapeObject> shapes;
   fcl::AABBd aabb;
   bool active = true;
+  bool exact = true;  // no bounding-volume tree: distances are never stopped early
 
   void add(const CollisionShape& s) {
+    if (s.kind == Kind::kMesh && !s.convex) exact = false;
     ShapeObject so;
     so.T_owner_shape = s.T_link_shape;
+    so.convex = s.kind == Kind::kMesh && s.convex;
     so.object = std::make_unique<fcl::CollisionObjectd>(fcl_geometry(s));
     shapes.push_back(std::move(so));
   }
@@ -192,10 +216,25 @@ struct CollisionChecker::Impl {
     // * (1 + rel_err) >= best: abs_err unbounded leaves the relative test alone.
     r.rel_err = relative_error;
     r.abs_err = relative_error > 0.0 ? std::numeric_limits<double>::max() : 0.0;
+    const bool several = a.shapes.size() * b.shapes.size() > 1;
     for (const ShapeObject& sa : a.shapes) {
       for (const ShapeObject& sb : b.shapes) {
+        // Bounds apart by more than the nearest pair so far: cannot be nearer (bounds that
+        // touch are always queried: a deeper penetration may hide there).
+        if (several) {
+          const fcl::AABBd& ba = sa.object->getAABB();
+          const fcl::AABBd& bb = sb.object->getAABB();
+          if (!ba.overlap(bb) && ba.distance(bb) >= out.distance_m) continue;
+        }
         fcl::DistanceResultd result;
+        // A hull goes to FCL's own GJK (libccd's distances to a Convex are off by up to a
+        // millimetre), unsigned: its signed path needs a contact depth FCL may not give. In
+        // contact it answers -1: 0 here (the depth is penetration_depth's).
+        const bool convex = sa.convex || sb.convex;
+        r.gjk_solver_type = convex ? fcl::GST_INDEP : fcl::GST_LIBCCD;
+        r.enable_signed_distance = !convex;
         fcl::distance(sa.object.get(), sb.object.get(), r, result);
+        if (convex && result.min_distance < 0.0) result.min_distance = 0.0;
         if (result.min_distance < out.distance_m) {
           out.distance_m = result.min_distance;
           out.p_body_base = result.nearest_points[0];
@@ -204,9 +243,11 @@ struct CollisionChecker::Impl {
       }
     }
     // FCL stops a bounding-volume tree's search once no volume can be nearer than the best
-    // distance / (1 + rel_err): the true distance is at least that (primitives are exact).
+    // distance / (1 + rel_err): the true distance is at least that. Primitives and hulls are
+    // exact.
+    const bool exact = a.exact && b.exact;
     out.lower_bound_m =
-        out.distance_m > 0.0 ? out.distance_m / (1.0 + relative_error) : out.distance_m;
+        out.distance_m > 0.0 && !exact ? out.distance_m / (1.0 + relative_error) : out.distance_m;
     return out;
   }
 
@@ -221,6 +262,7 @@ struct CollisionChecker::Impl {
       for (const ShapeObject& sb : b.shapes) {
         if (!sa.object->getAABB().overlap(sb.object->getAABB())) continue;
         fcl::CollisionResultd result;
+        request.gjk_solver_type = sa.convex || sb.convex ? fcl::GST_INDEP : fcl::GST_LIBCCD;
         if (fcl::collide(sa.object.get(), sb.object.get(), request, result) == 0) continue;
         if (!hit) point = result.getContact(0).pos;
         hit = true;

@@ -1,5 +1,8 @@
 #include "telear/geometry/collision_checker.hpp"
 
+#include "telear/geometry/allowed_collisions_file.hpp"
+#include "telear/geometry/convex_hull.hpp"
+
 namespace telear::geometry {
 
 Result<CollisionChecker> make_collision_checker(const core::RobotDescription& description,
@@ -7,13 +10,13 @@ Result<CollisionChecker> make_collision_checker(const core::RobotDescription& de
                                                 const CollisionSetupOptions& options) {
   Result<RobotCollisionModel> robot = robot_collision_model(description, options.geometry);
   if (!robot) return robot.error();
+  if (options.mesh_collision == MeshCollision::kConvexParts) {
+    if (Status s = use_convex_parts(*robot); !s) return s.error();
+  }
   Result<AllowedCollisionMatrix> allowed = AllowedCollisionMatrix{};
   if (description.allowed_collisions) {
     // Stored in the robot file: taken as written, adjacent pairs always added.
-    allowed = adjacent_collisions(*robot);
-    for (const core::AllowedCollisionEntry& e : *description.allowed_collisions) {
-      allowed->allow(e.a, e.b, allowed_reason_from_string(e.reason).value_or(AllowedReason::kUser));
-    }
+    allowed = stored_allowed_collisions(*robot, *description.allowed_collisions);
   } else {
     allowed = compute_allowed_collisions(*robot, options.allowed);
     if (!allowed) return allowed.error();

@@ -187,9 +187,15 @@ TEST(RobotFile, KeepsTheAllowedCollisionPairs) {
   EXPECT_EQ((*d->allowed_collisions)[0].reason, "never");
   EXPECT_EQ((*d->allowed_collisions)[1].reason, "user");
   // None stored: unset (the geometry layer computes one).
+  write(dir / "none.yaml", "urdf: " + gripper_urdf + "\ntip: tcp\n");
+  auto none = load_robot_description({(dir / "none.yaml").string(), "", {}});
+  ASSERT_TRUE(none) << none.error().message;
+  EXPECT_FALSE(none->allowed_collisions);
+  // The shipped URDF arms store theirs (`telear robot acm`; tests/geometry checks it).
   auto shipped = load_robot_description({"ur6", "", {}});
   ASSERT_TRUE(shipped) << shipped.error().message;
-  EXPECT_FALSE(shipped->allowed_collisions);
+  ASSERT_TRUE(shipped->allowed_collisions);
+  EXPECT_FALSE(shipped->allowed_collisions->empty());
 }
 
 TEST(RobotDescription, ThePumaLoadsAsBefore) {

@@ -73,6 +73,9 @@ struct CollisionShape {
   double radius = 0.0;                                 // cylinder, sphere (m)
   double length = 0.0;                                 // cylinder (m), along z
   core::Mesh mesh;                                     // kMesh: scaled, in the shape frame
+  // kMesh: the mesh is a convex hull (convex_hull.hpp), checked as a convex polytope (GJK)
+  // instead of through a bounding-volume tree of its triangles.
+  bool convex = false;
 };
 
 struct LinkCollision {
