@@ -34,6 +34,7 @@ void add_demo_command(CLI::App& app, Commands& commands);
 void add_kin_commands(CLI::App& app, Commands& commands);  // kin info | fk | demo | ik
 void add_render_command(CLI::App& app, Commands& commands);
 void add_plan_commands(CLI::App& app, Commands& commands);         // plan check
+void add_robot_commands(CLI::App& app, Commands& commands);        // robot acm
 void add_calibration_commands(CLI::App& app, Commands& commands);  // calibrate, register, eval
 void add_sim_commands(CLI::App& app, Commands& commands);  // sim capture | frame | observations
 void add_console_command(CLI::App& app, Commands& commands);

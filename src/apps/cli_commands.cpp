@@ -15,6 +15,7 @@
 #include "apps/plan_command.hpp"
 #include "apps/register_command.hpp"
 #include "apps/render_command.hpp"
+#include "apps/robot_acm_command.hpp"
 #include "apps/sim_command.hpp"
 #include "apps/sim_frame_command.hpp"
 #include "apps/sim_observations_command.hpp"
@@ -156,6 +157,25 @@ void add_plan_commands(CLI::App& app, Commands& commands) {
   hash_app->add_flag("--json", hash_options->json, "print JSON (hash, algorithm, duration)");
   commands.push_back(
       {hash_app, [hash_options] { return run_plan_hash(*hash_options, std::cout, std::cerr); }});
+}
+
+// [SECTION] robot (docs/collision.md, "The allowed-collision matrix")
+
+void add_robot_commands(CLI::App& app, Commands& commands) {
+  auto options = std::make_shared<RobotAcmOptions>();
+  CLI::App* robot_app = app.add_subcommand("robot", "robot files");
+  robot_app->require_subcommand(1);
+  CLI::App* acm_app = robot_app->add_subcommand(
+      "acm", "the allowed-collision matrix by sampling, as the robot file's YAML block");
+  add_robot_arguments(acm_app, *options, true);
+  acm_app->add_option("--samples", options->samples, "random configurations")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10'000'000));
+  acm_app->add_option("--seed", options->seed, "random seed")->capture_default_str();
+  acm_app->add_flag("--never", options->never, "also allow pairs in contact in no sample");
+  acm_app->add_option("-o,--output", options->output, "write the block to FILE");
+  commands.push_back(
+      {acm_app, [options] { return run_robot_acm(*options, std::cout, std::cerr); }});
 }
 
 // [SECTION] calibrate, register, eval

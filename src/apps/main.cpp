@@ -111,6 +111,7 @@ int main(int argc, char** argv) {
   telear::cli::add_kin_commands(app, commands);
   telear::cli::add_render_command(app, commands);
   telear::cli::add_plan_commands(app, commands);
+  telear::cli::add_robot_commands(app, commands);
   telear::cli::add_calibration_commands(app, commands);
   telear::cli::add_sim_commands(app, commands);
   telear::cli::add_robot_server_command(app, commands);
