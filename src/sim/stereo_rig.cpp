@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -94,7 +95,65 @@ Result<vision::CameraModel> read_camera(const Context& ctx, const YAML::Node& no
   return camera;
 }
 
+// workspace_error: {xyz, rpy, objects: {NAME: {xyz, rpy}}} (see the header).
+Result<WorkspaceError> read_workspace_error(const Context& ctx, const YAML::Node& node) {
+  const std::string field = "workspace_error";
+  if (!node.IsMap()) return ctx.error(field, "expected a map {xyz, rpy, objects}");
+  YAML::Node common(YAML::NodeType::Map);
+  for (const auto& entry : node) {
+    const std::string key = entry.first.Scalar();
+    if (key != "xyz" && key != "rpy" && key != "objects") {
+      return ctx.error(field + "." + key, "unknown key (expected xyz, rpy, objects)");
+    }
+    if (key != "objects") common[key] = entry.second;
+  }
+  if (!common["xyz"]) common["xyz"] = std::vector<double>{0.0, 0.0, 0.0};
+  const auto fail = [&ctx](const Error& e) {
+    return Error{"rig file '" + ctx.source + "': " + e.message};
+  };
+  WorkspaceError error;
+  auto pose = core::yaml_pose(common, field);
+  if (!pose) return fail(pose.error());
+  error.common = *pose;
+  if (const YAML::Node objects = node["objects"]) {
+    if (!objects.IsMap()) return ctx.error(field + ".objects", "expected a map NAME: {xyz, rpy}");
+    for (const auto& entry : objects) {
+      const std::string name = entry.first.Scalar();
+      auto object = core::yaml_pose(entry.second, field + ".objects." + name);
+      if (!object) return fail(object.error());
+      error.objects.emplace_back(name, *object);
+    }
+  }
+  return error;
+}
+
 }  // namespace
+
+bool WorkspaceError::is_identity() const {
+  const auto identity = [](const Eigen::Isometry3d& T) {
+    return T.matrix() == Eigen::Matrix4d::Identity();
+  };
+  return identity(common) && std::all_of(objects.begin(), objects.end(),
+                                         [&](const auto& o) { return identity(o.second); });
+}
+
+Result<core::Workspace> apply_workspace_error(const core::Workspace& file,
+                                              const WorkspaceError& error) {
+  core::Workspace real = file;
+  for (core::WorkspaceObject& object : real.objects) {
+    object.T_base_object = error.common * object.T_base_object;
+  }
+  for (const auto& [name, T_error] : error.objects) {
+    auto it = std::find_if(real.objects.begin(), real.objects.end(),
+                           [&](const core::WorkspaceObject& o) { return o.name == name; });
+    if (it == real.objects.end()) {
+      return Error{"workspace_error.objects: '" + name + "' is not an object of " +
+                   (file.source.empty() ? "the workspace" : file.source)};
+    }
+    it->T_base_object = T_error * it->T_base_object;
+  }
+  return real;
+}
 
 Eigen::Isometry3d StereoRig::look_at(const Eigen::Vector3d& centre_base,
                                      const Eigen::Vector3d& target_base,
@@ -128,11 +187,12 @@ Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::stri
   if (!root.IsMap()) return ctx.error("top level", "expected a map");
   for (const auto& entry : root) {
     const auto key = entry.first.as<std::string>();
-    if (key != "name" && key != "robot" && key != "body" && key != "workspace" && key != "marker" &&
-        key != "baseline_m" && key != "pose" && key != "cameras") {
+    if (key != "name" && key != "robot" && key != "body" && key != "workspace" &&
+        key != "workspace_error" && key != "marker" && key != "baseline_m" && key != "pose" &&
+        key != "cameras") {
       return ctx.error(key,
-                       "unknown key (expected name, robot, body, workspace, marker, baseline_m, "
-                       "pose, cameras)");
+                       "unknown key (expected name, robot, body, workspace, workspace_error, "
+                       "marker, baseline_m, pose, cameras)");
     }
   }
   const auto resolve = [&](const std::string& path) {
@@ -159,6 +219,17 @@ Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::stri
     auto workspace = core::load_workspace_file(rig.workspace_file);
     if (!workspace) return ctx.error("workspace", workspace.error().message);
     rig.workspace = std::move(*workspace);
+  }
+  if (const YAML::Node node = root["workspace_error"]) {
+    if (rig.workspace_file.empty()) {
+      return ctx.error("workspace_error", "needs a workspace: (the file it is an error of)");
+    }
+    auto error = read_workspace_error(ctx, node);
+    if (!error) return error.error();
+    auto real = apply_workspace_error(rig.workspace, *error);
+    if (!real) return Error{"rig file '" + source + "': " + real.error().message};
+    rig.workspace_error = std::move(*error);
+    rig.workspace = std::move(*real);
   }
   if (!rig.marker_file.empty()) {
     auto marker = core::load_marker_mount_file(rig.marker_file);

@@ -7,13 +7,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <opencv2/aruco.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 
 #include "gl_test_util.hpp"
 #include "telear/core/arm_body.hpp"
 #include "telear/core/kinematics.hpp"
+#include "telear/core/pose.hpp"
 #include "telear/sim/calibration_targets.hpp"
 #include "telear/sim/scene_renderer.hpp"
 #include "telear/vision/calibration_pattern.hpp"
@@ -86,6 +89,80 @@ TEST(StereoRigFile, ErrorsNameTheField) {
   auto missing = load_stereo_rig("/nonexistent/rig.yaml");
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.error().message.find("cannot be opened"), std::string::npos);
+}
+
+// workspace_error: the rig's (real) workspace is the file's with every object posed by
+// E_o * E, exactly; the errors name the field or the object.
+TEST(StereoRigFile, WorkspaceErrorPosesTheRealScene) {
+  const std::string dir = test::data_path("rigs");
+  std::ifstream in(dir + "/puma560_rig.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string error =
+      "workspace_error:\n  xyz: [0.02, -0.01, 0.005]\n  rpy: [0, 0, 0.03]\n"
+      "  objects:\n    box: {xyz: [0.01, 0, 0], rpy: [0, 0, 0.5]}\n";
+  auto rig = parse_stereo_rig_yaml(text.str() + error, "puma560_rig.yaml", dir);
+  ASSERT_TRUE(rig.ok()) << rig.error().message;
+  auto file = core::load_workspace_file(rig->workspace_file);
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  ASSERT_EQ(rig->workspace.objects.size(), file->objects.size());
+  const Eigen::Isometry3d E = core::pose_from_xyz_rpy({0.02, -0.01, 0.005}, {0, 0, 0.03});
+  const Eigen::Isometry3d E_box = core::pose_from_xyz_rpy({0.01, 0, 0}, {0, 0, 0.5});
+  EXPECT_FALSE(rig->workspace_error.is_identity());
+  for (std::size_t i = 0; i < file->objects.size(); ++i) {
+    const core::WorkspaceObject& real = rig->workspace.objects[i];
+    const Eigen::Isometry3d expected =
+        (real.name == "box" ? E_box * E : E) * file->objects[i].T_base_object;
+    EXPECT_LT((real.T_base_object.matrix() - expected.matrix()).cwiseAbs().maxCoeff(), 1e-12)
+        << real.name;
+    // Everything else as in the file.
+    EXPECT_EQ(real.name, file->objects[i].name);
+    EXPECT_EQ(real.size_m, file->objects[i].size_m);
+  }
+  // A pure translation moves the table top by exactly that much.
+  auto shifted = parse_stereo_rig_yaml(text.str() + "workspace_error: {xyz: [0.01, 0, 0]}\n",
+                                       "puma560_rig.yaml", dir);
+  ASSERT_TRUE(shifted.ok()) << shifted.error().message;
+  EXPECT_LT((shifted->workspace.find("table_top")->T_base_object.translation() -
+             file->find("table_top")->T_base_object.translation() - Eigen::Vector3d(0.01, 0, 0))
+                .norm(),
+            1e-15);
+  // None: the file as it is.
+  auto plain = load_stereo_rig(dir + "/puma560_rig.yaml");
+  ASSERT_TRUE(plain.ok());
+  EXPECT_TRUE(plain->workspace_error.is_identity());
+  EXPECT_TRUE(plain->workspace.find("table_top")->T_base_object.matrix() ==
+              file->find("table_top")->T_base_object.matrix());
+
+  struct Case {
+    std::string yaml, message;
+  };
+  const std::vector<Case> cases = {
+      {"workspace_error:\n  objects:\n    shelf: {xyz: [0, 0, 0]}\n",
+       "workspace_error.objects: 'shelf' is not an object of"},
+      {"workspace_error: {xyz: [0, 0, 0], shift: 1}\n",
+       "workspace_error.shift: unknown key (expected xyz, rpy, objects)"},
+      {"workspace_error: {xyz: [0, 0]}\n", "workspace_error.xyz"},
+      {"workspace_error: {rpy: [0, .nan, 0]}\n", "workspace_error.rpy"},
+      {"workspace_error: [0, 0, 0]\n", "workspace_error: expected a map"},
+  };
+  for (const Case& c : cases) {
+    auto bad = parse_stereo_rig_yaml(text.str() + c.yaml, "puma560_rig.yaml", dir);
+    ASSERT_FALSE(bad.ok()) << c.yaml;
+    EXPECT_EQ(bad.error().message.rfind("rig file 'puma560_rig.yaml': ", 0), 0u)
+        << bad.error().message;
+    EXPECT_NE(bad.error().message.find(c.message), std::string::npos) << bad.error().message;
+  }
+  const std::string bare =
+      "robot: puma560\npose: {centre_m: [2, 0, 1], look_at_m: [0, 0, 0.5]}\n"
+      "cameras:\n  left: {image_size: [640, 480], fc: [500, 500], cc: [320, 240]}\n"
+      "  right: {image_size: [640, 480], fc: [500, 500], cc: [320, 240]}\n"
+      "workspace_error: {xyz: [0.01, 0, 0]}\n";
+  auto no_workspace = parse_stereo_rig_yaml(bare, "r.yaml", "");
+  ASSERT_FALSE(no_workspace.ok());
+  EXPECT_NE(no_workspace.error().message.find("workspace_error: needs a workspace:"),
+            std::string::npos)
+      << no_workspace.error().message;
 }
 
 TEST(Supersampling, ScaledCameraRefinesThePixelGrid) {
@@ -330,6 +407,72 @@ TEST_F(StereoRigSceneTest, MarkerCornersProjectWhereTheTextureIs) {
   }
   std::cout << "marker corners vs truth: max " << max_error << " px\n";
   EXPECT_LT(max_error, 3.0);
+}
+
+// A modelling error moves the rendered table: with the table 2 cm further along +x, the top
+// face's near edge (x = 0.8 m, facing the cameras) moves in the left image by exactly the
+// distance between the true camera's projections of a point of the edge before and after.
+TEST_F(StereoRigSceneTest, WorkspaceErrorMovesTheTableEdgeByTheProjectedShift) {
+  SceneOptions options;
+  options.noise_sigma = 0.0;
+  options.show_robot = false;
+  options.show_marker = false;
+  const Eigen::Isometry3d E(Eigen::Translation3d(0.02, 0.0, 0.0));
+  StereoRig moved = *rig_;
+  WorkspaceError error;
+  error.common = E;
+  auto real = apply_workspace_error(rig_->workspace, error);
+  ASSERT_TRUE(real.ok()) << real.error().message;
+  moved.workspace = *real;
+  moved.workspace_error = error;
+  auto scene_moved = SceneRenderer::create(moved, *model_, *body_, options);
+  ASSERT_TRUE(scene_moved.ok()) << scene_moved.error().message;
+  SceneRenderer scene = make_scene(options);
+  cv::Mat before, after;
+  grey(scene.render_clean(Eye::kLeft)).convertTo(before, CV_64F);
+  grey(scene_moved->render_clean(Eye::kLeft)).convertTo(after, CV_64F);
+
+  // The middle of the edge, top face: table_top centre + (half x, 0, half z).
+  const core::WorkspaceObject* top = rig_->workspace.find("table_top");
+  ASSERT_NE(top, nullptr);
+  const Eigen::Vector3d P =
+      top->T_base_object * Eigen::Vector3d(top->size_m.x() / 2, 0, top->size_m.z() / 2);
+  const auto uv = project(rig_->cameras.left, {P, E * P});
+  const cv::Point2d u = (uv[1] - uv[0]) / cv::norm(uv[1] - uv[0]);
+  // The edge along the scan line through uv[0] in direction u, near `from`: the largest step
+  // of the (bilinear) profile, refined to where it crosses half-way between its two sides.
+  const auto sample = [](const cv::Mat& image, cv::Point2d p) {
+    const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
+    const double fx = p.x - x, fy = p.y - y;
+    return (1 - fx) * (1 - fy) * image.at<double>(y, x) +
+           fx * (1 - fy) * image.at<double>(y, x + 1) + (1 - fx) * fy * image.at<double>(y + 1, x) +
+           fx * fy * image.at<double>(y + 1, x + 1);
+  };
+  const auto edge = [&](const cv::Mat& image, double from) {
+    const double step = 0.05;
+    double best = from, best_step = -1;
+    for (double t = from - 2.5; t <= from + 2.5; t += step) {
+      const double g =
+          std::abs(sample(image, uv[0] + (t + 0.5) * u) - sample(image, uv[0] + (t - 0.5) * u));
+      if (g > best_step) best_step = g, best = t;
+    }
+    const double inside = sample(image, uv[0] + (best - 2.0) * u);
+    const double outside = sample(image, uv[0] + (best + 1.5) * u);
+    const double half = 0.5 * (inside + outside);
+    for (double t = best - 1.5; t <= best + 1.5; t += 0.01) {
+      const double a = sample(image, uv[0] + t * u) - half;
+      const double b = sample(image, uv[0] + (t + 0.01) * u) - half;
+      if ((a <= 0) != (b <= 0)) return t + 0.01 * a / (a - b);
+    }
+    return best;
+  };
+  const double expected = cv::norm(uv[1] - uv[0]);
+  const double measured = edge(after, expected) - edge(before, 0.0);
+  std::cout << "table edge moved " << measured << " px, projected " << expected << " px\n";
+  ASSERT_GT(expected, 3.0);  // the test can see it
+  EXPECT_NEAR(measured, expected, 0.3);
+  // Where the real scene and the file agree the images do too (far from the table).
+  EXPECT_EQ(before.at<double>(5, 5), after.at<double>(5, 5));
 }
 
 // A simulated capture (14 views, 640x480, 1 grey level of noise) calibrated with telear's

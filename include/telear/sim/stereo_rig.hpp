@@ -18,16 +18,32 @@
 //   name: puma560_rig
 //   robot: puma560                       # robot name or file, for load_robot
 //   body: ../robots/puma560.real.body.yaml   # optional: the real arm's look
+//   workspace: ../workspaces/puma560_table.yaml   # optional: the scene (docs/workspace.md)
+//   workspace_error:                     # optional: the real scene against that file
+//     xyz: [0.01, 0, 0]                  #   m, base frame, every object (default 0)
+//     rpy: [0, 0, 0.02]                  #   rad (default 0)
+//     objects:                           #   optional, per object, after the common error
+//       box: {xyz: [0.02, 0, 0], rpy: [0, 0, 0]}
 //   baseline_m: 0.06                     # optional, default 0.06 (the seed's rig)
 //   pose: {centre_m: [x, y, z], look_at_m: [x, y, z], up: [0, 0, 1]}
 //   cameras:
 //     left:  {image_size: [640, 480], fc: [fx, fy], cc: [cx, cy], alpha_c: 0, kc: [5 values]}
 //     right: {...}
 // Untrusted input: every error names the file and the field.
+//
+// Modelling error. The operator's views, plan validation and the robot server read the
+// workspace file as it is; the rig renders (and the simulated grasp picks from) the scene as
+// it really stands, which a real cell never matches exactly. With workspace_error E (common)
+// and E_o (object o's), both in the base frame,
+//   T_base_object(real) = E_o * E * T_base_object(file)
+// so a pure translation moves every object by that much; a rotation turns the scene about the
+// base origin. Unknown objects under `objects:` are refused with their name.
 
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/result.hpp"
@@ -38,13 +54,29 @@ namespace telear::sim {
 
 enum class Eye { kLeft, kRight };
 
+// The real scene's modelling error against the workspace file (rig key workspace_error).
+struct WorkspaceError {
+  Eigen::Isometry3d common = Eigen::Isometry3d::Identity();        // E, every object
+  std::vector<std::pair<std::string, Eigen::Isometry3d>> objects;  // E_o by object name
+
+  bool is_identity() const;
+};
+
+// The workspace as it really stands: every object of `file` posed by the error (see above).
+// Errors: an object of the error that the workspace does not have.
+Result<core::Workspace> apply_workspace_error(const core::Workspace& file,
+                                              const WorkspaceError& error);
+
 struct StereoRig {
   std::string name;
   std::string robot;      // as given to load_robot (resolved to a path when it is a file)
   std::string body_file;  // resolved path, empty: the robot's own body
   // The scene around the robot (the table, the box to pick): resolved path and contents;
   // empty: nothing but the floor.
+  // `workspace` is what the rig renders: the file's objects posed by workspace_error (the
+  // operator's copy is the file itself).
   std::string workspace_file;
+  WorkspaceError workspace_error;
   core::Workspace workspace;
   // The registration marker on the flange: resolved path and contents; empty: the robot's
   // own marker file (core::marker_mount_for), looked up by the scene renderer.
