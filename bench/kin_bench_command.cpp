@@ -15,6 +15,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <ostream>
 #include <thread>
 #include <utility>
@@ -28,6 +29,7 @@
 #include "telear/core/ik_analytic.hpp"
 #include "telear/core/ik_branches.hpp"
 #include "telear/core/ik_numeric.hpp"
+#include "telear/core/ik_ur.hpp"
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
@@ -98,9 +100,13 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
     return 2;
   }
   const KDL::Chain chain = *built;  // KDL's solvers keep a reference: it outlives them
-  // The closed form, where the arm has the PUMA's geometry (DH tables only).
+  // The closed forms: the PUMA's (DH tables only) and the UR class's (any file).
   auto geometry = core::puma_geometry(model);
   const int n = model.dof();
+  std::optional<core::UrGeometry> ur;
+  if (!geometry && n == 6) {
+    if (auto g = core::ur_geometry(model)) ur = *g;
+  }
   const auto nj = chain.getNrOfJoints();
   if (static_cast<int>(nj) != n) {
     err << "telear bench kin: KDL's chain has " << nj << " joints, telear's " << n << "\n";
@@ -251,6 +257,47 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
     }
   }
 
+  // The UR class's closed form, every branch: the allocation-free core and the labelled API
+  // (which checks each branch by FK and polishes it where it misses by more than 1e-12), and
+  // the round trip of every branch over every target. Its KDL column is KDL's LMA from the
+  // cold start (one solution, to KDL's tolerance), timed below in this same run: the
+  // comparison a user choosing between them makes.
+  double ur_round_trip = 0.0;
+  int ur_unreachable = 0;
+  double ur_branches = 0.0;
+  double ur_core_ns = 0.0, ur_api_ns = 0.0;
+  if (ur) {
+    core::UrIkSolutions solutions;
+    const int ik_inputs = std::min<int>(kInputs, static_cast<int>(cases.size()));
+    auto target = [&](long i) -> const Eigen::Isometry3d& {
+      return cases[static_cast<size_t>(i % ik_inputs)].T_base_tool;
+    };
+    ur_core_ns = best_ns_per_call([&](long i) {
+      core::solve_ur_ik(*ur, target(i), solutions);
+      keep(solutions.q[0]);
+    });
+    ur_api_ns = best_ns_per_call([&](long i) {
+      const core::AnalyticIkResult r = core::solve_ur_analytic_ik(model, *ur, target(i));
+      keep(r.solutions.size());
+    });
+    int listed = 0;
+    for (const auto& c : cases) {
+      const core::AnalyticIkResult r = core::solve_ur_analytic_ik(model, *ur, c.T_base_tool);
+      if (r.status == core::IkStatus::kUnreachable) {
+        ++ur_unreachable;
+        continue;
+      }
+      for (const core::IkSolution& s : r.solutions) {
+        ++listed;
+        core::forward_kinematics(model, data, s.q);
+        ur_round_trip =
+            std::max(ur_round_trip,
+                     (data.T_base_tool.matrix() - c.T_base_tool.matrix()).cwiseAbs().maxCoeff());
+      }
+    }
+    ur_branches = static_cast<double>(listed) / static_cast<double>(cases.size());
+  }
+
   // Numeric IK: telear's Levenberg-Marquardt (and, for a redundant arm, its null-space
   // preference) against KDL's ChainIkSolverPos_LMA (defaults), from the same seeds.
   core::NumericIkSolver solver(model);
@@ -311,11 +358,22 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
   const IkStats kdl_cold = kdl_ik(false);
   const IkStats kdl_seeded = kdl_ik(true);
   const std::string cold = "cold start, " + cold_seed.second;
+  if (ur) {
+    // KDL's LMA from the cold start beside the closed form's every branch (see above).
+    rows.push_back({"closed-form IK, all branches (solve_ur_ik) vs KDL LMA " + cold, "ns",
+                    ur_core_ns, 1000.0 * kdl_cold.mean_us, "", ""});
+    rows.push_back({"closed-form IK, all branches (labelled API)", "ns", ur_api_ns, kNone, "", ""});
+  }
   std::vector<IkRun> ik_runs;
   if (n <= 6) {
     // The PUMA's rows keep their names ("numeric IK, cold start, q = 0").
     ik_runs.push_back({"numeric IK, " + cold, lm_ik(false), kdl_cold, true});
     ik_runs.push_back({"numeric IK, seeded near the answer", lm_ik(true), kdl_seeded, false});
+    if (ur) {
+      // What motion commands call: the closed form's nearest branch within the limits.
+      ik_runs.push_back({"closed-form IK nearest (solve_ik_nearest), " + cold, nearest_ik(false),
+                         kdl_cold, false});
+    }
   } else {
     ik_runs.push_back({"numeric IK (LM alone), " + cold, lm_ik(false), kdl_cold, true});
     ik_runs.push_back(
@@ -341,32 +399,44 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
     rows.push_back({run.name + ": p99", "us", run.telear.p99_us, run.kdl.p99_us, "", ""});
   }
 
-  // Every branch of a 6-joint arm without a closed form (solve_ik_all, ~100 seeded LM
-  // solves): solved when some listed branch within the limits reaches the target. KDL has no
-  // counterpart.
+  // Every branch of a 6-joint arm other than the PUMA (solve_ik_all: the closed form of a
+  // UR-class arm, else ~100 seeded LM solves), and for a UR-class arm the numeric search as
+  // well (search_ik_branches, what solve_ik_all did before): solved when some listed branch
+  // within the limits reaches the target. KDL has no counterpart.
   int branch_targets = 0;
-  double branches_found = 0.0;
+  double branches_found = 0.0, branches_searched = 0.0;
   if (n == 6 && !geometry) {
     branch_targets = std::min<int>(kBranchTargets, static_cast<int>(cases.size()));
     const std::vector<bench::IkCase> some(cases.begin(), cases.begin() + branch_targets);
-    int listed = 0;
-    const IkStats all = time_numeric_ik(
-        model, some,
-        [&](size_t k) {
-          auto r = core::solve_ik_all(model, some[k].T_base_tool);
-          if (!r) return Outcome{false, cold_q};
-          listed += static_cast<int>(r->size());
-          for (const core::IkSolution& s : *r) {
-            if (s.within_limits) return Outcome{true, s.q};
-          }
-          return Outcome{false, cold_q};
-        },
-        verify_p, verify_r);
-    branches_found = static_cast<double>(listed) / branch_targets;
-    const std::string name =
-        "every branch (solve_ik_all), " + std::to_string(branch_targets) + " targets";
+    const auto every_branch = [&](bool search, double& per_target) {
+      int listed = 0;
+      const IkStats stats = time_numeric_ik(
+          model, some,
+          [&](size_t k) {
+            auto r = search ? core::search_ik_branches(model, some[k].T_base_tool)
+                            : core::solve_ik_all(model, some[k].T_base_tool);
+            if (!r) return Outcome{false, cold_q};
+            listed += static_cast<int>(r->size());
+            for (const core::IkSolution& s : *r) {
+              if (s.within_limits) return Outcome{true, s.q};
+            }
+            return Outcome{false, cold_q};
+          },
+          verify_p, verify_r);
+      per_target = static_cast<double>(listed) / branch_targets;
+      return stats;
+    };
+    const std::string targets = std::to_string(branch_targets) + " targets";
+    const IkStats all = every_branch(false, branches_found);
+    const std::string name = "every branch (solve_ik_all), " + targets;
     rows.push_back({name + ": solved", "%", all.solved_percent, kNone, "", ""});
     rows.push_back({name + ": mean", "us", all.mean_us, kNone, "", ""});
+    if (ur) {
+      const IkStats searched = every_branch(true, branches_searched);
+      const std::string by_search = "every branch by search (search_ik_branches), " + targets;
+      rows.push_back({by_search + ": solved", "%", searched.solved_percent, kNone, "", ""});
+      rows.push_back({by_search + ": mean", "us", searched.mean_us, kNone, "", ""});
+    }
   }
 
   print_table(rows, out);
@@ -391,12 +461,27 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
                   options.poses, analytic_round_trip, unreachable);
     out << line;
   }
+  if (ur) {
+    std::snprintf(line, sizeof line,
+                  "check: UR closed-form IK round trip FK(IK(T)) vs T, every branch of %d "
+                  "targets (%.2f per target): max |difference| %.2g (%d unreachable)\n",
+                  options.poses, ur_branches, ur_round_trip, ur_unreachable);
+    out << line;
+    out << "note: the closed form's KDL column is ChainIkSolverPos_LMA from the cold start "
+           "(one solution), timed in this run; the closed form lists every branch\n";
+  }
   if (branch_targets > 0) {
     std::snprintf(line, sizeof line,
                   "note: solve_ik_all listed %.2f branches per target on average (within the "
-                  "limits or not)\n",
-                  branches_found);
+                  "limits or not)%s\n",
+                  branches_found, ur ? " by the closed form" : "");
     out << line;
+    if (ur) {
+      std::snprintf(line, sizeof line,
+                    "note: search_ik_branches listed %.2f branches per target on average\n",
+                    branches_searched);
+      out << line;
+    }
   }
   for (const IkRun& run : ik_runs) {
     std::snprintf(line, sizeof line,
@@ -436,6 +521,7 @@ int run_bench_kin(const BenchKinOptions& options, std::ostream& out, std::ostrea
     }
     j["fk_max_difference_vs_kdl"] = fk_max_diff;
     if (geometry) j["analytic_round_trip_max_difference"] = analytic_round_trip;
+    if (ur) j["ur_closed_form_round_trip_max_difference"] = ur_round_trip;
     json_file << j.dump(2) << "\n";
   }
   return 0;

@@ -99,9 +99,12 @@ void elbow_angle(double l2, double l3, double d, double& c, double& s) {
 // [SECTION] Geometry
 
 Result<UrGeometry> ur_geometry(const RobotModel& model) {
-  const std::string who = "robot '" + model.name() + "' is not of the UR class (closed-form IK): ";
+  // Built only on failure: solve_ik_nearest asks on every call.
+  const auto who = [&model] {
+    return "robot '" + model.name() + "' is not of the UR class (closed-form IK): ";
+  };
   if (model.dof() != 6) {
-    return Error{who + "it has " + std::to_string(model.dof()) + " joints, needs 6"};
+    return Error{who() + "it has " + std::to_string(model.dof()) + " joints, needs 6"};
   }
   UrGeometry g;
   // Every axis at q = 0 (offsets included), as a line in the base frame.
@@ -109,7 +112,7 @@ Result<UrGeometry> ur_geometry(const RobotModel& model) {
   for (int i = 0; i < 6; ++i) {
     const Joint& joint = model.joint(i);
     if (joint.type != JointType::kRevolute) {
-      return Error{who + "joint " + std::to_string(i + 1) + " is prismatic, needs revolute"};
+      return Error{who() + "joint " + std::to_string(i + 1) + " is prismatic, needs revolute"};
     }
     const Eigen::Isometry3d A = F * joint.before;
     g.axis[static_cast<size_t>(i)] = A.linear().col(2).normalized();
@@ -124,7 +127,7 @@ Result<UrGeometry> ur_geometry(const RobotModel& model) {
   g.n = w[1];
   for (int i : {2, 3}) {
     if (w[1].cross(w[static_cast<size_t>(i)]).norm() > kGeometryTolerance) {
-      return Error{who + "the axes of joints 2 and " + std::to_string(i + 1) +
+      return Error{who() + "the axes of joints 2 and " + std::to_string(i + 1) +
                    " are not parallel (" +
                    format_angle(line_angle(w[1], w[static_cast<size_t>(i)])) + " apart)"};
     }
@@ -132,7 +135,7 @@ Result<UrGeometry> ur_geometry(const RobotModel& model) {
   const auto perpendicular = [&](int a, int b) -> Status {
     const double cosine = w[static_cast<size_t>(a)].dot(w[static_cast<size_t>(b)]);
     if (std::abs(cosine) <= kGeometryTolerance) return Status::Ok();
-    return Error{who + "the axes of joints " + std::to_string(a + 1) + " and " +
+    return Error{who() + "the axes of joints " + std::to_string(a + 1) + " and " +
                  std::to_string(b + 1) + " are not perpendicular (" +
                  format_angle(std::acos(std::clamp(cosine, -1.0, 1.0))) + " apart)"};
   };
@@ -148,7 +151,7 @@ Result<UrGeometry> ur_geometry(const RobotModel& model) {
   const Eigen::Vector3d on5 = p[4] + t5 * w[4];
   const Eigen::Vector3d on6 = p[5] + t6 * w[5];
   if ((on5 - on6).norm() > kGeometryTolerance) {
-    return Error{who + "the axes of joints 5 and 6 do not intersect (they pass " +
+    return Error{who() + "the axes of joints 5 and 6 do not intersect (they pass " +
                  format_length((on5 - on6).norm()) + " apart)"};
   }
   g.wrist = 0.5 * (on5 + on6);
@@ -157,10 +160,10 @@ Result<UrGeometry> ur_geometry(const RobotModel& model) {
   g.upper_arm = upper_arm.norm();
   g.forearm = forearm.norm();
   if (g.upper_arm < kMinLinkLength) {
-    return Error{who + "the axes of joints 2 and 3 coincide (no upper arm)"};
+    return Error{who() + "the axes of joints 2 and 3 coincide (no upper arm)"};
   }
   if (g.forearm < kMinLinkLength) {
-    return Error{who + "the axes of joints 3 and 4 coincide (no forearm)"};
+    return Error{who() + "the axes of joints 3 and 4 coincide (no forearm)"};
   }
   g.sign3 = w[2].dot(g.n) > 0.0 ? 1.0 : -1.0;
   g.sign4 = w[3].dot(g.n) > 0.0 ? 1.0 : -1.0;
@@ -369,6 +372,12 @@ void polish(const RobotModel& model, KinematicsData& data, const Eigen::Isometry
     e = pose_error_in_base(data.T_base_tool, T);
     return std::max(e.head<3>().norm(), e.tail<3>().norm());
   };
+  // The usual case first, without the rotation's logarithm: every entry within the tolerance
+  // (rotation entries differ by about the angle of the rotation between them).
+  forward_kinematics(model, data, q);
+  if ((data.T_base_tool.matrix() - T.matrix()).cwiseAbs().maxCoeff() <= 0.5 * kPolishTolerance) {
+    return;
+  }
   Vector6d e;
   double err = error_of(q, e);
   Jacobian J(6, 6);
