@@ -92,6 +92,59 @@ std::vector<TaskStep> pick_and_place_steps(const Eigen::Vector3d& box_base_m,
   };
 }
 
+std::vector<TaskStep> demo_task_steps(const DemoTaskInputs& inputs) {
+  return pick_and_place_steps(inputs.box_base_m,
+                              inputs.box_base_m + Eigen::Vector3d(0.0, -0.2, 0.0));
+}
+
+Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInputs& inputs) {
+  GraspRequest request;
+  for (const TaskStep& s : demo_task_steps(inputs))
+    request.grip_positions_base_m.push_back(s.grip_position_base_m);
+  request.grip_in_link_m = inputs.grip_in_link_m;
+  request.q_start = session.ghost().q();
+  request.camera_base_m = inputs.camera_base_m;
+  return choose_grasp(session.model(), request);
+}
+
+Status rehearse_pick_and_place(Session& session, const DemoTaskInputs& inputs,
+                               const GraspChoice& grasp, const DemoProgress& progress,
+                               const std::function<Status(const TaskStep&)>& after_step) {
+  const auto note = [&](const std::string& text) {
+    if (progress.note) progress.note(text);
+  };
+  const core::RobotModel& model = session.model();
+  session.plan().clear();
+  if (Status s = session.add_ghost_waypoint(0.0, "start"); !s)
+    return phase_error("rehearsal", s.error().message);
+  for (const TaskStep& task : demo_task_steps(inputs)) {
+    const core::MotionOutcome moved = session.move_ghost(core::CartesianTarget{
+        grasp.T_base_tool(model, inputs.grip_in_link_m, task.grip_position_base_m)});
+    if (!moved.accepted) return phase_error("rehearsal: " + task.label, moved.rejection.message);
+    // The correction the first rehearsal taught: where the ghost touches the table (the
+    // fingertips reach below the box's centre), raise it 5 mm at a time, as an operator
+    // watching the clearance would, within the grasp model's 2 cm capture distance.
+    for (double lift = 0.005; session.ghost_clearance().level == ClearanceState::Level::kContact &&
+                              lift <= kMaxLift_m + 1e-9;
+         lift += 0.005) {
+      const core::MotionOutcome raised = session.move_ghost(core::CartesianTarget{
+          grasp.T_base_tool(model, inputs.grip_in_link_m,
+                            task.grip_position_base_m + Eigen::Vector3d(0.0, 0.0, lift))});
+      if (!raised.accepted) break;
+      note(task.label + ": raised " + core::format_number(lift * 1e3, "%.0f") +
+           " mm off the table (" + session.ghost_clearance().summary() + ")");
+    }
+    if (task.gripper) (void)session.ghost().set_gripper(*task.gripper);
+    if (Status s = session.add_ghost_waypoint(0.0, task.label); !s)
+      return phase_error("rehearsal: " + task.label, s.error().message);
+    if (task.dwell_s > 0) (void)session.add_ghost_waypoint(task.dwell_s, task.label + " (dwell)");
+    if (after_step) {
+      if (Status s = after_step(task); !s) return phase_error("rehearsal", s.error().message);
+    }
+  }
+  return Status::Ok();
+}
+
 Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorder,
                                       const DemoTaskInputs& inputs, const DemoProgress& progress) {
   const auto step = [&](int n, const std::string& what) {
@@ -108,14 +161,7 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
   // Rehearsal.
   step(4, "rehearsing the pick-and-place on the ghost");
   if (Status s = session.ghost_to_real(); !s) return phase_error("rehearsal", s.error().message);
-  const Eigen::Vector3d place = inputs.box_base_m + Eigen::Vector3d(0.0, -0.2, 0.0);
-  const std::vector<TaskStep> steps = pick_and_place_steps(inputs.box_base_m, place);
-  GraspRequest request;
-  for (const TaskStep& s : steps) request.grip_positions_base_m.push_back(s.grip_position_base_m);
-  request.grip_in_link_m = inputs.grip_in_link_m;
-  request.q_start = session.ghost().q();
-  request.camera_base_m = inputs.camera_base_m;
-  auto grasp = choose_grasp(model, request);
+  auto grasp = choose_task_grasp(session, inputs);
   if (!grasp) return phase_error("rehearsal", grasp.error().message);
   outcome.grasp = *grasp;
   note("grasp: " + grasp->note());
@@ -125,35 +171,15 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
     if (!check) return phase_error("rehearsal: into the table", check.error().message);
     outcome.first_rehearsal_check = std::move(*check);
   }
-  if (Status s = session.add_ghost_waypoint(0.0, "start"); !s)
-    return phase_error("rehearsal", s.error().message);
-  for (const TaskStep& task : steps) {
-    const core::MotionOutcome moved = session.move_ghost(core::CartesianTarget{
-        grasp->T_base_tool(model, inputs.grip_in_link_m, task.grip_position_base_m)});
-    if (!moved.accepted) return phase_error("rehearsal: " + task.label, moved.rejection.message);
-    // The correction the first rehearsal taught: where the ghost touches the table (the
-    // fingertips reach below the box's centre), raise it 5 mm at a time, as an operator
-    // watching the clearance would, within the grasp model's 2 cm capture distance.
-    for (double lift = 0.005; session.ghost_clearance().level == ClearanceState::Level::kContact &&
-                              lift <= kMaxLift_m + 1e-9;
-         lift += 0.005) {
-      const core::MotionOutcome raised = session.move_ghost(core::CartesianTarget{
-          grasp->T_base_tool(model, inputs.grip_in_link_m,
-                             task.grip_position_base_m + Eigen::Vector3d(0.0, 0.0, lift))});
-      if (!raised.accepted) break;
-      note(task.label + ": raised " + core::format_number(lift * 1e3, "%.0f") +
-           " mm off the table (" + session.ghost_clearance().summary() + ")");
-    }
-    if (task.gripper) (void)session.ghost().set_gripper(*task.gripper);
-    if (Status s = session.add_ghost_waypoint(0.0, task.label); !s)
-      return phase_error("rehearsal: " + task.label, s.error().message);
-    if (task.dwell_s > 0) (void)session.add_ghost_waypoint(task.dwell_s, task.label + " (dwell)");
-    recorder.ticks(static_cast<int>(inputs.fps / 3));
-    if (task.label == "grasp") {
-      if (auto k = recorder.key_frame("keyframe_2_rehearsal_grasp"); !k)
-        return phase_error("rehearsal", k.error().message);
-    }
-  }
+  auto rehearsed = rehearse_pick_and_place(
+      session, inputs, *grasp, progress, [&](const TaskStep& task) -> Status {
+        recorder.ticks(static_cast<int>(inputs.fps / 3));
+        if (task.label != "grasp") return Status::Ok();
+        auto k = recorder.key_frame("keyframe_2_rehearsal_grasp");
+        if (!k) return k.error();
+        return Status::Ok();
+      });
+  if (!rehearsed) return rehearsed.error();
   auto trajectory = session.plan().trajectory();
   if (!trajectory) return phase_error("rehearsal", trajectory.error().message);
   outcome.waypoints = static_cast<int>(session.plan().size());

@@ -10,6 +10,7 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/motion_command.hpp"
 #include "telear/geometry/trajectory_collision.hpp"
+#include "telear/session/plan_collision.hpp"
 
 namespace telear::session {
 namespace {
@@ -56,6 +57,18 @@ void check_collisions(geometry::CollisionChecker& checker, const core::Trajector
   if (!report) {
     error(-1, -1, "the plan could not be checked for collisions: " + report.error().message);
     return;
+  }
+  if (options.workspace) {
+    // The object the gripper carries (its resting contacts where picked and placed excepted).
+    auto held =
+        check_carried_objects(trajectory, checker, *options.workspace, options.collision_check);
+    if (!held) {
+      error(-1, -1, "the carried object could not be checked: " + held.error().message);
+      return;
+    }
+    report->collisions.insert(report->collisions.end(), held->begin(), held->end());
+    std::stable_sort(report->collisions.begin(), report->collisions.end(),
+                     [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
   }
   for (const geometry::PlanCollision& c : report->collisions) {
     error(c.segment, -1,

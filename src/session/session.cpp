@@ -56,7 +56,7 @@ Result<std::unique_ptr<Session>> Session::create(core::RobotModelPtr model,
   std::unique_ptr<geometry::CollisionChecker> checker;
   if (options.description && options.workspace) {
     // The graspable objects are the task's targets, not obstacles: the fingers touch the box
-    // at the grasp on purpose. (A carried object is then not checked against the scene.)
+    // at the grasp on purpose. Validation checks a carried one (ValidationOptions::workspace).
     core::Workspace obstacles = *options.workspace;
     std::erase_if(obstacles.objects, [](const core::WorkspaceObject& o) { return o.graspable; });
     auto made = geometry::make_collision_checker(*options.description, obstacles);
@@ -253,6 +253,7 @@ ValidationReport Session::validate_plan() const {
   if (start_tolerance_) options.start_tolerance = *start_tolerance_;
   options.sample_rate_hz = options_.sample_rate_hz;
   options.collision_checker = checker_.get();
+  if (checker_) options.workspace = &*options_.workspace;  // the carried box is checked too
   options.safety_margin_m = options_.safety_margin_m;
   options.collision_check = options_.plan_check;
   return session::validate_plan(plan_, real_q(), options);

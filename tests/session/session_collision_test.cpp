@@ -6,11 +6,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "telear/core/angles.hpp"
+#include "telear/core/arm_body.hpp"
 #include "telear/geometry/collision_checker.hpp"
+#include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
+#include "telear/session/demo_task.hpp"
 #include "telear/session/ghost_clearance.hpp"
+#include "telear/session/plan_collision.hpp"
 #include "telear/session/session.hpp"
 #include "telear/session/view_input.hpp"
+#include "telear/sim/stereo_rig.hpp"
 
 namespace telear::session {
 namespace {
@@ -159,6 +165,137 @@ TEST(SessionCollision, WithoutADescriptionAndWorkspaceNothingIsChecked) {
   ASSERT_TRUE((*session)->plan().add({kZero}).ok());
   ASSERT_TRUE((*session)->plan().add({kIntoTable}).ok());
   EXPECT_FALSE((*session)->validate_plan().collision.has_value());
+}
+
+// The demo's pick-and-place (demo_task.hpp) rehearsed offline on a shipped arm in its
+// workspace: the session checks collisions, the box is carried from the grasp to the place.
+struct RehearsedTask {
+  std::unique_ptr<Session> session;
+  DemoTaskInputs inputs;
+  GraspChoice grasp;
+};
+
+RehearsedTask rehearse_demo_task(const std::string& robot_name) {
+  RehearsedTask task;
+  auto robot = geometry::load_robot_assets({robot_name, {}, {}});
+  EXPECT_TRUE(robot) << robot.error().message;
+  auto workspace = geometry::load_workspace(core::default_workspace_file(robot_name));
+  EXPECT_TRUE(workspace) << workspace.error().message;
+  auto rig = sim::load_stereo_rig(sim::default_rig_file(robot_name));
+  EXPECT_TRUE(rig) << rig.error().message;
+  if (!robot || !workspace || !rig) return task;
+  SessionOptions options;
+  options.robot.address = "127.0.0.1:1";  // never connected
+  options.vision.address = "127.0.0.1:1";
+  options.description = robot->description;
+  options.workspace = *workspace;
+  auto session = Session::create(robot->model(), options);
+  EXPECT_TRUE(session) << session.error().message;
+  if (!session) return task;
+  task.session = std::move(*session);
+  const auto ready = robot->model()->named_configuration("ready");
+  EXPECT_TRUE(ready.has_value());
+  if (!ready) return task;
+  EXPECT_TRUE(task.session->move_ghost(core::JointTarget{*ready}).accepted);
+  const core::ArmBody arm_body = core::build_arm_body(robot->body);
+  task.inputs.box_base_m = workspace->first_graspable()->T_base_object.translation();
+  task.inputs.grip_in_link_m = arm_body.gripper
+                                   ? Eigen::Vector3d(arm_body.gripper->centre.cast<double>())
+                                   : Eigen::Vector3d::Zero();
+  task.inputs.camera_base_m = rig->cameras.left.T_cam_base.inverse().translation();
+  auto grasp = choose_task_grasp(*task.session, task.inputs);
+  EXPECT_TRUE(grasp) << grasp.error().message;
+  if (!grasp) return task;
+  task.grasp = *grasp;
+  (void)task.session->plan().set_scales(0.5, 0.5);
+  const Status rehearsed = rehearse_pick_and_place(*task.session, task.inputs, task.grasp);
+  EXPECT_TRUE(rehearsed) << rehearsed.error().message;
+  return task;
+}
+
+std::size_t waypoint_labelled(const Plan& plan, const std::string& label) {
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    if (plan.waypoint(k).label == label) return k;
+  }
+  ADD_FAILURE() << "no waypoint labelled " << label;
+  return 0;
+}
+
+TEST(CarriedObject, TheBoxIsHeldFromTheGraspToThePlaceAndRestingOnTheTrayIsNoContact) {
+  RehearsedTask task = rehearse_demo_task("ur6");
+  ASSERT_TRUE(task.session && task.session->checks_collisions());
+  const Plan& plan = task.session->plan();
+  auto trajectory = plan.trajectory();
+  ASSERT_TRUE(trajectory) << trajectory.error().message;
+  auto robot = geometry::robot_collision_model(*task.session->options().description);
+  ASSERT_TRUE(robot) << robot.error().message;
+  const core::Workspace& workspace = *task.session->options().workspace;
+  const std::vector<CarriedObject> carried = carried_objects(*trajectory, *robot, workspace);
+  ASSERT_EQ(carried.size(), 1u);
+  EXPECT_EQ(carried[0].name, "box");
+  EXPECT_EQ(carried[0].grasp, waypoint_labelled(plan, "grasp"));
+  EXPECT_EQ(carried[0].release, waypoint_labelled(plan, "place"));
+  EXPECT_TRUE(carried[0].T_base_object.translation().isApprox(task.inputs.box_base_m));
+
+  // Picked off the tray and put back on it: those resting contacts are not collisions.
+  const ValidationReport report = task.session->validate_plan();
+  EXPECT_TRUE(report.ok()) << report.summary();
+  EXPECT_THAT(report.summary(), Not(HasSubstr("box hits")));
+
+  // Without a graspable object, or with the gripper never closing, nothing is carried.
+  core::Workspace bare = workspace;
+  std::erase_if(bare.objects, [](const core::WorkspaceObject& o) { return o.graspable; });
+  EXPECT_TRUE(carried_objects(*trajectory, *robot, bare).empty());
+  Plan open_hand(plan.model_ptr());
+  for (PlanWaypoint w : plan.waypoints()) {
+    w.gripper = 1.0;
+    ASSERT_TRUE(open_hand.add(w).ok());
+  }
+  auto open_trajectory = open_hand.trajectory();
+  ASSERT_TRUE(open_trajectory) << open_trajectory.error().message;
+  EXPECT_TRUE(carried_objects(*open_trajectory, *robot, workspace).empty());
+}
+
+TEST(CarriedObject, APlanThatCarriesTheBoxThroughTheTrayIsRefusedNamingTheBox) {
+  RehearsedTask task = rehearse_demo_task("ur6");
+  ASSERT_TRUE(task.session && task.session->checks_collisions());
+  Session& session = *task.session;
+  // The carry step lowered until the box's bottom is 15 mm inside the tray (its top is at
+  // z = 0.02 m; the box hangs 25 mm below the gripper's centre).
+  const std::size_t carry = waypoint_labelled(session.plan(), "carry");
+  const std::vector<TaskStep> steps = demo_task_steps(task.inputs);
+  const auto step = std::find_if(steps.begin(), steps.end(),
+                                 [](const TaskStep& s) { return s.label == "carry"; });
+  ASSERT_NE(step, steps.end());
+  Eigen::Vector3d low = step->grip_position_base_m;
+  low.z() = 0.02 + 0.025 - 0.015;
+  const core::MotionOutcome moved = session.move_ghost(core::CartesianTarget{
+      task.grasp.T_base_tool(session.model(), task.inputs.grip_in_link_m, low)});
+  ASSERT_TRUE(moved.accepted) << moved.rejection.message;
+  std::vector<PlanWaypoint> waypoints = session.plan().waypoints();
+  waypoints[carry].q = session.ghost().q();
+  session.plan().clear();
+  for (const PlanWaypoint& w : waypoints) ASSERT_TRUE(session.plan().add(w).ok());
+
+  const ValidationReport report = session.validate_plan();
+  EXPECT_FALSE(report.ok());
+  EXPECT_THAT(report.summary(), HasSubstr("box hits tray (penetration "));
+  ASSERT_TRUE(report.collision.has_value());
+  const auto box =
+      std::find_if(report.collision->collisions.begin(), report.collision->collisions.end(),
+                   [](const geometry::PlanCollision& c) { return c.body == "box"; });
+  ASSERT_NE(box, report.collision->collisions.end());
+  EXPECT_EQ(box->other, "tray");
+  EXPECT_FALSE(box->self);
+  EXPECT_GT(box->depth_m, 0.005);
+  // On the way down to the low carry pose (from the lift, before the place).
+  auto trajectory = session.plan().trajectory();
+  ASSERT_TRUE(trajectory);
+  EXPECT_GT(box->time_s, trajectory->waypoint_times()[carry - 1]);
+  EXPECT_LE(box->time_s, trajectory->waypoint_times()[carry]);
+  EXPECT_EQ(static_cast<std::size_t>(box->segment), carry - 1);
+  // The session refuses to execute it.
+  EXPECT_FALSE(session.execute_plan().ok());
 }
 
 }  // namespace

@@ -80,6 +80,20 @@ struct DemoTaskOutcome {
   std::optional<geometry::TrajectoryCheckReport> final_plan_check;
 };
 
+// The task's steps for these inputs: the box, and the place 0.2 m along -y of it.
+std::vector<TaskStep> demo_task_steps(const DemoTaskInputs& inputs);
+
+// The grasp for the task's steps from where the ghost is (include/telear/session/grasp_choice.hpp).
+Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInputs& inputs);
+
+// Rehearses the task on the ghost, from where it is, into the session's plan (cleared first):
+// a "start" waypoint, then each step's pose (raised 5 mm at a time, up to 15 mm, where the
+// ghost touches something), its gripper and dwell. `after_step` runs after each step (the
+// demo's recorder ticks and key frame). It needs no server: tests rehearse offline.
+Status rehearse_pick_and_place(Session& session, const DemoTaskInputs& inputs,
+                               const GraspChoice& grasp, const DemoProgress& progress = {},
+                               const std::function<Status(const TaskStep&)>& after_step = {});
+
 // Errors name the phase ("start", "rehearsal: grasp", "preview", "execution") and the
 // session's reason. The step callbacks are numbered 4..6 (the demo's 7 steps).
 Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorder,

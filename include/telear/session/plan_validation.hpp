@@ -14,7 +14,9 @@
 //     q on some joint: the server would refuse it, and the arm would jump;
 //   - with a collision checker: a contact anywhere along the timed trajectory, checked
 //     continuously (geometry/trajectory_collision.hpp), one error per contact naming the
-//     segment, the time, the link, the object (or other link) and the penetration depth.
+//     segment, the time, the link, the object (or other link) and the penetration depth;
+//     with the workspace too, the same for an object the plan carries in the gripper
+//     (session/plan_collision.hpp: check_carried_objects), named as the body.
 // Warnings
 //   - the real robot's state is unknown (the start was not checked);
 //   - a single waypoint (executing it moves nothing);
@@ -33,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "telear/core/workspace.hpp"
 #include "telear/geometry/trajectory_collision.hpp"
 #include "telear/session/plan.hpp"
 
@@ -73,6 +76,9 @@ struct ValidationOptions {
   // The robot's collision checker in the workspace (geometry/collision_checker.hpp), or null
   // for no collision check. Not owned; validation poses it, so not shared between threads.
   geometry::CollisionChecker* collision_checker = nullptr;
+  // The workspace the checker was built from, graspable objects included (not owned), or
+  // null: with it an object the gripper closes on is checked while it is carried.
+  const core::Workspace* workspace = nullptr;
   // A clearance to a workspace object below this (m, >= 0) is a warning.
   double safety_margin_m = 0.03;
   geometry::TrajectoryCheckOptions collision_check;  // how finely the plan is checked
