@@ -68,7 +68,10 @@ Result<std::string> canonical_plan_bytes(const Trajectory& trajectory) {
   out.size(trajectory.waypoints().size());
   for (const JointWaypoint& w : trajectory.waypoints()) {
     out.joints(w.q);
-    out.u8(w.via ? 1 : 0);
+    // The flags: what the operator asked (via, cartesian) and which points the expansion of
+    // a Cartesian segment inserted.
+    out.u8(
+        static_cast<std::uint8_t>((w.via ? 1 : 0) | (w.cartesian ? 2 : 0) | (w.expanded ? 4 : 0)));
     out.f64(w.min_duration);
     out.u8(w.gripper ? 1 : 0);
     out.f64(w.gripper.value_or(0.0));

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "telear/core/blended_run.hpp"
+#include "telear/core/cartesian_segment.hpp"
 #include "telear/core/joint_limits.hpp"
 
 namespace telear::core {
@@ -97,7 +98,15 @@ Status validate_waypoints(const RobotModel& model, const std::vector<JointWaypoi
 
 Result<Trajectory> Trajectory::create(const RobotModel& model, std::vector<JointWaypoint> waypoints,
                                       const TrajectoryOptions& options) {
+  // The operator's waypoints are checked (their indices in the messages), then Cartesian
+  // segments become joint via points, recomputed when given back expanded.
+  waypoints = without_expanded_points(std::move(waypoints));
   if (Status s = validate_waypoints(model, waypoints, options); !s) return s.error();
+  if (has_cartesian_segments(waypoints)) {
+    auto expanded = expand_cartesian_segments(model, std::move(waypoints), options.max_waypoints);
+    if (!expanded) return expanded.error();
+    waypoints = std::move(*expanded);
+  }
   Trajectory trajectory;
   trajectory.dof_ = model.dof();
   trajectory.options_ = options;
@@ -136,7 +145,7 @@ TrapezoidalProfile Trajectory::stop_profile(size_t k) const {
     alpha = (D / v_max_.array()).maxCoeff();
     beta = (D / a_max_.array()).maxCoeff();
   }
-  return TrapezoidalProfile::Fastest(alpha, beta, waypoints_[k + 1].min_duration);
+  return TrapezoidalProfile::Fastest(alpha, beta, step_min_duration(waypoints_, k + 1));
 }
 
 void Trajectory::add_run(size_t first, size_t last) {
@@ -148,7 +157,7 @@ void Trajectory::add_run(size_t first, size_t last) {
   std::vector<Eigen::VectorXd> points(n + 1);
   std::vector<double> min_durations(n);
   for (size_t i = 0; i <= n; ++i) points[i] = waypoints_[first + i].q;
-  for (size_t s = 0; s < n; ++s) min_durations[s] = waypoints_[first + s + 1].min_duration;
+  for (size_t s = 0; s < n; ++s) min_durations[s] = step_min_duration(waypoints_, first + s + 1);
   const BlendedRun run = time_blended_run(points, min_durations, v_max_, a_max_);
   // Never slower than stopping at every via point of the run: otherwise stop at the corner
   // that needs the most room and try the two halves again. Minimum durations that bind make

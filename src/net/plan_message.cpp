@@ -55,10 +55,12 @@ void fill_plan_waypoints(const std::string& plan_id,
   message.set_velocity_scale(options.velocity_scale);
   message.set_acceleration_scale(options.acceleration_scale);
   for (const core::JointWaypoint& w : waypoints) {
+    if (w.expanded) continue;  // a Cartesian segment's points: the server expands it again
     v1::PlanWaypoint* out = message.add_waypoints();
     out->mutable_q()->Add(w.q.data(), w.q.data() + w.q.size());
     out->set_min_duration_s(w.min_duration);
     out->set_via(w.via);
+    out->set_cartesian(w.cartesian);
     if (w.gripper) {
       out->set_has_gripper(true);
       out->set_gripper_opening(*w.gripper);
@@ -108,6 +110,7 @@ Result<ReceivedPlan> plan_from_message(const core::RobotModel& model,
     core::JointWaypoint& out = waypoints.emplace_back(
         Eigen::Map<const Eigen::VectorXd>(w.q().data(), w.q_size()), w.min_duration_s());
     out.via = w.via();
+    out.cartesian = w.cartesian();
     if (w.has_gripper()) out.gripper = w.gripper_opening();
   }
   core::TrajectoryOptions options;

@@ -47,6 +47,16 @@ void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& kno
   }
 }
 
+// An optional true / false key (false when absent).
+bool flag(const YAML::Node& map, const char* key, const std::string& name) {
+  const YAML::Node node = map[key];
+  if (!node) return false;
+  if (!node.IsScalar() || (node.Scalar() != "true" && node.Scalar() != "false")) {
+    throw ParseError{name + "." + key + ": must be true or false"};
+  }
+  return node.Scalar() == "true";
+}
+
 }  // namespace
 
 Plan::Plan(core::RobotModelPtr model) : model_(std::move(model)) {
@@ -176,7 +186,7 @@ std::vector<core::JointWaypoint> Plan::joint_waypoints() const {
   std::vector<core::JointWaypoint> list;
   list.reserve(waypoints_.size());
   for (const PlanWaypoint& w : waypoints_) {
-    list.emplace_back(w.q, w.min_duration, w.gripper, w.via);
+    list.emplace_back(w.q, w.min_duration, w.gripper, w.via).cartesian = w.cartesian;
   }
   return list;
 }
@@ -210,6 +220,7 @@ std::string Plan::to_yaml() const {
     if (w.min_duration != 0.0)
       out << YAML::Key << "min_duration_s" << YAML::Value << w.min_duration;
     if (w.via) out << YAML::Key << "via" << YAML::Value << true;
+    if (w.cartesian) out << YAML::Key << "cartesian" << YAML::Value << true;
     out << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap;
@@ -250,7 +261,8 @@ Result<Plan> Plan::from_yaml(core::RobotModelPtr model, const std::string& text,
       const std::string name = waypoint_name(i);
       const YAML::Node node = list[i];
       if (!node.IsMap()) throw ParseError{name + ": must be a map with q_rad"};
-      reject_unknown_keys(node, {"label", "q_rad", "gripper", "min_duration_s", "via"}, name);
+      reject_unknown_keys(node, {"label", "q_rad", "gripper", "min_duration_s", "via", "cartesian"},
+                          name);
       PlanWaypoint w;
       const YAML::Node q = node["q_rad"];
       if (!q) throw ParseError{name + ".q_rad: missing"};
@@ -267,13 +279,8 @@ Result<Plan> Plan::from_yaml(core::RobotModelPtr model, const std::string& text,
       if (node["min_duration_s"]) {
         w.min_duration = scalar(node["min_duration_s"], name + ".min_duration_s");
       }
-      if (node["via"]) {
-        const YAML::Node via = node["via"];
-        if (!via.IsScalar() || (via.Scalar() != "true" && via.Scalar() != "false")) {
-          throw ParseError{name + ".via: must be true or false"};
-        }
-        w.via = via.Scalar() == "true";
-      }
+      w.via = flag(node, "via", name);
+      w.cartesian = flag(node, "cartesian", name);
       if (node["label"]) {
         if (!node["label"].IsScalar()) throw ParseError{name + ".label: must be text"};
         w.label = node["label"].Scalar();

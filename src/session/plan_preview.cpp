@@ -62,6 +62,13 @@ PreviewFrame PlanPreview::current() const {
   frame.waypoint =
       static_cast<int>(std::upper_bound(times.begin(), times.end(), time_) - times.begin()) - 1;
   frame.waypoint = std::max(frame.waypoint, 0);
+  // Counted in the operator's waypoints: a Cartesian segment's expanded points are not theirs.
+  const std::vector<core::JointWaypoint>& waypoints = trajectory_.waypoints();
+  int expanded = 0;
+  for (int k = 0; k <= frame.waypoint; ++k) {
+    if (waypoints[static_cast<std::size_t>(k)].expanded) ++expanded;
+  }
+  frame.waypoint -= expanded;
   return frame;
 }
 

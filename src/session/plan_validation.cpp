@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "telear/core/angles.hpp"
+#include "telear/core/cartesian_segment.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/motion_command.hpp"
@@ -181,6 +182,25 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
 
   if (!waypoints_valid) return finish();
 
+  // Cartesian segments: every one the arm cannot follow is an error at its segment, saying
+  // where on the line and why (timing would stop at the first). Their joint points are kept
+  // for the singularity warnings below.
+  std::vector<std::vector<Eigen::VectorXd>> cartesian_points(waypoints.size());
+  bool segments_followed = true;
+  for (std::size_t i = 1; i < waypoints.size(); ++i) {
+    if (!waypoints[i].cartesian) continue;
+    auto points = core::cartesian_segment_points(
+        model, waypoints[i - 1].q, waypoints[i].q, i,
+        static_cast<std::size_t>(plan.trajectory_options().max_waypoints));
+    if (!points) {
+      error(static_cast<int>(i - 1), -1, points.error().message);
+      segments_followed = false;
+      continue;
+    }
+    cartesian_points[i] = std::move(*points);
+  }
+  if (!segments_followed) return finish();
+
   auto trajectory = plan.trajectory();
   if (!trajectory) {
     error(-1, -1,
@@ -210,13 +230,26 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
     if (i > 0 && q0 == q1) continue;  // a dwell: checked as its own waypoint already
     double lowest = std::numeric_limits<double>::infinity();
     double where = 0.0;
-    const int count = (i == 0) ? 1 : samples;
-    for (int k = 0; k < count; ++k) {
-      const double s = count == 1 ? 1.0 : static_cast<double>(k) / (count - 1);
-      const double sigma = core::jacobian_min_singular_value(model, data, q0 + s * (q1 - q0));
-      if (sigma < lowest) {
-        lowest = sigma;
-        where = s;
+    if (i > 0 && waypoints[i].cartesian) {
+      // The path is the expansion's points (then waypoint i), not the joint-space line.
+      const std::vector<Eigen::VectorXd>& path = cartesian_points[i];
+      for (std::size_t k = 0; k <= path.size(); ++k) {
+        const double sigma =
+            core::jacobian_min_singular_value(model, data, k < path.size() ? path[k] : q1);
+        if (sigma < lowest) {
+          lowest = sigma;
+          where = static_cast<double>(k + 1) / static_cast<double>(path.size() + 1);
+        }
+      }
+    } else {
+      const int count = (i == 0) ? 1 : samples;
+      for (int k = 0; k < count; ++k) {
+        const double s = count == 1 ? 1.0 : static_cast<double>(k) / (count - 1);
+        const double sigma = core::jacobian_min_singular_value(model, data, q0 + s * (q1 - q0));
+        if (sigma < lowest) {
+          lowest = sigma;
+          where = s;
+        }
       }
     }
     if (lowest < options.singularity_warning_threshold) {

@@ -41,6 +41,18 @@ std::vector<JointWaypoint> pick_and_place() {
   return w;
 }
 
+// Along a line of the tool and back along it (Cartesian segments), then a joint-space move.
+std::vector<JointWaypoint> line_and_back() {
+  std::vector<JointWaypoint> w;
+  w.push_back({deg({0, -30, 45, 0, 30, 0}), 0.0, 1.0});
+  w.push_back({deg({10, -20, 55, 5, 35, -5})});
+  w.back().cartesian = true;
+  w.push_back({deg({0, -30, 45, 0, 30, 0}), 0.0, 0.0, true});
+  w.back().cartesian = true;
+  w.push_back({deg({-20, -30, 45, 0, 30, 0})});
+  return w;
+}
+
 class PlanHash : public ::testing::Test {
  protected:
   RobotModelPtr model = test::puma560();
@@ -78,13 +90,26 @@ TEST_F(PlanHash, GoldenValuesGuardCrossMachineDeterminism) {
   // own hash equals the client's, so a build that drifts by one bit (a fused multiply-add, a
   // reordered sum, a changed constant) must fail here rather than refuse every plan in the
   // field. A deliberate change to the algorithm changes kTrajectoryAlgorithm and these values.
-  EXPECT_EQ(kTrajectoryAlgorithm, "telear-blend-1");
+  EXPECT_EQ(kTrajectoryAlgorithm, "telear-blend-2");
   EXPECT_EQ(hash_of(pick_and_place()),
-            "a61a5df8d53dbe038bd29318104670fb54f001bcb1d4103fb872a7a93879ea6c");
+            "f9d2e51c1b24bc16c2c69dc9bf1ae9fb400c7ed16eb11a0d42fb67f1f77bfd4a");
   std::vector<JointWaypoint> stops = pick_and_place();
   for (auto& w : stops) w.via = false;
   EXPECT_EQ(hash_of(stops, {.velocity_scale = 0.5, .acceleration_scale = 0.25}),
-            "343a671e067e6b354e02f8a399416019284947b8bd4d7ffb2ff7c929748f02c7");
+            "4e551b74d45b1a6b96e3e6fed304466284b639427ccd9f87d21c31b2c1a628cc");
+  // A Cartesian segment: its expansion (IK at every step, libm's trigonometry inside the PUMA's
+  // closed form, rounded to kCartesianJointGrid) is hashed with it.
+  EXPECT_EQ(hash_of(line_and_back()),
+            "102fb966f61aedac03669c3956eb4af90d2242252566168cbea9f4bce500ec6b");
+}
+
+TEST_F(PlanHash, JointPlansAreTimedAsByTelearBlend1) {
+  // telear-blend-2 added Cartesian segments only: a plan without them has telear-blend-1's
+  // bytes but for the name (the golden value of telear-blend-1 below).
+  std::string bytes = *canonical_plan_bytes(*Trajectory::create(*model, pick_and_place()));
+  ASSERT_EQ(bytes.substr(4, 14), "telear-blend-2");
+  bytes.replace(4, 14, "telear-blend-1");
+  EXPECT_EQ(sha256_hex(bytes), "a61a5df8d53dbe038bd29318104670fb54f001bcb1d4103fb872a7a93879ea6c");
 }
 
 TEST_F(PlanHash, ChangesWithEveryParameter) {
@@ -99,6 +124,7 @@ TEST_F(PlanHash, ChangesWithEveryParameter) {
   EXPECT_NE(changed([](auto& w) { w[5].q[0] -= 1e-9; }), base);
   EXPECT_NE(changed([](auto& w) { w[1].via = false; }), base);
   EXPECT_NE(changed([](auto& w) { w[3].via = true; }), base);  // a stop before a dwell: flag only
+  EXPECT_NE(changed([](auto& w) { w[4].cartesian = true; }), base);  // a dwell: flag only
   EXPECT_NE(changed([](auto& w) { w[4].min_duration = 0.81; }), base);
   EXPECT_NE(changed([](auto& w) { w[4].gripper = 0.01; }), base);
   EXPECT_NE(changed([](auto& w) { w[3].gripper = 0.0; }), base);
@@ -123,10 +149,10 @@ TEST_F(PlanHash, ChangesWithTheRobotsLimits) {
 TEST_F(PlanHash, CanonicalBytesFollowTheDocumentedLayout) {
   const Trajectory traj = *Trajectory::create(*model, pick_and_place());
   const std::string bytes = *canonical_plan_bytes(traj);
-  // u32 14, "telear-blend-1", u32 6 (little-endian).
+  // u32 14, "telear-blend-2", u32 6 (little-endian).
   ASSERT_GE(bytes.size(), 22u);
   EXPECT_EQ(bytes.substr(0, 4), std::string("\x0e\x00\x00\x00", 4));
-  EXPECT_EQ(bytes.substr(4, 14), "telear-blend-1");
+  EXPECT_EQ(bytes.substr(4, 14), "telear-blend-2");
   EXPECT_EQ(bytes.substr(18, 4), std::string("\x06\x00\x00\x00", 4));
   double v0 = 0.0;
   std::memcpy(&v0, bytes.data() + 22, 8);  // x86-64 is little-endian

@@ -167,7 +167,7 @@ TEST(Plan, UntrustedFilesGiveErrorsNamingWaypointAndField) {
             "plan 'p.yaml': waypoint[0]: joint 3 (elbow) would be at 143.24 deg, beyond its upper "
             "limit of 135.00 deg");
   EXPECT_EQ(load_error(head + "  - {q_deg: [0, 0, 0, 0, 0, 0]}\n"),
-            "plan 'p.yaml': waypoint[0].q_deg: unknown key (known: gripper, label, "
+            "plan 'p.yaml': waypoint[0].q_deg: unknown key (known: cartesian, gripper, label, "
             "min_duration_s, q_rad, via)");
   EXPECT_EQ(load_error(head + "  - {q_rad: [0, 0, 0, 0, 0, 0], via: maybe}\n"),
             "plan 'p.yaml': waypoint[0].via: must be true or false");

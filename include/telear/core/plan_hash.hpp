@@ -13,7 +13,8 @@
 //   u32 length, the algorithm name (kTrajectoryAlgorithm)
 //   u32 dof; per joint: f64 velocity limit, f64 acceleration limit (scaled, as used)
 //   f64 velocity_scale, f64 acceleration_scale
-//   u32 waypoints; per waypoint: dof x f64 q, u8 via (as given), f64 min_duration,
+//   u32 waypoints, as timed (a Cartesian segment's expanded points included); per waypoint:
+//       dof x f64 q, u8 flags (1 via as given, 2 cartesian, 4 expanded), f64 min_duration,
 //       u8 has_gripper, f64 gripper opening (0 when unset)
 //   f64 duration
 //   u32 samples M; M x dof x f64: q at t_i = i / 100 s for i = 0 .. floor(100 duration),
@@ -34,8 +35,9 @@ namespace telear::core {
 
 // The name of Trajectory::create's time parameterization. Change it whenever a change to
 // the profile could change a single bit of its samples (and the golden hashes in
-// tests/core/plan_hash_test.cpp with it).
-inline constexpr std::string_view kTrajectoryAlgorithm = "telear-blend-1";
+// tests/core/plan_hash_test.cpp with it). History: telear-blend-1, joint waypoints;
+// telear-blend-2, Cartesian segments (telear/core/cartesian_segment.hpp).
+inline constexpr std::string_view kTrajectoryAlgorithm = "telear-blend-2";
 inline constexpr double kPlanHashRateHz = 100.0;
 // Up to 1000 s at 100 Hz, as for a sampled trajectory (kMaxTimedSamples).
 inline constexpr int kMaxPlanHashSamples = kMaxTimedSamples;

@@ -85,6 +85,15 @@ struct JointWaypoint {
   // last waypoints, and on a waypoint whose segment before or after does not move: the arm is
   // at rest there anyway.
   bool via = false;
+  // Reach this waypoint with the tool on the straight line from the previous waypoint's tool
+  // pose (MoveIt's Cartesian path) rather than on the straight line in joint space.
+  // Trajectory::create first expands such a segment into joint via points that follow the
+  // line, and refuses one that cannot be followed (telear/core/cartesian_segment.hpp). Ignored
+  // on the first waypoint.
+  bool cartesian = false;
+  // Set on the via points that expansion inserts: not the operator's. A plan message leaves
+  // them out, and Trajectory::create drops and recomputes them when it is given them back.
+  bool expanded = false;
 };
 
 struct TrajectoryOptions {

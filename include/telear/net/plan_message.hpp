@@ -4,14 +4,18 @@
 // sampled trajectory. Both ends time it with core's Trajectory::create and fingerprint it with
 // plan_hash (telear/core/plan_hash.hpp):
 //
-//   client  fill_plan_message(id, trajectory)      -> PlanMessage (hash = plan_hash(trajectory))
+//   client  fill_plan_message(id, trajectory)      -> PlanMessage (hash = plan_hash(trajectory);
+//                                                     the operator's waypoints only, a
+//                                                     Cartesian segment's expanded points left out)
 //   server  plan_from_message(model, message, ...) -> the same Trajectory, checked
 //
 // plan_from_message treats the message as untrusted and checks, in this order, each with a
 // message "plan 'p1' rejected: ...": the id (as a trajectory id); the algorithm (only
 // kTrajectoryAlgorithm is known); 1..max_waypoints waypoints; each waypoint's joint vector
 // (size, finite values, limits), min_duration and gripper opening, and the scales
-// (core::validate_waypoints, so the messages name waypoint and joint); the plan's length
+// (core::validate_waypoints, so the messages name waypoint and joint); the Cartesian
+// segments, expanded as the client expanded them (core/cartesian_segment.hpp: a line the arm
+// cannot follow is refused, naming the waypoint, where on the line and why); the plan's length
 // (what plan_hash can hash); and finally the hash: the server's must equal the client's, and
 // the error gives both (in hex). The start state is the caller's to check (it needs the arm's
 // state).

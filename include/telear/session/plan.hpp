@@ -7,8 +7,11 @@
 //                  the segment, a repeated pose with a duration is a dwell), label (free text) }
 //
 // The plan maps one to one onto telear/core/trajectory.hpp's JointWaypoint list: trajectory() times
-// it with the plan's velocity / acceleration scales (straight joint-space segments; the arm
-// stops at every waypoint not marked via), timed_waypoints() samples it for ExecuteTrajectory.
+// it with the plan's velocity / acceleration scales (straight joint-space segments, or a
+// straight line of the tool to a waypoint marked cartesian; the arm stops at every waypoint not
+// marked via), timed_waypoints() samples it for ExecuteTrajectory. A Cartesian segment that
+// cannot be followed makes trajectory() fail, saying where and why (so validation and the
+// preview report it).
 //
 // Editing keeps the plan valid: every waypoint added or changed is checked (size, finite,
 // within the joint limits, duration in [0, max_segment_duration], gripper in [0, 1]) and a
@@ -23,6 +26,7 @@
 //     - {label: approach, q_rad: [0, 0.5, -1.2, 0, 0.7, 0], gripper: 1}
 //     - {q_rad: [0, 0.6, -1.1, 0, 0.5, 0], min_duration_s: 1.5, via: true}  # via: optional
 //     - {q_rad: [0, 0.7, -1.0, 0, 0.4, 0]}
+//     - {q_rad: [0.3, 0.7, -1.0, 0, 0.4, 0], cartesian: true}  # optional: tool on a line
 //
 // Files are untrusted: load errors name the file, the waypoint and the field.
 //
@@ -59,6 +63,9 @@ struct PlanWaypoint {
   double min_duration = 0.0;      // s, from the previous waypoint
   std::string label;              // e.g. "approach"; may be empty
   bool via = false;               // pass through without stopping (core::JointWaypoint::via)
+  // Reached with the tool on the straight line from the previous waypoint's tool pose
+  // (core::JointWaypoint::cartesian, telear/core/cartesian_segment.hpp).
+  bool cartesian = false;
 };
 
 class Plan {
@@ -97,8 +104,10 @@ class Plan {
   Status check_waypoint(const PlanWaypoint& waypoint, const std::string& where) const;
 
   std::vector<core::JointWaypoint> joint_waypoints() const;
-  // Errors: an empty plan; otherwise Trajectory::create's (cannot happen for a plan edited
-  // through this class unless the options changed).
+  // Errors: an empty plan; otherwise Trajectory::create's: a Cartesian segment that cannot be
+  // followed (the others cannot happen for a plan edited through this class unless the
+  // options changed). A plan with Cartesian segments times their expansion: the trajectory's
+  // waypoints() then include the expanded via points (JointWaypoint::expanded).
   Result<core::Trajectory> trajectory() const;
   // trajectory() sampled at rate_hz (Trajectory::sampled).
   Result<core::TimedWaypoints> timed_waypoints(double rate_hz) const;

@@ -35,7 +35,8 @@ struct PreviewFrame {
   std::optional<double> gripper;
   bool playing = false;
   bool at_end = false;  // time == duration (and not looping)
-  int waypoint = 0;     // index of the last waypoint reached at `time`
+  int waypoint = 0;     // index of the last plan waypoint reached at `time` (expanded points
+                        // of a Cartesian segment do not count)
 };
 
 class PlanPreview {

@@ -6,6 +6,9 @@
 //   - the plan is empty;
 //   - a waypoint with the wrong size, a non-finite value, a joint beyond its limits, a
 //     duration or gripper opening out of range (names the waypoint and the joint);
+//   - a Cartesian segment the arm cannot follow (core/cartesian_segment.hpp): one error per
+//     segment, at its first waypoint, saying where on the line and why (out of reach, a joint
+//     that jumps, another IK configuration at its end);
 //   - the plan cannot be timed within the joint velocity / acceleration limits at its scales
 //     (core Trajectory::create), or its sampled form, the message actually sent, fails the
 //     check the robot server applies (core validate_timed_waypoints: velocities, accelerations,
@@ -21,13 +24,15 @@
 //   - the real robot's state is unknown (the start was not checked);
 //   - a single waypoint (executing it moves nothing);
 //   - a segment passing near a singularity (smallest singular value of the geometric Jacobian
-//     below singularity_warning_threshold, sampled along the straight joint-space segment): a
+//     below singularity_warning_threshold, sampled along the straight joint-space segment,
+//     or at the joint points of a Cartesian segment's expansion): a
 //     joint path is safe there, but the Cartesian frame loses a direction, so the operator
 //     should look at that part of the preview;
 //   - with a collision checker: the arm passing closer to a workspace object than
 //     safety_margin_m (where and how close).
 //
-// Reachability needs no IK here: waypoints are joint vectors, checked against the limits.
+// Reachability needs no IK here: waypoints are joint vectors, checked against the limits
+// (a Cartesian segment's line is followed by IK, in its expansion).
 // Waypoints are numbered from 0 ("waypoint[2]"), joints from 1 ("joint 2 (shoulder)").
 
 #include <Eigen/Core>
