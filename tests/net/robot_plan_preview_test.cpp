@@ -219,6 +219,22 @@ TEST(RobotPlanPreview, APlanExecutePlanRefusesIsRefusedWithTheSameMessage) {
   EXPECT_TRUE(q_of(after).isApprox(q0, 0.0)) << q_of(after).transpose();
 }
 
+TEST(RobotPlanPreview, ALongPlanIsPreviewedWithoutItsSamples) {
+  auto server = start_server();
+  auto stub = stub_for(*server);
+  std::vector<core::JointWaypoint> waypoints = via_waypoints(q_of(read_state(*stub)));
+  waypoints.back().min_duration = 400.0;  // 40,000 samples at 100 Hz, over kMaxPreviewSamples
+  RobotClient observer(client_options(*server, ""));
+  auto preview = observer.preview_plan("long", waypoints, half_speed(), true);
+  ASSERT_TRUE(preview) << preview.error().message;
+  EXPECT_TRUE(preview->samples_omitted);
+  EXPECT_TRUE(preview->samples.q.empty());
+  EXPECT_GE(preview->duration_s, 400.0);
+  auto trajectory = core::Trajectory::create(*telear::test::puma560(), waypoints, half_speed());
+  ASSERT_TRUE(trajectory) << trajectory.error().message;
+  EXPECT_EQ(preview->plan_hash, *core::plan_hash(*trajectory));
+}
+
 TEST(RobotPlanPreview, NeedsTheTokenWhenTheServerAllowsNoObservers) {
   RobotServerOptions options = server_options();
   options.allow_observers = false;

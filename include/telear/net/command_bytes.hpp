@@ -2,8 +2,8 @@
 // What commanding a motion costs on the wire: the seed's point that sending one finalized
 // trajectory beats streaming the operator's commands (and survives a bad network).
 //
-//   plan message     one ExecutePlanRequest: the waypoints, timing parameters and hash; the
-//                    server re-times them (telear/net/plan_message.hpp)
+//   plan message     one ExecutePlanRequest: the waypoints, timing parameters and hash (the
+//                    digest's 32 bytes); the server re-times them (telear/net/plan_message.hpp)
 //   plan-then-send   one ExecuteTrajectoryRequest with the sampled trajectory
 //   jogging          the same motion as a JogRequest (joint target, lease id, expiry) per
 //                    sample at jog_rate_hz, as a conventional teleoperation client streams it
