@@ -525,7 +525,8 @@ grpc::Status RobotService::PreviewPlan(grpc::ServerContext* context,
     if (samples.q.size() > static_cast<std::size_t>(kMaxPreviewSamples)) {
       response->set_samples_omitted(true);
     } else {
-      // The request's form of the samples (nanosecond times, as the driver receives them).
+      // In ExecuteTrajectory's wire form (times rounded to whole nanoseconds): what a client
+      // would draw, and could send back as a sampled trajectory.
       v1::ExecuteTrajectoryRequest sampled;
       fill_trajectory_request(id, samples, sampled);
       response->mutable_samples()->Swap(sampled.mutable_waypoints());
