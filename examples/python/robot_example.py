@@ -2,7 +2,7 @@
 """A telear robot client in Python: read the state, take the lease, run a short trajectory.
 
 Then it sends a plan, the waypoints themselves instead of samples ("the plan is the
-message"): PreviewPlan asks the server to time and check three waypoints (one a via point,
+message"): PreviewPlan asks the server to time and check four waypoints (one a via point,
 passed without stopping) and answers the SHA-256 of the timed trajectory, which Python could
 not compute without telear's own time parameterization; ExecutePlan with that hash runs
 exactly what was previewed, and the same plan with a tampered hash is refused.
