@@ -12,12 +12,17 @@
 #include <filesystem>
 #include <system_error>
 
+#include "telear/core/number_format.hpp"
 #include "telear/geometry/feature_edges.hpp"
 
 namespace telear::geometry {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Bounds on the magnitude of each axis of a <mesh scale> (validate()).
+constexpr double kMinMeshScale = 1e-6;
+constexpr double kMaxMeshScale = 1e3;
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -160,6 +165,16 @@ Status MeshLoadOptions::validate() const {
       return Error{"mesh scale must be finite and non-zero on every axis, got " +
                    std::to_string(scale[0]) + " " + std::to_string(scale[1]) + " " +
                    std::to_string(scale[2])};
+    }
+  }
+  // Real scales convert units (0.001 for millimetres, 0.0254 for inches, 1000 for km at
+  // most); beyond these bounds a <mesh scale> is hostile or mistyped, and the body it would
+  // make (a 1 cm part scaled by 1e9 spans the Earth) breaks drawing and collision checks.
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(scale[k]) < kMinMeshScale || std::abs(scale[k]) > kMaxMeshScale) {
+      return Error{"mesh scale " + core::format_number(scale[0]) + " " +
+                   core::format_number(scale[1]) + " " + core::format_number(scale[2]) +
+                   " is absurd: each axis must be within 1e-06 .. 1000 in magnitude"};
     }
   }
   if (!(feature_angle_deg >= 0.0 && feature_angle_deg <= 180.0)) {

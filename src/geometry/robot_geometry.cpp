@@ -29,6 +29,12 @@ std::string link_prefix(const core::RobotLink& link) {
   return "link '" + link.name + "': ";
 }
 
+// A mesh that was found but not loaded: the link, the URI as the URDF wrote it, then the
+// loader's reason, which names the file the URI resolved to.
+std::string mesh_prefix(const core::RobotLink& link, const GeometryElement& e) {
+  return link_prefix(link) + "mesh '" + e.mesh_uri + "': ";
+}
+
 // Primitive sizes must be positive: a zero box would assert in core's mesh builders.
 Status check_primitive(const core::RobotLink& link, const GeometryElement& e) {
   const auto bad = [&](const std::string& what) { return Error{link_prefix(link) + what}; };
@@ -115,7 +121,7 @@ Result<core::Mesh> visual_mesh(const core::RobotLink& link, const core::Resource
       continue;
     }
     Result<core::Mesh> mesh = load_mesh_file(*r.path, load_options(e, o));
-    if (!mesh) return Error{link_prefix(link) + mesh.error().message};
+    if (!mesh) return Error{mesh_prefix(link, e) + mesh.error().message};
     SimplifiedMesh drawn = simplify_mesh(*mesh, o.visual_tolerance_m, o.feature_angle_deg);
     body.mesh_file_triangles += mesh->triangle_count();
     body.drawn_mesh_triangles += drawn.mesh.triangle_count();
@@ -262,7 +268,7 @@ Result<RobotCollisionGeometry> collision_geometry_for(const core::RobotDescripti
         continue;
       }
       Result<core::Mesh> mesh = load_mesh_file(*r.path, load_options(e, o));
-      if (!mesh) return Error{link_prefix(link) + mesh.error().message};
+      if (!mesh) return Error{mesh_prefix(link, e) + mesh.error().message};
       shape.mesh = std::move(*mesh);
       lc.shapes.push_back(std::move(shape));
     }

@@ -262,6 +262,25 @@ TEST(UrdfConformance, HostileFilesAreRefusedWithWhatAndWhere) {
             "robot file '" + urdf("does_not_exist") + "' does not exist");
 }
 
+// Hostile meshes (an absurd scale, an STL claiming 2^32 - 1 facets, files that do not exist)
+// are the geometry layer's to refuse, where meshes are read (tests/geometry/
+// robot_geometry_test.cpp asserts those messages): the chain loads, the URIs kept as written.
+TEST(UrdfConformance, HostileMeshesLoadAsChainsForTheGeometryLayerToRefuse) {
+  const RobotDescription scale = load("absurd_mesh_scale");
+  ASSERT_TRUE(scale.model);
+  ASSERT_EQ(scale.link("l1")->visuals.size(), 1u);
+  EXPECT_EQ(scale.link("l1")->visuals[0].mesh_uri, "meshes/cube.stl");
+  EXPECT_EQ(scale.link("l1")->visuals[0].scale, Eigen::Vector3d::Constant(1e9));
+  const RobotDescription count = load("absurd_mesh_count");
+  ASSERT_TRUE(count.model);
+  ASSERT_EQ(count.link("l1")->collisions.size(), 1u);
+  EXPECT_EQ(count.link("l1")->collisions[0].mesh_uri, "meshes/claims_4g_facets.stl");
+  const RobotDescription missing = load("missing_mesh");
+  ASSERT_TRUE(missing.model);
+  EXPECT_EQ(missing.link("base")->visuals[0].mesh_uri, "meshes/gone.obj");
+  EXPECT_EQ(missing.link("l1")->visuals[0].mesh_uri, "package://telear_test_pkg/meshes/gone.stl");
+}
+
 TEST(UrdfConformance, MalformedTextNeverCrashes) {
   // Truncations of a valid file at every 7th character: each is refused or loads, never crashes.
   const char* text = R"(<robot name="t"><link name="a"><visual><geometry><box size="1 1 1"/>

@@ -7,8 +7,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "test_util/mesh_test_files.hpp"
+#include <filesystem>
+#include <string>
+#include <vector>
+
 #include "telear/core/arm_body_pose.hpp"
+#include "telear/core/robot_description.hpp"
+#include "test_util/mesh_test_files.hpp"
+#include "test_util/test_util.hpp"
 
 namespace telear::geometry {
 namespace {
@@ -236,6 +242,105 @@ TEST_F(RobotGeometryTest, CollisionShapesKeepPrimitivesAndFallBackToVisuals) {
   EXPECT_EQ(geometry->links[1].shapes[0].kind, Kind::kSphere);
   ASSERT_EQ(geometry->warnings.size(), 1u);
   EXPECT_THAT(geometry->warnings[0], HasSubstr("a sphere stands in for its collision shape"));
+}
+
+// The URDF conformance set's hostile meshes (tests/data/urdf; their chains load in core, see
+// tests/core/urdf_conformance_test.cpp): each refused here, where meshes are read, with a
+// message naming the link, the URI and where it was looked for.
+std::string conformance_urdf(const std::string& name) {
+  return std::filesystem::path(test::data_path("../tests/data/urdf/" + name + ".urdf"))
+      .lexically_normal()
+      .string();
+}
+
+core::RobotDescription conformance_description(const std::string& name) {
+  auto d = core::load_robot_description({conformance_urdf(name), "", {}});
+  EXPECT_TRUE(d) << d.error().message;
+  return d ? std::move(d).value() : core::RobotDescription{};
+}
+
+// The file a relative mesh URI of a conformance URDF resolves to.
+std::string beside(const core::RobotDescription& d, const std::string& relative) {
+  return std::filesystem::absolute(std::filesystem::path(d.urdf_path).parent_path() / relative)
+      .lexically_normal()
+      .string();
+}
+
+TEST(ConformanceMeshes, AnAbsurdMeshScaleIsRefusedNamingLinkUriAndFile) {
+  const core::RobotDescription d = conformance_description("absurd_mesh_scale");
+  ASSERT_TRUE(d.model);
+  const std::string expected =
+      "link 'l1': mesh 'meshes/cube.stl': mesh file " + beside(d, "meshes/cube.stl") +
+      ": mesh scale 1e+09 1e+09 1e+09 is absurd: each axis must be within 1e-06 .. 1000 in "
+      "magnitude";
+  auto body = body_for(d);
+  ASSERT_FALSE(body);
+  EXPECT_EQ(body.error().message, expected);
+  // The collision geometry falls back to that visual, and is refused the same way.
+  auto collision = collision_geometry_for(d);
+  ASSERT_FALSE(collision);
+  EXPECT_EQ(collision.error().message, expected);
+}
+
+TEST(ConformanceMeshes, AMeshClaimingBillionsOfFacetsIsRefusedWithoutTrustingTheClaim) {
+  const core::RobotDescription d = conformance_description("absurd_mesh_count");
+  ASSERT_TRUE(d.model);
+  const std::string file = beside(d, "meshes/claims_4g_facets.stl");
+  for (const std::string& message :
+       {body_for(d).error().message, collision_geometry_for(d).error().message}) {
+    // assimp's reason follows (the file is too small for the facets it claims).
+    EXPECT_THAT(message, ::testing::StartsWith("link 'l1': mesh 'meshes/claims_4g_facets.stl': "
+                                               "mesh file " +
+                                               file + " is not a readable mesh ("));
+  }
+}
+
+TEST(ConformanceMeshes, AMeshOverTheByteOrVertexLimitIsRefusedNamingLinkUriAndFile) {
+  core::RobotDescription d = conformance_description("absurd_mesh_scale");
+  ASSERT_TRUE(d.model);
+  d.links[1].visuals[0].scale = Eigen::Vector3d::Ones();  // the cube as it is: 1 cm
+  const std::string file = beside(d, "meshes/cube.stl");
+  GeometryOptions options;
+  ASSERT_TRUE(body_for(d, options)) << "the cube itself loads";
+  options.limits.max_file_bytes = 1000;
+  EXPECT_EQ(body_for(d, options).error().message,
+            "link 'l1': mesh 'meshes/cube.stl': mesh file " + file + " is " +
+                std::to_string(std::filesystem::file_size(file)) +
+                " bytes, over the limit of 1000 bytes");
+  options.limits = {};
+  options.limits.max_vertices = 23;  // 24: each face's corners keep the face's normal
+  EXPECT_EQ(body_for(d, options).error().message, "link 'l1': mesh 'meshes/cube.stl': mesh file " +
+                                                      file +
+                                                      ": 24 vertices exceed the limit of 23");
+}
+
+TEST(ConformanceMeshes, MissingMeshFilesAreRefusedNamingLinkUriAndWhereTheyWereLookedFor) {
+  const core::RobotDescription d = conformance_description("missing_mesh");
+  ASSERT_TRUE(d.model);
+  GeometryOptions options;
+  options.package_paths = {std::filesystem::path(d.urdf_path).parent_path().string()};
+  options.ros_package_path = std::vector<std::string>{};
+  const std::string relative =
+      "link 'base': mesh 'meshes/gone.obj' not found: " +
+      (std::filesystem::path(d.urdf_path).parent_path() / "meshes/gone.obj").string() +
+      " does not exist";
+  const std::string by_package =
+      "link 'l1': mesh 'package://telear_test_pkg/meshes/gone.stl' not found (looked in " +
+      (std::filesystem::path(d.urdf_path).parent_path() / "telear_test_pkg").string() +
+      "; set ROS_PACKAGE_PATH or pass --package-path DIR)";
+  auto body = body_for(d, options);
+  ASSERT_FALSE(body);
+  EXPECT_EQ(body.error().message, relative);  // the first link's, in file order
+  auto collision = collision_geometry_for(d, options);
+  ASSERT_FALSE(collision);
+  EXPECT_EQ(collision.error().message, relative);
+  // With stand-ins, each is a warning and the body is drawn.
+  options.missing_meshes = MissingMeshes::kPrimitives;
+  auto drawn = body_for(d, options);
+  ASSERT_TRUE(drawn) << drawn.error().message;
+  ASSERT_EQ(drawn->warnings.size(), 2u);
+  EXPECT_EQ(drawn->warnings[0], relative + "; drawn as a sphere");
+  EXPECT_EQ(drawn->warnings[1], by_package + "; drawn as a sphere");
 }
 
 }  // namespace
