@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "telear/core/angles.hpp"
@@ -10,30 +9,27 @@
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/motion_command.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/geometry/trajectory_collision.hpp"
 #include "telear/session/plan_collision.hpp"
 
 namespace telear::session {
 namespace {
 
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
-
 // "0.120 rad (6.9 deg)" or "0.0120 m (12.0 mm)".
 std::string distance(const core::RobotModel& model, int joint, double value) {
   if (model.joint(joint).type == core::JointType::kRevolute) {
-    return format("%.3f rad", value) + " (" +
-           format("%.1f deg", core::degrees_from_radians(value)) + ")";
+    return core::format_number(value, "%.3f rad") + " (" +
+           core::format_number(core::degrees_from_radians(value), "%.1f deg") + ")";
   }
-  return format("%.4f m", value) + " (" + format("%.1f mm", value * 1000.0) + ")";
+  return core::format_number(value, "%.4f m") + " (" +
+         core::format_number(value * 1000.0, "%.1f mm") + ")";
 }
 
 std::string tolerance_text(const core::RobotModel& model, int joint, double value) {
-  return model.joint(joint).type == core::JointType::kRevolute ? format("%.3f rad", value)
-                                                               : format("%.4f m", value);
+  return model.joint(joint).type == core::JointType::kRevolute
+             ? core::format_number(value, "%.3f rad")
+             : core::format_number(value, "%.4f m");
 }
 
 std::string segment_name(int segment) {
@@ -51,7 +47,8 @@ void check_collisions(geometry::CollisionChecker& checker, const core::Trajector
   const double safety_margin_m = options.safety_margin_m;
   if (!(safety_margin_m >= 0.0) || !std::isfinite(safety_margin_m)) {
     error(-1, -1,
-          "safety_margin_m must be a finite number >= 0, got " + format("%g", safety_margin_m));
+          "safety_margin_m must be a finite number >= 0, got " +
+              core::format_number(safety_margin_m, "%g"));
     return;
   }
   auto report = geometry::check_trajectory(checker, trajectory, options.collision_check);
@@ -73,16 +70,17 @@ void check_collisions(geometry::CollisionChecker& checker, const core::Trajector
   }
   for (const geometry::PlanCollision& c : report->collisions) {
     error(c.segment, -1,
-          segment_name(c.segment) + " collides at t = " + format("%.2f", c.time_s) +
+          segment_name(c.segment) + " collides at t = " + core::format_number(c.time_s, "%.2f") +
               " s: " + c.body + " hits " + (c.self ? "link " : "") + c.other + " (penetration " +
-              format("%.1f", c.depth_m * 1e3) + " mm)");
+              core::format_number(c.depth_m * 1e3, "%.1f") + " mm)");
   }
   const geometry::PlanClearance& m = report->min_workspace_clearance;
   if (report->collision_free() && m.distance_m < safety_margin_m) {
     warning(m.segment, -1,
-            segment_name(m.segment) + " passes " + format("%.1f", m.distance_m * 1e3) +
-                " mm from " + m.other + " (" + m.body + ") at t = " + format("%.2f", m.time_s) +
-                " s, within the safety margin of " + format("%.0f", safety_margin_m * 1e3) + " mm");
+            segment_name(m.segment) + " passes " + core::format_number(m.distance_m * 1e3, "%.1f") +
+                " mm from " + m.other + " (" + m.body + ") at t = " +
+                core::format_number(m.time_s, "%.2f") + " s, within the safety margin of " +
+                core::format_number(safety_margin_m * 1e3, "%.0f") + " mm");
   }
   out = std::move(*report);
 }
@@ -256,11 +254,11 @@ ValidationReport validate_plan(const Plan& plan, const std::optional<Eigen::Vect
       const std::string at = i == 0 ? "waypoint[0]"
                                     : "the segment waypoint[" + std::to_string(i - 1) +
                                           "] -> waypoint[" + std::to_string(i) + "] (at " +
-                                          format("%.0f", 100.0 * where) + " % of it)";
+                                          core::format_number(100.0 * where, "%.0f") + " % of it)";
       warning(static_cast<int>(i == 0 ? 0 : i - 1), -1,
               at + " is near a singularity: smallest Jacobian singular value " +
-                  format("%.3g", lowest) + " (warning below " +
-                  format("%g", options.singularity_warning_threshold) +
+                  core::format_number(lowest, "%.3g") + " (warning below " +
+                  core::format_number(options.singularity_warning_threshold, "%g") +
                   "); check that part of the preview");
     }
   }

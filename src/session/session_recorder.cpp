@@ -1,5 +1,6 @@
 #include "telear/session/session_recorder.hpp"
 
+#include <spdlog/spdlog.h>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <thread>
@@ -39,6 +40,9 @@ Status SessionRecorder::open_video(int width, int height) {
     recording_.video_codec = "mp4v";
     recording_.video_warning = "this OpenCV cannot write H.264 (avc1); " + path +
                                " is MPEG-4 part 2 (mp4v), which browsers may not play";
+    // Logged here as well as recorded (the demo's report, the console's status), so that no
+    // caller can lose it: the file plays in fewer places than the docs promise.
+    spdlog::warn("session recorder: {}", recording_.video_warning);
   }
   recording_.video_path = path;
   return Status::Ok();

@@ -5,7 +5,10 @@
 // view as an MP4, and named key frames (PNG).
 //
 // The MP4 is H.264 (fourcc avc1, OpenCV's FFmpeg backend) so browsers play it; when this
-// OpenCV cannot open an H.264 writer, MPEG-4 part 2 (mp4v) with a warning (video_warning()).
+// OpenCV cannot open an H.264 writer, MPEG-4 part 2 (mp4v), with a warning naming the codec
+// used: logged (spdlog, warn) and kept in Recording::video_warning beside video_codec, which
+// the demo's report.json and report.md carry. Debian 12's OpenCV (FFmpeg with libx264)
+// writes avc1; tests/apps/demo_cli_test.cpp checks that it does.
 // Latencies in s, residuals in px. Ticks are paced at `fps` by sleeping: call from one thread,
 // the one whose OpenGL context the ArView uses.
 
