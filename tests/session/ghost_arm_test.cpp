@@ -3,8 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
+#include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
+#include "telear/core/pose.hpp"
+#include "telear/core/robot_description.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::session {
@@ -105,6 +109,90 @@ TEST(GhostArm, ResetToTheRealRobot) {
   auto created = GhostArm::create(test::puma560(), beyond);
   ASSERT_FALSE(created.ok());
   EXPECT_NE(created.error().message.find("beyond its upper limit"), std::string::npos);
+}
+
+// The shipped URDF arms as ghosts (issue 12): Cartesian jogs in the base, wrist and tool
+// frames reach the pose each increment asks for (core::incremented_tool_pose), stay within
+// the limits and move the joints a little per step; ur6 through its closed form (a branch
+// label), arm7 (7 joints) through the null-space search ("redundant").
+core::RobotModelPtr shipped_arm(const std::string& name) {
+  auto d = core::load_robot_description({name, "", {}});
+  EXPECT_TRUE(d) << d.error().message;
+  return d ? d->model : nullptr;
+}
+
+void expect_cartesian_jogs(const std::string& name, const std::string& config_kind) {
+  const core::RobotModelPtr model = shipped_arm(name);
+  ASSERT_TRUE(model);
+  const Eigen::VectorXd ready = *model->named_configuration("ready");
+  for (core::MotionFrame frame :
+       {core::MotionFrame::kBase, core::MotionFrame::kWrist, core::MotionFrame::kTool}) {
+    auto ghost = GhostArm::create(model, ready);
+    ASSERT_TRUE(ghost.ok()) << ghost.error().message;
+    const core::CartesianIncrement step{frame, {0.004, -0.003, 0.005}, {0.01, -0.02, 0.015}};
+    for (int k = 0; k < 20; ++k) {
+      core::KinematicsData data(*model);
+      core::forward_kinematics(*model, data, ghost->q());
+      const Eigen::Isometry3d expected = core::incremented_tool_pose(*model, data, step);
+      const Eigen::VectorXd before = ghost->q();
+      const core::MotionOutcome out = ghost->apply(step);
+      ASSERT_TRUE(out.accepted) << name << " " << core::to_string(frame) << " step " << k << ": "
+                                << out.rejection.message;
+      if (config_kind == "redundant") {
+        EXPECT_EQ(out.ik_config, "redundant");
+      } else {
+        EXPECT_EQ(out.ik_config.size(), 3u) << out.ik_config;  // "lun" ... "rdf"
+      }
+      EXPECT_EQ(ghost->q(), out.q);
+      EXPECT_TRUE(core::within_limits(*model, ghost->q()));
+      const core::Vector6d e = core::pose_error_in_base(ghost->T_base_tool(), expected);
+      EXPECT_LT(e.head<3>().norm(), 1e-9) << name << " " << core::to_string(frame) << " " << k;
+      EXPECT_LT(e.tail<3>().norm(), 1e-9) << name << " " << core::to_string(frame) << " " << k;
+      EXPECT_LT((ghost->q() - before).cwiseAbs().maxCoeff(), 0.1)
+          << name << " " << core::to_string(frame) << " step " << k;
+    }
+  }
+}
+
+TEST(GhostArm, CartesianJogOfTheSevenJointArmInBaseWristAndToolFrames) {
+  expect_cartesian_jogs("arm7", "redundant");
+}
+
+TEST(GhostArm, CartesianJogOfTheUrArmInBaseWristAndToolFrames) {
+  expect_cartesian_jogs("ur6", "closed form");
+}
+
+// The 7-joint ghost with the rest-pose preference (MotionOptions::redundancy): jogged out
+// along a line in the tool frame and back, it comes back to the same joints; a jog beyond
+// reach is refused and leaves the ghost where it was.
+TEST(GhostArm, SevenJointGhostWithRestPreferenceComesBackAndRefusesTheUnreachable) {
+  const core::RobotModelPtr model = shipped_arm("arm7");
+  ASSERT_TRUE(model);
+  const Eigen::VectorXd home = *model->named_configuration("home");
+  core::MotionOptions options;
+  options.redundancy.preference = core::NullSpacePreference::kRest;
+  options.redundancy.rest_q = home;
+  auto ghost = GhostArm::create(model, home, 1.0, options);
+  ASSERT_TRUE(ghost.ok()) << ghost.error().message;
+  // Pure translations: the tool's axes do not turn, so the way back undoes the way out.
+  const core::CartesianIncrement out{core::MotionFrame::kTool, {0.01, 0.0, 0.008}, {0, 0, 0}};
+  const core::CartesianIncrement back{core::MotionFrame::kTool, {-0.01, 0.0, -0.008}, {0, 0, 0}};
+  const Eigen::Isometry3d start = ghost->T_base_tool();
+  for (int k = 0; k < 10; ++k) ASSERT_TRUE(ghost->apply(out).accepted) << k;
+  EXPECT_GT((ghost->T_base_tool().translation() - start.translation()).norm(), 0.1);
+  for (int k = 0; k < 10; ++k) ASSERT_TRUE(ghost->apply(back).accepted) << k;
+  // Back at the pose, and with kRest the joints are a function of the pose: back home.
+  EXPECT_LT((ghost->T_base_tool().translation() - start.translation()).norm(), 1e-9);
+  EXPECT_LT((ghost->q() - home).cwiseAbs().maxCoeff(), 1e-5) << ghost->q().transpose();
+
+  const Eigen::VectorXd q = ghost->q();
+  core::CartesianTarget far;
+  far.T_base_tool = ghost->T_base_tool();
+  far.T_base_tool.translation() = Eigen::Vector3d(2.0, 0.0, 0.4);
+  const core::MotionOutcome refused = ghost->apply(far);
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_EQ(refused.rejection.kind, core::RejectionKind::kUnreachable);
+  EXPECT_EQ(ghost->q(), q);
 }
 
 }  // namespace
