@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -261,6 +262,56 @@ class SegmentExpander {
   std::vector<Eigen::VectorXd> points_;
 };
 
+// Lower bounds on the durations of the steps qa -> points[0] -> ... -> points.back() that
+// ramp the speed up from rest at A and down to rest at B (the last step, into B, is left to
+// the timing). The via-point timing alone would lengthen a long chain of short steps far
+// more than needed (its blend repair was made for a few waypoints); this hands it durations
+// whose blends already fit, except where the line's direction in joint space turns.
+//
+// Along the path, in units of "seconds at full speed" (sigma; step s is alpha_s long,
+// alpha_s = max_j |D_sj| / v_j), a speed fraction r in (0, 1] gives joint j the velocity
+// r D_sj / alpha_s; dr/dt = A then accelerates joint j at A |D_sj| / alpha_s, within a_j for
+// A <= A_s = min_j a_j alpha_s / |D_sj|. With A half the smallest A_s (the other half left to
+// the turns), r = min(1, sqrt(2 A sigma), sqrt(2 A (total - sigma))) at each step's middle,
+// and the step lasts alpha_s / r. Only +, -, *, / and sqrt.
+std::vector<double> ramp_durations(const RobotModel& model, const TrajectoryOptions& options,
+                                   const Eigen::VectorXd& qa,
+                                   const std::vector<Eigen::VectorXd>& points,
+                                   const Eigen::VectorXd& qb) {
+  const std::size_t n = points.size() + 1;  // steps
+  auto from = [&](std::size_t s) -> const Eigen::VectorXd& { return s == 0 ? qa : points[s - 1]; };
+  auto to = [&](std::size_t s) -> const Eigen::VectorXd& { return s + 1 == n ? qb : points[s]; };
+  std::vector<double> alpha(n, 0.0);
+  double A = std::numeric_limits<double>::infinity();
+  for (std::size_t s = 0; s < n; ++s) {
+    for (int j = 0; j < model.dof(); ++j) {
+      const double v = options.velocity_scale * model.max_velocities()[j];
+      alpha[s] = std::max(alpha[s], std::abs(to(s)[j] - from(s)[j]) / v);
+    }
+    for (int j = 0; j < model.dof(); ++j) {
+      const double d = std::abs(to(s)[j] - from(s)[j]);
+      if (d > 0.0) {
+        const double a = options.acceleration_scale * model.max_accelerations()[j];
+        A = std::min(A, a * alpha[s] / d);
+      }
+    }
+  }
+  std::vector<double> out(points.size(), 0.0);
+  if (!(A < std::numeric_limits<double>::infinity())) return out;  // nothing moves
+  A = 0.5 * A;
+  double total = 0.0;
+  for (const double a : alpha) total += a;
+  double sigma = 0.0;
+  for (std::size_t s = 0; s + 1 < n; ++s) {
+    const double middle = sigma + 0.5 * alpha[s];
+    sigma += alpha[s];
+    const double r =
+        std::min({1.0, std::sqrt(2.0 * A * middle), std::sqrt(2.0 * A * (total - middle))});
+    if (r > 0.0) out[s] = alpha[s] / r;
+  }
+  return out;
+}
+
 }  // namespace
 
 Result<std::vector<Eigen::VectorXd>> cartesian_segment_points(const RobotModel& model,
@@ -299,10 +350,10 @@ std::vector<JointWaypoint> without_expanded_points(std::vector<JointWaypoint> wa
 
 Result<std::vector<JointWaypoint>> expand_cartesian_segments(const RobotModel& model,
                                                              std::vector<JointWaypoint> waypoints,
-                                                             int max_waypoints) {
+                                                             const TrajectoryOptions& options) {
   waypoints = without_expanded_points(std::move(waypoints));
   if (!has_cartesian_segments(waypoints)) return waypoints;
-  const auto max_total = static_cast<std::size_t>(std::max(max_waypoints, 1));
+  const auto max_total = static_cast<std::size_t>(std::max(options.max_waypoints, 1));
   std::vector<JointWaypoint> out;
   out.reserve(waypoints.size());
   for (std::size_t k = 0; k < waypoints.size(); ++k) {
@@ -318,10 +369,13 @@ Result<std::vector<JointWaypoint>> expand_cartesian_segments(const RobotModel& m
     auto points = cartesian_segment_points(model, out.back().q, w.q, k, budget);
     if (!points) return points.error();
     // B's min_duration spread evenly over the segment's steps (step_min_duration gives B's
-    // share; B keeps the operator's value, which plan messages and hashes carry).
+    // share; B keeps the operator's value, which plan messages and hashes carry), and the
+    // speed ramp's durations.
     const double min_duration = w.min_duration / static_cast<double>(points->size() + 1);
-    for (Eigen::VectorXd& q : *points) {
-      JointWaypoint& point = out.emplace_back(std::move(q), min_duration, std::nullopt, true);
+    const std::vector<double> ramp = ramp_durations(model, options, out.back().q, *points, w.q);
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      JointWaypoint& point = out.emplace_back(std::move((*points)[i]),
+                                              std::max(min_duration, ramp[i]), std::nullopt, true);
       point.expanded = true;
     }
     out.push_back(std::move(w));

@@ -103,7 +103,7 @@ Result<Trajectory> Trajectory::create(const RobotModel& model, std::vector<Joint
   waypoints = without_expanded_points(std::move(waypoints));
   if (Status s = validate_waypoints(model, waypoints, options); !s) return s.error();
   if (has_cartesian_segments(waypoints)) {
-    auto expanded = expand_cartesian_segments(model, std::move(waypoints), options.max_waypoints);
+    auto expanded = expand_cartesian_segments(model, std::move(waypoints), options);
     if (!expanded) return expanded.error();
     waypoints = std::move(*expanded);
   }

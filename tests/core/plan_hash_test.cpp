@@ -100,7 +100,7 @@ TEST_F(PlanHash, GoldenValuesGuardCrossMachineDeterminism) {
   // A Cartesian segment: its expansion (IK at every step, libm's trigonometry inside the PUMA's
   // closed form, rounded to kCartesianJointGrid) is hashed with it.
   EXPECT_EQ(hash_of(line_and_back()),
-            "102fb966f61aedac03669c3956eb4af90d2242252566168cbea9f4bce500ec6b");
+            "37dcda482a9edead28c4cabd5306af233cff772fff8caef24f8d380f4bfca8b7");
 }
 
 TEST_F(PlanHash, JointPlansAreTimedAsByTelearBlend1) {

@@ -30,7 +30,10 @@
 //
 // The points found (every one but B) become via waypoints marked `expanded`; B's min_duration
 // bounds the whole segment and is split evenly over its steps (step_min_duration). A and B
-// keep their own flags and values, B its gripper command. Trajectory::create then times the whole
+// keep their own flags and values, B its gripper command. Each expanded point's min_duration
+// is at least its step's share of a speed ramp from rest at A to rest at B (a trapezoid along
+// the path at half the acceleration the joints allow), so that the via-point timing need not
+// lengthen the whole chain to fit its many small blends. Trajectory::create then times the whole
 // list as any other (linear segments with parabolic blends through the via points).
 //
 // Refusals name the waypoint, the fraction of the line and the tool's position there, and
@@ -83,11 +86,12 @@ double step_min_duration(const std::vector<JointWaypoint>& waypoints, std::size_
 std::vector<JointWaypoint> without_expanded_points(std::vector<JointWaypoint> waypoints);
 
 // The waypoints with every Cartesian segment expanded as above (waypoints marked `expanded`
-// on input are dropped first). `waypoints` must have passed validate_waypoints. Fails with
-// "waypoint[k]: ..." when a segment cannot be followed, or when the expansion would exceed
-// max_waypoints waypoints in all.
+// on input are dropped first), with the options' scales and maximum of waypoints.
+// `waypoints` and `options` must have passed validate_waypoints. Fails with "waypoint[k]: ..."
+// when a segment cannot be followed, or when the expansion would exceed
+// options.max_waypoints waypoints in all.
 Result<std::vector<JointWaypoint>> expand_cartesian_segments(const RobotModel& model,
                                                              std::vector<JointWaypoint> waypoints,
-                                                             int max_waypoints);
+                                                             const TrajectoryOptions& options);
 
 }  // namespace telear::core
