@@ -9,13 +9,16 @@
 // incremental FK (the wrist joint changed), the Jacobian, and inverse kinematics over `poses`
 // random reachable targets (solved %, mean and p99 time; cold start and seeded near the
 // answer), each against KDL's ChainIkSolverPos_LMA from the same seeds. Which telear IK rows
-// depend on the arm: the PUMA's closed form (all 8 solutions) and its numeric IK; a 6-joint
-// arm without a closed form: numeric IK and every branch (solve_ik_all); a redundant arm:
-// numeric IK alone and with the null-space preference (solve_ik_nearest). The KDL chain of a
-// DH robot is built from its table, that of a URDF robot by kdl_parser from the same URDF text.
+// depend on the arm: the PUMA's closed form (all 8 solutions) and its numeric IK; a UR-class
+// arm (ik_ur.hpp): its closed form (every branch, beside KDL's LMA), numeric IK,
+// solve_ik_nearest through the closed form, and every branch by solve_ik_all and by the
+// numeric search (search_ik_branches); another 6-joint arm: numeric IK and every branch
+// (solve_ik_all, a seeded search); a redundant arm: numeric IK alone and with the
+// null-space preference (solve_ik_nearest). The KDL chain of a DH robot is built from its
+// table, that of a URDF robot by kdl_parser from the same URDF text.
 // Times are thread CPU time, so that a busy shared machine inflates them less; the ratios are
 // the figures to compare across machines. Sanity checks of the baseline are printed too:
-// KDL's FK against telear's, and the analytic IK round trip.
+// KDL's FK against telear's, and the closed forms' IK round trips.
 //
 // Built only with TELEAR_BUILD_BENCH (KDL is a benchmark-only dependency); main.cpp reports
 // its absence otherwise.
