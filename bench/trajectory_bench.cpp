@@ -9,10 +9,13 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "telear/core/inverse_kinematics.hpp"
+#include "telear/core/kinematics.hpp"
 #include "telear/core/plan_hash.hpp"
 #include "telear/core/random_configuration.hpp"
 #include "telear/core/robot_loader.hpp"
@@ -111,7 +114,49 @@ void BM_CommandBytes(benchmark::State& state) {
   state.counters["duration_s"] = trajectory.duration();
 }
 
+// A Cartesian segment (core/cartesian_segment.hpp): the PUMA's tool 0.22 m along a line while
+// turning 25 deg, expanded (IK every step, chord checks) and timed, as the session's preview
+// and the server's ExecutePlan do; and the same two waypoints in joint space.
+void cartesian_line(benchmark::State& state, bool cartesian) {
+  const Plans& plans = Plans::get();
+  const core::RobotModel& model = *plans.model;
+  Eigen::VectorXd qa(6);
+  qa << 10.0, -40.0, 30.0, 15.0, 45.0, -20.0;
+  qa *= std::numbers::pi / 180.0;
+  Eigen::Isometry3d T =
+      core::tool_pose(model, qa) * Eigen::AngleAxisd(std::numbers::pi * 25.0 / 180.0,
+                                                     Eigen::Vector3d(1.0, 2.0, 0.0).normalized());
+  T.translation() += Eigen::Vector3d(0.15, 0.10, -0.12);
+  auto ik = core::solve_ik_nearest(model, T, qa);
+  if (!ik) {
+    state.SkipWithError(ik.error().message.c_str());
+    return;
+  }
+  std::vector<core::JointWaypoint> waypoints{{qa}, {ik->q}};
+  waypoints.back().cartesian = cartesian;
+  std::size_t points = 0;
+  for (auto _ : state) {
+    auto trajectory = core::Trajectory::create(model, waypoints);
+    if (!trajectory) {
+      state.SkipWithError(trajectory.error().message.c_str());
+      return;
+    }
+    points = trajectory->waypoints().size();
+    benchmark::DoNotOptimize(trajectory->duration());
+  }
+  state.counters["waypoints"] = static_cast<double>(points);
+}
+
+void BM_CartesianLine(benchmark::State& state) {
+  cartesian_line(state, true);
+}
+void BM_JointLine(benchmark::State& state) {
+  cartesian_line(state, false);
+}
+
 BENCHMARK(BM_Parameterize20Stops)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CartesianLine)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointLine)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Parameterize20Vias)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PlanHash20Vias)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ParameterizeAndHash20Vias)->Unit(benchmark::kMicrosecond);
