@@ -93,8 +93,7 @@ std::vector<TaskStep> pick_and_place_steps(const Eigen::Vector3d& box_base_m,
 }
 
 std::vector<TaskStep> demo_task_steps(const DemoTaskInputs& inputs) {
-  return pick_and_place_steps(inputs.box_base_m,
-                              inputs.box_base_m + Eigen::Vector3d(0.0, -0.2, 0.0));
+  return pick_and_place_steps(inputs.box_base_m, inputs.box_base_m + inputs.place_offset_m);
 }
 
 Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInputs& inputs) {

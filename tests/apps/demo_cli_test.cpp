@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
@@ -107,6 +108,27 @@ TEST(DemoCli, TheSevenJointUrdfArmRunsTheSameWorkflow) {
     // The marker the rig renders on the arm's flange is found in the live video.
     EXPECT_GT(report["overlay_error_live"][eye]["checks"].get<int>(), 0) << eye;
   }
+  // Issue 13: the session checks collisions. The first rehearsal, into the tray, fails on its
+  // first contact (a finger in the tray), shown red on the ghost in its own key frame; the
+  // executed plan is collision-free, its smallest clearance to the workspace reported.
+  ASSERT_TRUE(report.contains("collision")) << report.dump(1);
+  const auto& first = report["collision"]["first_rehearsal"];
+  EXPECT_FALSE(first["collision_free"].get<bool>()) << first;
+  EXPECT_EQ(first["object"], "tray") << first;
+  EXPECT_NE(first["link"].get<std::string>().find("finger"), std::string::npos) << first;
+  EXPECT_GT(first["time_s"].get<double>(), 0.0);
+  EXPECT_GT(first["depth_m"].get<double>(), 0.0);
+  const auto& final_plan = report["collision"]["final_plan"];
+  EXPECT_TRUE(final_plan["collision_free"].get<bool>()) << final_plan;
+  EXPECT_GT(final_plan["min_clearance_m"].get<double>(), 0.005) << final_plan;
+  EXPECT_FALSE(final_plan["link"].get<std::string>().empty());
+  EXPECT_TRUE(fs::exists(d + "/keyframe_2a_collision.png"));
+  EXPECT_NE(r.out.find("validation of the first rehearsal: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("hits tray"), std::string::npos) << r.out;
+  std::ifstream md(d + "/report.md");
+  const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("- collision: the first rehearsal, first contact at t = "), std::string::npos)
+      << text;
   fs::remove_all(dir);
 }
 

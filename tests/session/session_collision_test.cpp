@@ -221,6 +221,22 @@ std::size_t waypoint_labelled(const Plan& plan, const std::string& label) {
   return 0;
 }
 
+// What the demo executes on the shipped URDF arms: no contact along the plan (the box carried
+// included); only the fingers come within the margin of the tray, at the grasp and the place.
+TEST(DemoTaskCollision, TheRehearsedPickAndPlaceOfTheShippedArmsIsCollisionFree) {
+  for (const std::string name : {"ur6", "arm7"}) {
+    RehearsedTask task = rehearse_demo_task(name);
+    ASSERT_TRUE(task.session && task.session->checks_collisions()) << name;
+    const ValidationReport report = task.session->validate_plan();
+    EXPECT_TRUE(report.ok()) << name << ": " << report.summary();
+    ASSERT_TRUE(report.collision.has_value()) << name;
+    EXPECT_TRUE(report.collision->collision_free()) << name;
+    EXPECT_GT(report.collision->min_workspace_clearance.distance_m, 0.005) << name;
+    EXPECT_THAT(collision_summary(*report.collision), HasSubstr("collision-free, clearance "))
+        << name;
+  }
+}
+
 TEST(CarriedObject, TheBoxIsHeldFromTheGraspToThePlaceAndRestingOnTheTrayIsNoContact) {
   RehearsedTask task = rehearse_demo_task("ur6");
   ASSERT_TRUE(task.session && task.session->checks_collisions());

@@ -61,6 +61,8 @@ struct DemoTaskInputs {
   // Height (base z) of the table's top under the box: the first rehearsal, when the session
   // checks collisions, lowers the gripper 5 cm below it.
   double table_surface_z_m = 0.0;
+  // Where the box is put down, from where it is picked up (base frame, m).
+  Eigen::Vector3d place_offset_m = Eigen::Vector3d(0.0, -0.2, 0.0);
 };
 
 struct DemoTaskOutcome {
