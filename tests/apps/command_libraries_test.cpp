@@ -23,6 +23,7 @@
 #include "telear/geometry/allowed_collisions.hpp"
 #include "telear/render/arm_snapshot.hpp"
 #include "telear/session/plan_check_report.hpp"
+#include "telear/session/vision_source.hpp"
 #include "telear/vision/accuracy_check.hpp"
 #include "telear/vision/image_calibration.hpp"
 #include "telear/vision/registration.hpp"
@@ -310,6 +311,37 @@ TEST(PlanCheckReport, TextAndJsonOfAContact) {
   EXPECT_TRUE(j["min_workspace_clearance"]["distance_m"].is_null());  // nothing measured
   EXPECT_EQ(j["configurations_checked"], 321);
   EXPECT_EQ(j["duration_s"], 6.12);
+}
+
+// [SECTION] session: the vision server's source, chosen by name
+
+TEST(VisionSource, EachKindOpensOrSaysWhatIsWrong) {
+  session::VisionSourceOptions synthetic;
+  synthetic.kind = "synthetic";
+  synthetic.size = core::ImageSize{64, 48};
+  auto opened = session::open_vision_source(synthetic);
+  ASSERT_TRUE(opened) << opened.error().message;
+  ASSERT_TRUE(opened->source);
+  EXPECT_FALSE(opened->robot);
+  EXPECT_TRUE(opened->warnings.empty());
+
+  session::VisionSourceOptions sim;  // the shipped rig; its size is the rig file's
+  sim.size = core::ImageSize{64, 48};
+  auto rig = session::open_vision_source(sim);
+  ASSERT_TRUE(rig) << rig.error().message;
+  ASSERT_EQ(rig->warnings.size(), 1u);
+  EXPECT_THAT(rig->warnings[0], StartsWith("--resolution is ignored for --source sim"));
+
+  session::VisionSourceOptions bad;
+  bad.kind = "bogus";
+  EXPECT_EQ(session::open_vision_source(bad).error().message,
+            "--source 'bogus' is not one of sim, files, v4l2, synthetic");
+  bad.kind = "files";
+  EXPECT_EQ(session::open_vision_source(bad).error().message,
+            "--source files needs --left FILE and --right FILE");
+  bad.robot_server = "127.0.0.1:1";
+  EXPECT_EQ(session::open_vision_source(bad).error().message,
+            "--robot-server is for --source sim (the simulated rig follows the robot)");
 }
 
 // [SECTION] geometry: the allowed-collision block is read through core's YAML reader
