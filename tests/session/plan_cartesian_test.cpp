@@ -69,6 +69,20 @@ TEST(PlanCartesian, PlanFilesCarryTheFlag) {
   EXPECT_EQ(bad.error().message, "plan 'p.yaml': waypoint[0].cartesian: must be true or false");
 }
 
+TEST(PlanCartesian, TheExampleOfDocsSessionMdIsFollowed) {
+  auto plan = Plan::from_yaml(
+      test::puma560(),
+      "robot: puma560\nvelocity_scale: 0.5\nacceleration_scale: 0.5\nwaypoints:\n"
+      "  - {label: approach, q_rad: [0, 0.5, -1.2, 0, 0.7, 0], gripper: 1}\n"
+      "  - {label: grasp, q_rad: [0.2, 0.6, -1.1, 0, 0.5, 0], gripper: 0, min_duration_s: 1}\n"
+      "  - {label: lift, q_rad: [0.2, 0.4, -1.0, 0, 0.6, 0], cartesian: true}\n",
+      "pick.yaml");
+  ASSERT_TRUE(plan) << plan.error().message;
+  auto trajectory = plan->trajectory();
+  ASSERT_TRUE(trajectory) << trajectory.error().message;
+  EXPECT_GT(trajectory->waypoints().size(), 3u);  // the lift expanded
+}
+
 TEST(PlanCartesian, TheSessionAndTheServerTimeTheSamePlan) {
   const Plan plan = line_plan();
   auto trajectory = plan.trajectory();
