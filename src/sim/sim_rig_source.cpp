@@ -109,10 +109,13 @@ Result<vision::StereoCapture> SimRigSource::capture() {
   }
   vision::StereoCapture out;
   out.frame_number = ++frame_;
-  out.left = gl_->scene.render(sim::Eye::kLeft, out.frame_number);
+  // Both eyes show the scene at one instant, as a hardware-synchronized stereo rig exposes
+  // both sensors at once: one capture time for the pair, taken at that instant (rendering,
+  // like a sensor's read-out, comes after the exposure).
   out.capture_ns_left = core::monotonic_ns();
+  out.capture_ns_right = out.capture_ns_left;
+  out.left = gl_->scene.render(sim::Eye::kLeft, out.frame_number);
   out.right = gl_->scene.render(sim::Eye::kRight, out.frame_number);
-  out.capture_ns_right = core::monotonic_ns();
   out.scene = last_state_;
   return out;
 }
