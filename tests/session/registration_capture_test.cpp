@@ -1,0 +1,184 @@
+// Registration from images captured through the servers (issue 15): the embedded simulated
+// robot and stereo vision servers on loopback, real gRPC; capture_for_registration moves the
+// PUMA 560 through automatic poses, writes a capture folder, and the hand-eye registration
+// solved from the detected marker corners is compared with the simulated rig's true cameras.
+#include "telear/session/registration_capture.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "telear/core/robot_loader.hpp"
+#include "telear/session/embedded_servers.hpp"
+#include "telear/sim/marker_observations.hpp"
+#include "telear/sim/rig_robot.hpp"
+#include "telear/sim/stereo_rig.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/capture_observations.hpp"
+#include "telear/vision/hand_eye_registration.hpp"
+#include "telear/vision/overlay_accuracy.hpp"
+#include "telear/vision/registered_camera_file.hpp"
+
+namespace telear::session {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+class RegistrationCaptureTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto m = core::load_robot("puma560");
+    ASSERT_TRUE(m) << m.error().message;
+    model = *m;
+    auto r = sim::load_stereo_rig(sim::default_rig_file("puma560"));
+    ASSERT_TRUE(r) << r.error().message;
+    rig = std::move(*r);
+    auto marker_mount = core::marker_mount_for(*model);
+    ASSERT_TRUE(marker_mount) << marker_mount.error().message;
+    marker = *marker_mount;
+    dir = fs::temp_directory_path() /
+          ("telear_capture_test_" +
+           std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+           std::to_string(std::rand()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    // The vision server serves the rig's true intrinsics as its calibration (registration is
+    // what is tested here, not calibration).
+    const std::string calibration = (dir / "calibration.yaml").string();
+    ASSERT_TRUE(vision::write_files_atomically(
+        {{calibration, vision::registered_camera_yaml(
+                           rig.cameras, vision::right_from_left(rig.cameras.left.T_cam_base,
+                                                                rig.cameras.right.T_cam_base))}}));
+    // Start where both cameras detect the marker (the operator's jog before capturing): the
+    // first configuration the simulated rig's own observations found it at in both eyes.
+    sim::MarkerObservationsOptions find;
+    find.rig_file = sim::default_rig_file("puma560");
+    find.configurations = 4;
+    find.seed = 2;
+    auto found = sim::simulate_marker_observations(find);
+    ASSERT_TRUE(found) << found.error().message;
+    Eigen::VectorXd start;
+    for (const auto& c : found->observations.configurations) {
+      if (!c.left_pixels.empty() && !c.right_pixels.empty()) {
+        start = c.q;
+        break;
+      }
+    }
+    ASSERT_GT(start.size(), 0) << "the marker was not detected in both eyes anywhere";
+    EmbeddedServersOptions options;
+    options.calibration_file = calibration;
+    options.initial_q = start;
+    options.fps = 10.0;
+    options.supersample = 2;
+    auto s = EmbeddedServers::create(model, options);
+    ASSERT_TRUE(s) << s.error().message;
+    servers = std::move(*s);
+    net::RobotClientOptions robot_options;
+    robot_options.address = servers->robot_address();
+    robot_options.token = servers->token();
+    robot_options.client_name = "capture-test";
+    robot = std::make_unique<net::RobotClient>(robot_options);
+    robot->start();
+    net::VisionClientOptions vision_options;
+    vision_options.address = servers->vision_address();
+    vision_options.token = servers->token();
+    vision_options.client_name = "capture-test";
+    vision_options.jpeg_quality = 100;
+    vision = std::make_unique<net::VisionClient>(vision_options);
+    vision->start();
+  }
+
+  void TearDown() override {
+    vision.reset();
+    robot.reset();
+    servers.reset();
+    fs::remove_all(dir);
+  }
+
+  core::RobotModelPtr model;
+  sim::StereoRig rig;
+  core::MarkerMount marker;
+  fs::path dir;
+  std::unique_ptr<EmbeddedServers> servers;
+  std::unique_ptr<net::RobotClient> robot;
+  std::unique_ptr<net::VisionClient> vision;
+};
+
+TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheTruth) {
+  RegistrationCaptureOptions options;
+  options.directory = (dir / "capture").string();
+  options.auto_poses = 14;
+  options.frames_per_pose = 2;
+  options.velocity_scale = 1.0;
+  options.settle_s = 0.1;
+  options.marker = marker;
+  std::vector<std::string> progress;
+  auto captured =
+      capture_for_registration(*model, *robot, *vision, options, [&](const CaptureProgress& p) {
+        std::printf("%s\n", p.message.c_str());
+        progress.push_back(p.message);
+      });
+  ASSERT_TRUE(captured) << captured.error().message;
+  for (const auto& note : captured->notes) std::printf("note: %s\n", note.c_str());
+  ASSERT_GE(captured->capture.poses.size(), 10u);
+  ASSERT_FALSE(progress.empty());
+  EXPECT_THAT(progress.front(), HasSubstr("pose 1/"));
+
+  // The folder reads back with every image, and the camera file beside it.
+  auto folder = vision::load_capture_folder(options.directory);
+  ASSERT_TRUE(folder) << folder.error().message;
+  EXPECT_EQ(folder->poses.size(), captured->capture.poses.size());
+  EXPECT_EQ(folder->camera_file, "cameras.yaml");
+  EXPECT_EQ(folder->poses.front().frames.size(), 2u);
+
+  auto detected = vision::detect_capture_targets(options.directory, *folder, marker);
+  ASSERT_TRUE(detected) << detected.error().message;
+  for (const auto& note : detected->notes) std::printf("detection: %s\n", note.c_str());
+  EXPECT_GE(detected->left_found, 10);
+  EXPECT_GE(detected->right_found, 10);
+  auto result = vision::register_hand_eye(
+      *model, rig.cameras.left, rig.cameras.right,
+      vision::right_from_left(rig.cameras.left.T_cam_base, rig.cameras.right.T_cam_base),
+      detected->observations);
+  ASSERT_TRUE(result) << result.error().message;
+  const auto left = vision::registration_error(rig.cameras.left.T_cam_base, result->T_left_base);
+  const auto right = vision::registration_error(rig.cameras.right.T_cam_base, result->T_right_base);
+  const double target_mm =
+      1000.0 *
+      (result->T_flange_target.translation() - marker.T_flange_marker.translation()).norm();
+  std::printf(
+      "captured %zu poses; registration left %.3f mm %.4f deg, right %.3f mm %.4f deg, marker "
+      "on the flange %.3f mm; sigma %.3f mm %.4f deg; rms %.3f / %.3f px\n",
+      folder->poses.size(), left.position_mm, left.rotation_deg, right.position_mm,
+      right.rotation_deg, target_mm, result->base_sigma.position_mm,
+      result->base_sigma.rotation_deg, result->left.rms_px, result->right.rms_px);
+  // Bounds with room for the rendered images' noise at this small number of poses; the
+  // measured figures are in docs/registration.md.
+  EXPECT_LT(left.position_mm, 2.0);
+  EXPECT_LT(right.position_mm, 2.0);
+  EXPECT_LT(left.rotation_deg, 0.2);
+  EXPECT_LT(target_mm, 2.0);
+}
+
+TEST_F(RegistrationCaptureTest, RefusesAFolderThatAlreadyHoldsACapture) {
+  RegistrationCaptureOptions options;
+  options.directory = (dir / "capture").string();
+  options.poses = {sim::rest_configuration(*model)};
+  options.marker = marker;
+  fs::create_directories(options.directory);
+  { std::ofstream(fs::path(options.directory) / "capture.yaml") << "telear_capture: 1\n"; }
+  auto captured = capture_for_registration(*model, *robot, *vision, options);
+  ASSERT_FALSE(captured);
+  EXPECT_THAT(captured.error().message, HasSubstr("already holds a capture (capture.yaml)"));
+  options.directory = (dir / "other").string();
+  options.frames_per_pose = 0;
+  captured = capture_for_registration(*model, *robot, *vision, options);
+  ASSERT_FALSE(captured);
+  EXPECT_EQ(captured.error().message, "capture: --frames 0 must be 1..30");
+}
+
+}  // namespace
+}  // namespace telear::session
