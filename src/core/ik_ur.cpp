@@ -243,8 +243,20 @@ void solve_ur_ik(const UrGeometry& g, const Eigen::Isometry3d& T, UrIkSolutions&
       const double q5 = g.wrist_zero_angle + (nf == 0 ? beta : -beta);
       const double c5 = std::cos(q5), s5 = std::sin(q5);
       const Eigen::Vector3d u = rotate(w[4], c5, -s5, n);
+      // The point of axis 4 that joints 6, 5 and 1 carried back leave for a given q6: only
+      // joints 2 and 3 move it. Across n, from the shoulder axis: the planar problem's target.
+      const auto axis4_target = [&](double c6, double s6) {
+        const Eigen::Vector3d arm4 = rotate(w[5], c6, -s6, rotate(w[4], c5, -s5, p[3] - g.wrist));
+        const Eigen::Vector3d world4 = R_TM * (g.wrist + arm4) + t_TM;
+        const Eigen::Vector3d t4 = p[0] + rotate(w[0], c1, -s1, world4 - p[0]);
+        return Eigen::Vector3d(across(n, t4 - p[1]));
+      };
+      const auto out_of_reach = [&](double d) {
+        return d > max_reach + kReachTolerance || d < min_reach - kReachTolerance;
+      };
       double q6;
-      if (sin_beta > kDegenerate) {
+      const bool q6_free = !(sin_beta > kDegenerate);
+      if (!q6_free) {
         // The projections themselves, not v.u - (w6.v)(w6.u): near the wrist singularity
         // they are of length sin(beta), and that difference would cancel to rounding noise.
         const Eigen::Vector3d v_across = across(w[5], v), u_across = across(w[5], u);
@@ -252,18 +264,33 @@ void solve_ur_ik(const UrGeometry& g, const Eigen::Isometry3d& T, UrIkSolutions&
       } else {
         q6 = q_free[5];  // axis 6 parallel to n: only q6 + s theta is determined
       }
-      const double c6 = std::cos(q6), s6 = std::sin(q6);
-      // theta: Rot(n, theta) = R' Rot(w6, -q6) Rot(w5, -q5), read off its action on w5.
-      // (Rot(w5, -q5) leaves w5 as it is.)
-      const Eigen::Vector3d w5_turned = rotate(w[0], c1, -s1, R_TM * rotate(w[5], c6, -s6, w[4]));
-      const double theta = angle_about(n, w[4], w5_turned);
-      // A point of axis 4, carried back through joints 6, 5 and 1: only joints 2 and 3 move it.
-      const Eigen::Vector3d arm4 = rotate(w[5], c6, -s6, rotate(w[4], c5, -s5, p[3] - g.wrist));
-      const Eigen::Vector3d world4 = R_TM * (g.wrist + arm4) + t_TM;
-      const Eigen::Vector3d t4 = p[0] + rotate(w[0], c1, -s1, world4 - p[0]);
-      const Eigen::Vector3d delta = across(n, t4 - p[1]);
-      const double D = delta.norm();
-      if (D > max_reach + kReachTolerance || D < min_reach - kReachTolerance) {
+      Eigen::Vector3d delta = axis4_target(std::cos(q6), std::sin(q6));
+      double D = delta.norm();
+      if (q6_free && out_of_reach(D)) {
+        // Axis 6 is parallel to n, so q6 moves that point on a circle across n:
+        // delta(q6) = centre + Rot(n, s q6) spoke. Of the q6 that bring it within reach, the
+        // one nearest q_free (a q6 chosen freely must not lose the branch).
+        const Eigen::Vector3d at_0 = axis4_target(1.0, 0.0), at_pi = axis4_target(-1.0, 0.0);
+        const Eigen::Vector3d centre = 0.5 * (at_0 + at_pi), spoke = 0.5 * (at_0 - at_pi);
+        const double turn = n.dot(spoke.cross(axis4_target(0.0, 1.0) - centre)) >= 0.0 ? 1.0 : -1.0;
+        const double C = centre.norm(), rho = spoke.norm();
+        const double wanted = std::clamp(D, min_reach, max_reach);
+        if (C > kDegenerate && rho > kDegenerate) {
+          // wanted^2 = C^2 + rho^2 + 2 C rho cos(gamma), gamma the angle from the centre's
+          // direction to the turned spoke, phi0 + turn q6.
+          const double cos_gamma = (wanted * wanted - C * C - rho * rho) / (2.0 * C * rho);
+          if (std::abs(cos_gamma) <= 1.0 + kDegenerate) {
+            const double gamma = std::acos(std::clamp(cos_gamma, -1.0, 1.0));
+            const double phi0 = angle_about(n, centre, spoke);
+            const double a = wrap_angle(turn * (gamma - phi0));
+            const double b = wrap_angle(turn * (-gamma - phi0));
+            q6 = std::abs(wrap_angle(a - q_free[5])) <= std::abs(wrap_angle(b - q_free[5])) ? a : b;
+            delta = axis4_target(std::cos(q6), std::sin(q6));
+            D = delta.norm();
+          }
+        }
+      }
+      if (out_of_reach(D)) {
         const double miss = D > max_reach ? D - max_reach : min_reach - D;
         if (miss < nearest_miss) {
           nearest_miss = miss;
@@ -272,6 +299,11 @@ void solve_ur_ik(const UrGeometry& g, const Eigen::Isometry3d& T, UrIkSolutions&
         (D > max_reach ? any_too_far : any_too_close) = true;
         continue;
       }
+      const double c6 = std::cos(q6), s6 = std::sin(q6);
+      // theta: Rot(n, theta) = R' Rot(w6, -q6) Rot(w5, -q5), read off its action on w5.
+      // (Rot(w5, -q5) leaves w5 as it is.)
+      const Eigen::Vector3d w5_turned = rotate(w[0], c1, -s1, R_TM * rotate(w[5], c6, -s6, w[4]));
+      const double theta = angle_about(n, w[4], w5_turned);
       double cos_psi, sin_psi;
       elbow_angle(l2, l3, std::clamp(D, min_reach, max_reach), cos_psi, sin_psi);
       const double psi = std::atan2(sin_psi, cos_psi);  // >= 0

@@ -315,6 +315,39 @@ TEST(UrIk, UnreachableTargetsSayWhy) {
   EXPECT_THAT(all.error().message, HasSubstr("solve_ik_all: target unreachable: in every branch"));
 }
 
+// At a singular pose branches meet: solve_ik_all lists each once (like the numeric search,
+// within its distinct tolerance), every one reaching the pose.
+TEST(UrIk, SolveIkAllListsMeetingBranchesOnce) {
+  const RobotModelPtr ur6 = shipped("ur6");
+  ASSERT_TRUE(ur6);
+  const RobotModel& model = *ur6;
+  // q3 = 0 (elbow stretched: 'u' = 'd') and q5 = 0 (wrist: 'n' = 'f' with q6 given).
+  Eigen::VectorXd q(6);
+  q << 0.3, -1.0, 0.0, -0.8, 0.0, 0.4;
+  const Eigen::Isometry3d T = tool_pose(model, q);
+  auto all = solve_ik_all(model, T);
+  ASSERT_TRUE(all) << all.error().message;
+  EXPECT_LT(all->size(), 8u);
+  EXPECT_GE(all->size(), 1u);
+  // This shoulder's four meet in one, flagged; the other shoulder puts the wrist elsewhere,
+  // where its branches are regular.
+  int singular = 0;
+  bool found = false;
+  for (size_t i = 0; i < all->size(); ++i) {
+    const IkSolution& s = (*all)[i];
+    singular += s.singular;
+    // q's branch: q6 is solve_ik_all's free value (0) there, q4 turned to make up for it.
+    found = found || (std::abs(wrapped(s.q[0] - q[0])) < 1e-6 && std::abs(wrapped(s.q[2])) < 1e-6 &&
+                      std::abs(wrapped(s.q[4])) < 1e-6);
+    EXPECT_LE(round_trip_error(model, s.q, T), 1e-10) << s.config;
+    for (size_t k = 0; k < i; ++k) {
+      EXPECT_FALSE(same_modulo_turns(s.q, (*all)[k].q, 1e-4)) << s.config << " repeats";
+    }
+  }
+  EXPECT_GE(singular, 1);
+  EXPECT_TRUE(found) << "q's branch is missing";
+}
+
 // solve_ik_all lists the closed form's branches for ur6 (labelled like the PUMA's), and
 // solve_ik_nearest picks the nearest of them within the limits.
 TEST(UrIk, DispatchUsesTheClosedForm) {

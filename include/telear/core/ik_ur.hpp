@@ -40,7 +40,9 @@
 // Unlike the PUMA, which branches exist depends on the branch: each of the four (shoulder,
 // wrist) pairs puts axis 4 elsewhere, so the elbow triangle may close for some and not for
 // others (`valid`). At the wrist singularity (axis 6 parallel to n) only q6 + s theta is
-// determined and q6 takes the given `q_free` value; with the wrist point on axis 1 (c = 0
+// determined and q6 takes the given `q_free` value, or, where that leaves the elbow triangle
+// open (q6 moves axis 4 on a circle then), the value nearest it that closes the triangle;
+// with the wrist point on axis 1 (c = 0
 // only) q1 takes its `q_free` value, and with the wrist-1 axis on the shoulder axis
 // (L2 = L3 only) q2 does. Values are wrapped to (-pi, pi]. Never NaN.
 
