@@ -6,7 +6,8 @@
 //   Plan10sNaive/<arm>    the same plan at fixed 10 ms samples, every pair's distance (which can
 //                         still step over a thin obstacle)
 // Arms: the PUMA 560 (primitives from its body file) and ur6 (STL collision meshes), each in
-// its shipped table workspace. Run:
+// its shipped table workspace; ur6_hulls: ur6's meshes as the convex hulls of their parts
+// (geometry::MeshCollision::kConvexParts), the same configurations and plan. Run:
 //   build/bench/collision_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -45,18 +46,33 @@ struct Arm {
   std::vector<Eigen::VectorXd> q;  // collision-free random configurations
   core::Trajectory plan;
 
-  static Arm& get(const std::string& robot) {
+  // `robot`, or `robot`_hulls: its mesh links as the convex hulls of their parts
+  // (geometry::MeshCollision::kConvexParts), the same inputs and plan.
+  static Arm& get(const std::string& name) {
     static std::map<std::string, Arm> arms;
-    auto it = arms.find(robot);
-    if (it == arms.end()) it = arms.emplace(robot, make(robot)).first;
+    auto it = arms.find(name);
+    if (it == arms.end()) it = arms.emplace(name, make(name)).first;
     return it->second;
   }
 
  private:
-  static Arm make(const std::string& robot) {
+  static Arm make(const std::string& name) {
+    const std::string suffix = "_hulls";
+    const bool hulls = name.size() > suffix.size() &&
+                       name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    const std::string robot = hulls ? name.substr(0, name.size() - suffix.size()) : name;
     auto description = or_exit(core::load_robot_description({robot, "", {}}), "robot");
     auto workspace =
         or_exit(geometry::load_workspace(core::default_workspace_file(robot)), "workspace");
+    if (hulls) {
+      // The exact arm's inputs and plan, checked with the hulls.
+      const Arm& exact = get(robot);
+      geometry::CollisionSetupOptions options;
+      options.mesh_collision = geometry::MeshCollision::kConvexParts;
+      auto checker = or_exit(geometry::make_collision_checker(description, workspace, options),
+                             "collision checker");
+      return Arm{std::move(checker), exact.q, exact.plan};
+    }
     auto checker =
         or_exit(geometry::make_collision_checker(description, workspace), "collision checker");
     // Seeded random configurations without contact: the inputs of the single checks, and the
@@ -163,6 +179,12 @@ BENCHMARK_CAPTURE(Plan10sNaive, puma560, std::string("puma560"))
     ->Iterations(1);
 BENCHMARK_CAPTURE(Plan10s, ur6, std::string("ur6"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Plan10sNaive, ur6, std::string("ur6"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(Check, ur6_hulls, std::string("ur6_hulls"))->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(CheckNaive, ur6_hulls, std::string("ur6_hulls"))->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(Plan10s, ur6_hulls, std::string("ur6_hulls"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Plan10sNaive, ur6_hulls, std::string("ur6_hulls"))
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

@@ -168,6 +168,9 @@ struct CollisionChecker::Impl {
         if (objects[o].active) pairs.push_back({static_cast<int>(b), -1, static_cast<int>(o)});
       }
       for (std::size_t c = b + 1; c < bodies.size(); ++c) {
+        // Parts of one link (split_into_parts) share its name: never checked one against the
+        // other.
+        if (robot.bodies[b].name == robot.bodies[c].name) continue;
         if (!allowed.allowed(robot.bodies[b].name, robot.bodies[c].name)) {
           pairs.push_back({static_cast<int>(b), static_cast<int>(c), -1});
         }
@@ -419,8 +422,18 @@ CollisionReport CollisionChecker::check(const Eigen::VectorXd& q, double gripper
       double depth = 0.0;
       Eigen::Vector3d point;
       if (m.collide(p, depth, point)) {
-        report.contacts.push_back({m.robot.bodies[static_cast<std::size_t>(p.body)].name,
-                                   pair_other_name(p), p.other_body >= 0, depth, point});
+        // One contact per link pair (a link split into parts may touch with several).
+        const std::string& body = m.robot.bodies[static_cast<std::size_t>(p.body)].name;
+        const std::string other = pair_other_name(p);
+        auto same =
+            std::find_if(report.contacts.begin(), report.contacts.end(),
+                         [&](const Contact& c) { return c.body == body && c.other == other; });
+        if (same == report.contacts.end()) {
+          report.contacts.push_back({body, other, p.other_body >= 0, depth, point});
+        } else if (depth > same->depth_m) {
+          same->depth_m = depth;
+          same->point_base = point;
+        }
         continue;
       }
       by_bounds.emplace_back(0.0, i);

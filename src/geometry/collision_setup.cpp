@@ -21,6 +21,8 @@ Result<CollisionChecker> make_collision_checker(const core::RobotDescription& de
     allowed = compute_allowed_collisions(*robot, options.allowed);
     if (!allowed) return allowed.error();
   }
+  // The matrix is by link name: found on whole links, it holds for their parts.
+  if (options.mesh_collision == MeshCollision::kConvexParts) split_into_parts(*robot);
   return CollisionChecker::create(std::move(*robot), workspace, std::move(*allowed));
 }
 

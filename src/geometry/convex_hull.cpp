@@ -187,4 +187,23 @@ Status use_convex_parts(RobotCollisionModel& robot) {
   return Status::Ok();
 }
 
+void split_into_parts(RobotCollisionModel& robot) {
+  std::vector<CollisionBody> bodies;
+  for (CollisionBody& body : robot.bodies) {
+    if (body.shapes.size() <= 1) {
+      bodies.push_back(std::move(body));
+      continue;
+    }
+    std::vector<CollisionShape> shapes = std::move(body.shapes);
+    body.shapes.clear();
+    for (CollisionShape& shape : shapes) {
+      CollisionBody part = body;
+      part.shapes = {std::move(shape)};
+      bodies.push_back(std::move(part));
+    }
+  }
+  robot.bodies = std::move(bodies);
+  update_motion_bounds(robot);
+}
+
 }  // namespace telear::geometry

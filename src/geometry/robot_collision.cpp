@@ -240,15 +240,19 @@ std::size_t RobotCollisionModel::attach(std::string name, std::vector<CollisionS
   return index;
 }
 
+void update_motion_bounds(RobotCollisionModel& robot) {
+  for (std::size_t b = 0; b < robot.bodies.size(); ++b) {
+    robot.bodies[b].radius_about_frame_m = body_radius(robot, b);
+  }
+  compute_levers(robot);
+}
+
 Result<RobotCollisionModel> robot_collision_model(const core::RobotDescription& description,
                                                   const GeometryOptions& options) {
   Result<RobotCollisionModel> m =
       description.links.empty() ? from_dh_body(description) : from_urdf(description, options);
   if (!m) return m;
-  for (std::size_t b = 0; b < m->bodies.size(); ++b) {
-    m->bodies[b].radius_about_frame_m = body_radius(*m, b);
-  }
-  compute_levers(*m);
+  update_motion_bounds(*m);
   return m;
 }
 

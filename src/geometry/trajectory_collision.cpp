@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "telear/core/number_format.hpp"
 
@@ -58,7 +59,8 @@ class Walker {
       : checker_(checker),
         trajectory_(trajectory),
         options_(options),
-        state_(checker.pairs().size()) {}
+        state_(checker.pairs().size()),
+        same_names_(group_by_names(checker)) {}
 
   Status run() {
     const auto& waypoints = trajectory_.waypoints();
@@ -213,9 +215,17 @@ class Walker {
       const double depth = checker_.penetration_depth(pair);
       if (!st.in_contact) {
         st.in_contact = true;
-        st.episode = report.collisions.size();
-        report.collisions.push_back({time_of(s), body, checker_.pair_other_name(pair),
-                                     pair.other_body >= 0, depth, segment_});
+        // A link split into parts (convex_hull.hpp) touches with several pairs: one episode
+        // per link pair while any of them is in contact.
+        const std::size_t open = open_episode(p);
+        if (open != kNone) {
+          st.episode = open;
+          report.collisions[open].depth_m = std::max(report.collisions[open].depth_m, depth);
+        } else {
+          st.episode = report.collisions.size();
+          report.collisions.push_back({time_of(s), body, checker_.pair_other_name(pair),
+                                       pair.other_body >= 0, depth, segment_});
+        }
       } else {
         PlanCollision& c = report.collisions[st.episode];
         c.depth_m = std::max(c.depth_m, depth);
@@ -234,10 +244,39 @@ class Walker {
     }
   }
 
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+
+  // The episode of another pair of the same two names still in contact, or kNone.
+  std::size_t open_episode(std::size_t p) const {
+    for (std::size_t q : same_names_[p]) {
+      if (q != p && state_[q].in_contact) return state_[q].episode;
+    }
+    return kNone;
+  }
+
+  // Per pair, the pairs of the same body and other names (itself included).
+  static std::vector<std::vector<std::size_t>> group_by_names(const CollisionChecker& checker) {
+    const std::vector<CollisionPair>& pairs = checker.pairs();
+    std::map<std::pair<std::string, std::string>, std::vector<std::size_t>> groups;
+    std::vector<const std::vector<std::size_t>*> group_of(pairs.size());
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+      const CollisionPair& pair = pairs[p];
+      groups[{checker.robot().bodies[static_cast<std::size_t>(pair.body)].name,
+              (pair.other_body >= 0 ? "body:" : "object:") + checker.pair_other_name(pair)}]
+          .push_back(p);
+    }
+    std::vector<std::vector<std::size_t>> out(pairs.size());
+    for (const auto& [names, members] : groups) {
+      for (std::size_t p : members) out[p] = members;
+    }
+    return out;
+  }
+
   CollisionChecker& checker_;
   const core::Trajectory& trajectory_;
   const TrajectoryCheckOptions& options_;
   std::vector<PairState> state_;
+  std::vector<std::vector<std::size_t>> same_names_;
   double fraction_ = -1.0;  // the gripper fraction the bounds hold for
   int segment_ = 0;
 };

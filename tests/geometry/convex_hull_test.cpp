@@ -11,7 +11,10 @@
 #include <random>
 
 #include "telear/core/random_configuration.hpp"
+#include "telear/core/trajectory.hpp"
 #include "telear/geometry/collision_checker.hpp"
+#include "telear/geometry/trajectory_collision.hpp"
+#include "telear/geometry/workspace_meshes.hpp"
 
 namespace telear::geometry {
 namespace {
@@ -98,7 +101,8 @@ TEST(ConvexHull, AMeshSplitsIntoItsConnectedParts) {
 
 // On ur6 (STL collision meshes) the convex parts are conservative: at random configurations
 // every pair's hull distance is at most its mesh distance (to FCL's tolerance), and close to
-// it (the shipped links are unions of convex parts).
+// it (the shipped links are unions of convex parts); every contact of the meshes is one of the
+// hulls', reported once per link pair.
 TEST(ConvexHull, TheConvexPartsOfTheShippedArmAreConservative) {
   auto d = core::load_robot_description({"ur6", "", {}});
   ASSERT_TRUE(d) << d.error().message;
@@ -108,28 +112,100 @@ TEST(ConvexHull, TheConvexPartsOfTheShippedArmAreConservative) {
   options.mesh_collision = MeshCollision::kConvexParts;
   auto hulls = make_collision_checker(*d, core::Workspace{}, options);
   ASSERT_TRUE(hulls) << hulls.error().message;
-  ASSERT_EQ(hulls->pairs().size(), exact->pairs().size());
-  std::size_t parts = 0;
+  // Split into parts: one body per part, of the link's name; pairs of different links only.
+  EXPECT_GT(hulls->robot().bodies.size(), exact->robot().bodies.size());
+  EXPECT_GT(hulls->pairs().size(), exact->pairs().size());
   for (const CollisionBody& b : hulls->robot().bodies) {
-    for (const CollisionShape& s : b.shapes) parts += s.convex ? 1 : 0;
+    ASSERT_EQ(b.shapes.size(), 1u) << b.name;
+    EXPECT_TRUE(b.shapes[0].kind != core::GeometryElement::Kind::kMesh || b.shapes[0].convex)
+        << b.name;  // primitives stay primitives
   }
-  EXPECT_GT(parts, hulls->robot().bodies.size());  // links of several parts
+  // The smallest distance of each link pair.
+  const auto by_names = [](CollisionChecker& checker) {
+    std::map<std::pair<std::string, std::string>, double> out;
+    for (const CollisionPair& pair : checker.pairs()) {
+      const auto key = std::pair{checker.robot().bodies[static_cast<std::size_t>(pair.body)].name,
+                                 checker.pair_other_name(pair)};
+      const double d = checker.distance(pair).distance_m;
+      auto [it, added] = out.emplace(key, d);
+      if (!added) it->second = std::min(it->second, d);
+    }
+    return out;
+  };
   std::mt19937_64 rng(5);
   double worst_gap = 0.0;
   for (int i = 0; i < 30; ++i) {
     const Eigen::VectorXd q = core::random_configuration(*d->model, rng);
     exact->set_configuration(q, 0.5);
     hulls->set_configuration(q, 0.5);
-    for (std::size_t p = 0; p < exact->pairs().size(); ++p) {
-      const double mesh = exact->distance(exact->pairs()[p]).distance_m;
-      const double hull = hulls->distance(hulls->pairs()[p]).distance_m;
-      if (mesh <= 0.0) continue;  // in contact: the hulls are too
-      EXPECT_LE(hull, mesh + 1e-6) << "pair " << p;
-      worst_gap = std::max(worst_gap, mesh - hull);
+    const auto mesh = by_names(*exact);
+    const auto hull = by_names(*hulls);
+    ASSERT_EQ(mesh.size(), hull.size());
+    for (const auto& [names, distance] : mesh) {
+      ASSERT_TRUE(hull.count(names)) << names.first << " / " << names.second;
+      if (distance <= 0.0) continue;  // in contact: the hulls are too
+      EXPECT_LE(hull.at(names), distance + 1e-6) << names.first << " / " << names.second;
+      worst_gap = std::max(worst_gap, distance - hull.at(names));
+    }
+    // The same contacts, one per link pair.
+    const CollisionReport a = exact->check(q), b = hulls->check(q);
+    for (const Contact& c : a.contacts) {
+      EXPECT_EQ(
+          std::count_if(b.contacts.begin(), b.contacts.end(),
+                        [&](const Contact& h) { return h.body == c.body && h.other == c.other; }),
+          1)
+          << c.body << " / " << c.other;
     }
   }
   std::cout << "ur6 convex parts: largest distance lost to the hulls " << worst_gap * 1e3
             << " mm\n";
+}
+
+// Along a plan into the tray, the hulls find the contact the meshes find, no later (they
+// contain the links), once per link pair although several parts touch.
+TEST(ConvexHull, APlanIntoTheTrayCollidesWithTheHullsNoLater) {
+  auto d = core::load_robot_description({"ur6", "", {}});
+  ASSERT_TRUE(d) << d.error().message;
+  auto workspace = load_workspace(core::default_workspace_file("ur6"));
+  ASSERT_TRUE(workspace) << workspace.error().message;
+  auto exact = make_collision_checker(*d, *workspace);
+  ASSERT_TRUE(exact) << exact.error().message;
+  CollisionSetupOptions options;
+  options.mesh_collision = MeshCollision::kConvexParts;
+  auto hulls = make_collision_checker(*d, *workspace, options);
+  ASSERT_TRUE(hulls) << hulls.error().message;
+  // The first seeded configuration whose wrist is in the tray.
+  const Eigen::VectorXd home = *d->model->named_configuration("home");
+  std::mt19937_64 rng(11);
+  Eigen::VectorXd into;
+  for (int i = 0; i < 5000 && into.size() == 0; ++i) {
+    const Eigen::VectorXd q = core::random_configuration(*d->model, rng);
+    for (const Contact& c : exact->check(q).contacts) {
+      if (c.other == "tray" && c.body != "base_link") into = q;
+    }
+  }
+  ASSERT_GT(into.size(), 0);
+  auto plan = core::Trajectory::create(*d->model, {{home}, {into}});
+  ASSERT_TRUE(plan) << plan.error().message;
+  auto by_mesh = check_trajectory(*exact, *plan);
+  auto by_hull = check_trajectory(*hulls, *plan);
+  ASSERT_TRUE(by_mesh) << by_mesh.error().message;
+  ASSERT_TRUE(by_hull) << by_hull.error().message;
+  const auto first_with_tray = [](const TrajectoryCheckReport& r) {
+    for (const PlanCollision& c : r.collisions) {
+      if (c.other == "tray") return c.time_s;
+    }
+    return -1.0;
+  };
+  const double mesh_t = first_with_tray(*by_mesh), hull_t = first_with_tray(*by_hull);
+  ASSERT_GE(mesh_t, 0.0);
+  ASSERT_GE(hull_t, 0.0);
+  EXPECT_LE(hull_t, mesh_t + 1e-3);
+  std::map<std::pair<std::string, double>, int> episodes;
+  for (const PlanCollision& c : by_hull->collisions) {
+    const int seen = ++episodes[std::pair{c.body + "/" + c.other, c.time_s}];
+    EXPECT_EQ(seen, 1) << c.body << " / " << c.other;
+  }
 }
 
 }  // namespace

@@ -47,4 +47,11 @@ Result<std::vector<CollisionShape>> convex_parts(const CollisionShape& shape);
 // motion bounds stay (a hull's vertices are some of the mesh's). Errors name the body.
 Status use_convex_parts(RobotCollisionModel& robot);
 
+// Every body of several shapes becomes one body per shape, each of the body's name, frame and
+// gripper motion, with its own motion bound (update_motion_bounds): a part near a joint moves
+// little about it, so continuous checking steps a close pair by that part's lever, not the
+// whole link's. Parts of one body are never checked against each other (CollisionChecker
+// pairs bodies of different names only), and contacts are reported per link pair.
+void split_into_parts(RobotCollisionModel& robot);
+
 }  // namespace telear::geometry

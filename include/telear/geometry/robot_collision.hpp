@@ -73,6 +73,10 @@ struct RobotCollisionModel {
 // The bounding radius of one shape about its frame's origin after T_link_shape (m).
 double shape_radius_about_origin(const CollisionShape& shape);
 
+// Sets every body's radius_about_frame_m and the levers from the bodies as they are (after
+// bodies were added, split or their shapes replaced).
+void update_motion_bounds(RobotCollisionModel& robot);
+
 // Builds the bodies and their levers. Errors: collision_geometry_for's (meshes), the body
 // file's for a DH robot.
 Result<RobotCollisionModel> robot_collision_model(const core::RobotDescription& description,
