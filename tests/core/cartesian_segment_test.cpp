@@ -26,6 +26,7 @@ namespace telear::core {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
 using ::testing::StartsWith;
 
 // The bound docs/trajectory.md states for the tool's distance from the line (position) and
@@ -188,7 +189,7 @@ TEST_F(CartesianSegment, RandomLinesStayWithinTheStatedBound) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (const RobotModel* model : {puma.get(), ur.get()}) {
     Deviation worst;
-    int followed = 0, refused = 0;
+    int followed = 0, refused = 0, jumps = 0;
     for (int i = 0; i < 80; ++i) {
       const Eigen::VectorXd qa = test::random_configuration(*model, rng);
       const Eigen::Vector3d offset(0.2 * unit(rng), 0.2 * unit(rng), 0.2 * unit(rng));
@@ -199,8 +200,18 @@ TEST_F(CartesianSegment, RandomLinesStayWithinTheStatedBound) {
       auto trajectory = Trajectory::create(*model, {{qa}, cartesian(ik->q)});
       if (!trajectory) {
         // A refusal names the segment and where on the line.
-        EXPECT_THAT(trajectory.error().message,
-                    StartsWith("waypoint[1]: the Cartesian segment from waypoint[0] "));
+        const std::string& message = trajectory.error().message;
+        EXPECT_THAT(message, StartsWith("waypoint[1]: the Cartesian segment from waypoint[0] "));
+        if (message.find(" jumps ") != std::string::npos) {
+          ++jumps;
+          EXPECT_THAT(message,
+                      MatchesRegex("waypoint\\[1\\]: the Cartesian segment from waypoint\\[0\\] "
+                                   "cannot be followed at [0-9.]+ % of its length \\(tool at "
+                                   "\\[[-0-9., ]+\\] m\\): joint [1-6] \\([a-z_0-9]+\\) jumps "
+                                   "[0-9.]+ deg over [0-9.]+ mm of the line \\(a singularity, a "
+                                   "joint limit in the way or another IK configuration\\); split "
+                                   "the segment or move there in joint space"));
+        }
         ++refused;
         continue;
       }
@@ -214,6 +225,7 @@ TEST_F(CartesianSegment, RandomLinesStayWithinTheStatedBound) {
                 model->name().c_str(), followed, refused, 1000.0 * worst.position_m,
                 degrees_from_radians(worst.orientation_rad));
     EXPECT_GE(followed, 25) << model->name();
+    EXPECT_GE(jumps, 1) << model->name();  // some lines need a joint-space jump
     EXPECT_LE(worst.position_m, kLineBoundM) << model->name();
     EXPECT_LE(worst.orientation_rad, kArcBoundRad) << model->name();
   }
@@ -235,6 +247,23 @@ TEST_F(CartesianSegment, ALineThroughTheBaseAxisIsRefusedWithWhere) {
   EXPECT_THAT(message, HasSubstr(" % of its length (tool at ["));
   EXPECT_THAT(message, HasSubstr("the arm cannot reach the line there: "));
   std::printf("%s\n", message.c_str());
+}
+
+TEST_F(CartesianSegment, ALineBeyondAJointLimitIsRefusedWithTheJoint) {
+  // Behind the PUMA from 150 deg to -150 deg of waist: the line passes 180 deg, beyond the
+  // waist's 160 deg.
+  auto trajectory = Trajectory::create(
+      *puma, {{deg({150, -30, 45, 0, 30, 0})}, cartesian(deg({-150, -30, 45, 0, 30, 0}))});
+  ASSERT_FALSE(trajectory);
+  EXPECT_THAT(trajectory.error().message,
+              StartsWith("waypoint[1]: the Cartesian segment from waypoint[0] cannot be "
+                         "followed at "));
+  EXPECT_THAT(trajectory.error().message,
+              HasSubstr("the arm cannot reach the line there: no IK solution within the joint "
+                        "limits: in the nearest one (rdf) joint 1 (waist) would be at "));
+  // In joint space the waist turns the other way round, within its limits.
+  EXPECT_TRUE(Trajectory::create(
+      *puma, {{deg({150, -30, 45, 0, 30, 0})}, {deg({-150, -30, 45, 0, 30, 0})}}));
 }
 
 TEST_F(CartesianSegment, AnotherConfigurationAtTheEndIsRefused) {
