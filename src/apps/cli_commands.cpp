@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/calibrate_command.hpp"
+#include "apps/capture_command.hpp"
 #include "apps/cli_app.hpp"
 #include "apps/demo_command.hpp"
 #include "apps/eval_command.hpp"
@@ -216,16 +217,16 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
   auto register_shared = std::make_shared<RegisterOptions>();
   RegisterOptions& register_options = *register_shared;
   CLI::App* register_app = app.add_subcommand(
-      "register", "the robot base's pose in each camera (T_cam_base) from marker observations");
-  register_app
-      ->add_option("--rig", register_options.rig,
-                   "stereo camera file with R, T (telear calibrate's output)")
-      ->required();
+      "register",
+      "the robot base's pose in each camera (T_cam_base) from marker observations or captures");
+  register_app->add_option("--rig", register_options.rig,
+                           "stereo camera file with R, T (telear calibrate's output); with "
+                           "--captures, default: the capture's own");
   add_robot_arguments(register_app, register_options, false);
-  register_app
-      ->add_option("--observations", register_options.observations,
-                   "observations YAML (telear sim observations)")
-      ->required();
+  register_app->add_option("--observations", register_options.observations,
+                           "observations YAML (telear sim observations)");
+  register_app->add_option("--captures", register_options.captures,
+                           "capture folder (telear capture): detect the marker, hand-eye");
   register_app->add_option("-o,--output", register_options.output, "camera file to write")
       ->required();
   register_app
@@ -250,6 +251,28 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
   eval_app->add_option("--spacing", eval_options.spacing_m, "body sample spacing, m")
       ->capture_default_str();
 
+  auto capture_shared = std::make_shared<CaptureOptions>();
+  CaptureOptions& capture = *capture_shared;
+  CLI::App* capture_app = app.add_subcommand(
+      "capture", "move the arm through poses and record stereo frames for registration");
+  capture_app->add_option("--robot", capture.robot_server, "robot server HOST:PORT")->required();
+  capture_app->add_option("--vision", capture.vision_server, "vision server HOST:PORT")->required();
+  capture_app->add_option("--token-file", capture.token_file, "file whose first line is the token");
+  add_robot_arguments(capture_app, capture, false, "--arm");
+  capture_app->add_option("--poses", capture.poses, "auto:N or a YAML file of joint vectors")
+      ->capture_default_str();
+  capture_app->add_option("--frames", capture.frames, "stereo frames per pose")
+      ->capture_default_str();
+  capture_app->add_option("--speed", capture.speed, "fraction of the joint speed limits")
+      ->capture_default_str();
+  capture_app->add_option("--settle", capture.settle_s, "s to wait at rest before the frames")
+      ->capture_default_str();
+  capture_app->add_option("--seed", capture.seed, "seed of the automatic poses")
+      ->capture_default_str();
+  capture_app->add_option("-o,--output", capture.output, "folder to write")->required();
+  commands.push_back({capture_app, [capture_shared] {
+                        return run_capture(*capture_shared, std::cout, std::cerr);
+                      }});
   commands.push_back({calibrate_app, [calibrate_options] {
                         return run_calibrate(*calibrate_options, std::cout, std::cerr);
                       }});

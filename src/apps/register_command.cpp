@@ -1,10 +1,13 @@
 #include "apps/register_command.hpp"
 
+#include <algorithm>
 #include <ostream>
 
+#include "telear/core/marker_mount.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "telear/vision/capture_registration.hpp"
 #include "telear/vision/observations_file.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration.hpp"
@@ -19,14 +22,44 @@ int fail(std::ostream& err, const std::string& message, int code = 2) {
   return code;
 }
 
+// --captures: the marker detected in a capture folder, hand-eye registration.
+int run_register_captures(const RegisterOptions& options, std::ostream& out, std::ostream& err) {
+  auto model = core::load_robot(options.robot_spec());
+  if (!model) return fail(err, "--robot: " + model.error().message);
+  auto marker = core::marker_mount_for(**model);
+  if (!marker) return fail(err, "--robot: " + marker.error().message);
+  vision::HandEyeOptions hand_eye;
+  hand_eye.max_iterations = std::max(options.max_iterations, 1);
+  auto registration =
+      vision::register_captures(**model, options.captures, options.rig, *marker, hand_eye);
+  if (!registration) return fail(err, registration.error().message);
+  const std::string text =
+      vision::registered_camera_yaml(registration->registered, registration->T_right_left);
+  if (Status s = vision::write_files_atomically({{options.output, text}}); !s) {
+    return fail(err, s.error().message, 1);
+  }
+  out << "registered " << options.robot_spec().name_or_path << " from " << options.captures << "\n"
+      << vision::capture_registration_report(*registration) << "wrote " << options.output << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int run_register(const RegisterOptions& options, std::ostream& out, std::ostream& err) {
-  if (options.rig.empty()) return fail(err, "--rig: give the stereo camera file to register");
-  if (options.observations.empty())
-    return fail(err, "--observations: give the observations file (telear sim observations)");
+  if (!options.captures.empty() && !options.observations.empty())
+    return fail(err, "--captures and --observations: give one of them");
   if (options.output.empty())
     return fail(err, "-o: give the camera file to write, e.g. -o stereo_registered.yaml");
+  if (!options.captures.empty()) {
+    if (Status s = vision::check_output_path(options.output, "-o"); !s)
+      return fail(err, s.error().message);
+    return run_register_captures(options, out, err);
+  }
+  if (options.rig.empty()) return fail(err, "--rig: give the stereo camera file to register");
+  if (options.observations.empty())
+    return fail(err,
+                "--observations or --captures: give the observations file (telear sim "
+                "observations) or a capture folder (telear capture)");
   if (options.max_iterations < 1)
     return fail(
         err, "--max-iterations " + std::to_string(options.max_iterations) + " must be at least 1");

@@ -12,8 +12,14 @@
 // R and T (so it can be registered again); the calibration's other stereo keys (E, F, the
 // rectification) are not carried over. It is written atomically: no partial file on failure.
 // Prints the residual RMS / max per eye after the PnP start and after the joint refinement,
-// and the number of observations. Exit codes: 0 done, 2 bad input (one line on `err`), 1 the
-// output could not be written.
+// and the number of observations.
+//
+//   telear register --captures DIR [--rig stereo.yaml] --robot puma560 -o out.yaml
+//
+// detects the robot's marker in a capture folder's images and solves the hand-eye
+// registration (the base in both cameras and the marker on the flange, jointly;
+// telear/vision/capture_registration.hpp); --rig defaults to the folder's own camera file. Exit
+// codes: 0 done, 2 bad input (one line on `err`), 1 the output could not be written.
 
 #include <iosfwd>
 #include <string>
@@ -25,6 +31,7 @@ namespace telear::cli {
 struct RegisterOptions : RobotArguments {
   std::string rig;           // stereo camera file (calibration output)
   std::string observations;  // observations YAML (telear/vision/observations_file.hpp)
+  std::string captures;      // a capture folder (telear capture); --rig optional then
   std::string output;        // camera file to write (may equal --rig)
   int max_iterations = 100;  // Levenberg-Marquardt
 };

@@ -15,6 +15,7 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/trajectory.hpp"
+#include "telear/core/yaml_reader.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/capture_observations.hpp"
 #include "telear/vision/hand_eye_registration.hpp"
@@ -174,6 +175,28 @@ Status RegistrationCaptureOptions::validate() const {
   if (!(rest_tolerance_rad > 0.0)) return bad("the rest tolerance must be positive");
   if (!(pose_timeout_s > 0.0)) return bad("the pose timeout must be positive");
   return {};
+}
+
+Result<std::vector<Eigen::VectorXd>> load_capture_poses_file(const std::string& path, int dof) {
+  const std::string where = "poses file '" + path + "'";
+  auto root = core::load_yaml_file(path, where);
+  if (!root) return root.error();
+  const YAML::Node poses = (*root)["poses"];
+  if (!poses || !poses.IsSequence() || poses.size() == 0) {
+    return Error{where + ": expected 'poses: [[q1, ..., qn], ...]' with at least one pose"};
+  }
+  std::vector<Eigen::VectorXd> out;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const std::string what = where + ": poses[" + std::to_string(i) + "]";
+    auto values = core::yaml_numbers(poses[i], what);
+    if (!values) return values.error();
+    if (static_cast<int>(values->size()) != dof) {
+      return Error{what + ": " + std::to_string(values->size()) + " joint values, the robot has " +
+                   std::to_string(dof)};
+    }
+    out.push_back(Eigen::Map<const Eigen::VectorXd>(values->data(), dof));
+  }
+  return out;
 }
 
 std::vector<Eigen::VectorXd> choose_capture_poses(const core::RobotModel& model,

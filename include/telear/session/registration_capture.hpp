@@ -76,6 +76,10 @@ Result<RegistrationCaptureResult> capture_for_registration(
     const RegistrationCaptureOptions& options,
     const std::function<void(const CaptureProgress&)>& progress = {});
 
+// A poses file (YAML): `poses: [[q1, ..., qn], ...]` in radians, n = dof. Errors name the file,
+// the entry and what is wrong.
+Result<std::vector<Eigen::VectorXd>> load_capture_poses_file(const std::string& path, int dof);
+
 // The automatic poses alone (used by capture_for_registration; public for tests): around
 // `q_start`, given rough camera models (with their T_cam_base) and the marker mount.
 std::vector<Eigen::VectorXd> choose_capture_poses(const core::RobotModel& model,

@@ -1,0 +1,143 @@
+#!/usr/bin/python3
+"""CTest: register real cameras as a lab would, every program a process (issue 15).
+
+Usage: capture_register_cli_test.py TELEAR_BINARY DATA_DIR
+
+`telear robot-server` (simulated PUMA 560) and `telear vision-server --source sim` (the
+simulated rig following the robot server, serving the rig's calibration) run on loopback;
+`telear capture --poses auto:N` moves the arm and records a capture folder through them;
+`telear register --captures DIR` solves the registration; `telear eval` compares it with the
+rig's true cameras (its JSON). Bad input exits 2 with one line naming the problem.
+"""
+
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+
+import yaml
+
+
+def start(telear, arguments):
+    """Starts a server and returns (process, address) from its first stdout line."""
+    server = subprocess.Popen([telear] + arguments, stdout=subprocess.PIPE,
+                              stderr=subprocess.DEVNULL, text=True)
+    line = server.stdout.readline()
+    match = re.fullmatch(r"(robot|vision) server listening on (\S+)\n", line)
+    if not match:
+        server.kill()
+        raise AssertionError(f"{arguments[0]}: unexpected first line {line!r}")
+    return server, match.group(2)
+
+
+def run(telear, arguments, timeout=600):
+    return subprocess.run([telear] + arguments, capture_output=True, text=True, timeout=timeout)
+
+
+def start_pose(telear, tmp):
+    """A configuration at which both cameras detect the marker (the operator's jog)."""
+    observations = os.path.join(tmp, "find.yaml")
+    r = run(telear, ["sim", "observations", "--configs", "4", "--seed", "2", "-o", observations])
+    assert r.returncode == 0, r.stderr
+    with open(observations) as f:
+        found = yaml.safe_load(f)
+    for configuration in found["configurations"]:
+        if configuration.get("left") and configuration.get("right"):
+            return configuration["q"]
+    raise AssertionError("the marker was not detected in both eyes anywhere")
+
+
+def main():
+    telear, data = sys.argv[1], sys.argv[2]
+    failures = []
+    calibration = os.path.join(data, "cameras", "puma560_stereo.yaml")
+    with tempfile.TemporaryDirectory() as tmp:
+        token = os.path.join(tmp, "token")
+        with open(token, "w") as f:
+            f.write("capture-test-token\n")
+        q = ",".join(f"{v:.9f}" for v in start_pose(telear, tmp))
+        robot, robot_address = start(telear, ["robot-server", "--listen", "127.0.0.1:0",
+                                              "--token-file", token, "--q", q])
+        vision = None
+        try:
+            vision, vision_address = start(
+                telear, ["vision-server", "--listen", "127.0.0.1:0", "--source", "sim",
+                         "--robot-server", robot_address, "--token-file", token,
+                         "--calibration", calibration, "--fps", "10"])
+            captures = os.path.join(tmp, "captures")
+            r = run(telear, ["capture", "--robot", robot_address, "--vision", vision_address,
+                             "--token-file", token, "--arm", "puma560", "--poses", "auto:10",
+                             "--frames", "2", "--speed", "1", "--settle", "0.1", "-o",
+                             captures])
+            if r.returncode != 0 or "pose 1/10" not in r.stdout:
+                failures.append(f"capture: status {r.returncode}, {r.stdout!r} {r.stderr!r}")
+            else:
+                print(r.stdout)
+
+            # Bad input: one line, exit 2.
+            bad = run(telear, ["capture", "--robot", robot_address, "--vision", vision_address,
+                               "--token-file", token, "--poses", "auto:x", "-o",
+                               os.path.join(tmp, "bad")])
+            expected = "telear capture: --poses 'auto:x': expected auto:N with N a number\n"
+            if bad.returncode != 2 or bad.stderr != expected:
+                failures.append(f"capture auto:x: {bad.returncode} {bad.stderr!r}")
+            again = run(telear, ["capture", "--robot", robot_address, "--vision",
+                                 vision_address, "--token-file", token, "--poses", "auto:3",
+                                 "-o", captures])
+            if again.returncode != 1 or "already holds a capture" not in again.stderr:
+                failures.append(f"capture into a used folder: {again.returncode} "
+                                f"{again.stderr!r}")
+        finally:
+            for server in (vision, robot):
+                if server:
+                    server.send_signal(signal.SIGTERM)
+                    server.communicate(timeout=30)
+
+        if not failures:
+            registered = os.path.join(tmp, "registered.yaml")
+            r = run(telear, ["register", "--captures", captures, "--robot", "puma560", "-o",
+                             registered])
+            if r.returncode != 0 or "bundle adjustment" not in r.stdout or \
+                    "uncertainty (1 sigma): base" not in r.stdout:
+                failures.append(f"register: status {r.returncode}, {r.stdout!r} {r.stderr!r}")
+            else:
+                print(r.stdout)
+                table = os.path.join(tmp, "eval.json")
+                e = run(telear, ["eval", "--truth", calibration, "--estimate", registered,
+                                 "--configurations", "10", "--json", table])
+                if e.returncode != 0:
+                    failures.append(f"eval: {e.returncode} {e.stderr!r}")
+                else:
+                    with open(table) as f:
+                        accuracy = json.load(f)
+                    print(json.dumps(accuracy)[:2000])
+                    for eye in ("left", "right"):
+                        mm = accuracy[eye]["registration_mm"]
+                        if not mm < 2.0:
+                            failures.append(f"{eye} registration {mm} mm (bound 2 mm)")
+
+            empty = os.path.join(tmp, "empty")
+            os.makedirs(empty)
+            r = run(telear, ["register", "--captures", empty, "--robot", "puma560", "-o",
+                             os.path.join(tmp, "x.yaml")])
+            if r.returncode != 2 or not r.stderr.startswith("telear register: capture '") or \
+                    r.stderr.count("\n") != 1:
+                failures.append(f"register of an empty folder: {r.returncode} {r.stderr!r}")
+            r = run(telear, ["register", "--captures", captures, "--observations", "o.yaml",
+                             "-o", os.path.join(tmp, "x.yaml")])
+            if r.returncode != 2 or r.stderr != ("telear register: --captures and "
+                                                 "--observations: give one of them\n"):
+                failures.append(f"register with both inputs: {r.returncode} {r.stderr!r}")
+
+    for failure in failures:
+        print(failure, file=sys.stderr)
+    if not failures:
+        print("captured through the servers and registered")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
