@@ -80,7 +80,8 @@ Result<PumaGeometry> puma_geometry(const RobotModel& model) {
       "robot '" + model.name() + "' is not of the PUMA class (closed-form IK): ";
   if (!model.dh()) {
     return Error{"robot '" + model.name() +
-                 "' has no standard DH table (closed-form IK needs one; URDF arms use numeric IK)"};
+                 "' has no standard DH table (the PUMA class's closed form reads one; a URDF arm "
+                 "has the UR class's, ik_ur.hpp, or numeric IK)"};
   }
   if (model.dof() != 6) {
     return Error{who + "it has " + std::to_string(model.dof()) + " joints, needs 6"};

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "telear/core/ik_branches.hpp"
+#include "telear/core/ik_ur.hpp"
 #include "telear/core/inverse_kinematics.hpp"
 
 namespace telear::core {
@@ -12,13 +13,24 @@ Result<IkListing> list_ik_solutions(const RobotModel& model, const Eigen::Isomet
                                     std::string_view config) {
   IkListing listing;
   AnalyticIkResult& result = listing.result;
-  if (auto geometry = puma_geometry(model)) {
+  auto geometry = puma_geometry(model);
+  if (geometry) {
     listing.closed_form = true;
     result = solve_analytic_ik(model, *geometry, T_base_tool, config);
     if (result.status == IkStatus::kUnreachable) return Error{result.message};
     return listing;
-  } else if (!config.empty()) {
-    return Error{"--config selects closed-form solutions, and " + geometry.error().message};
+  }
+  auto ur = ur_geometry(model);
+  if (ur) {
+    // Only the branches that exist (up to 8), each FK-checked.
+    listing.closed_form = true;
+    result = solve_ur_analytic_ik(model, *ur, T_base_tool, config);
+    if (result.status == IkStatus::kUnreachable) return Error{result.message};
+    return listing;
+  }
+  if (!config.empty()) {
+    return Error{"--config selects closed-form solutions, and " + geometry.error().message + "; " +
+                 ur.error().message};
   }
   if (model.dof() == 6) {
     auto branches = solve_ik_all(model, T_base_tool);

@@ -415,8 +415,8 @@ TEST(AnalyticIkClass, RejectsArmsOutsideTheClassWithTheParameter) {
   auto urdf = load_robot(test::data_path("robots/puma560.urdf"));
   ASSERT_TRUE(urdf) << urdf.error().message;
   EXPECT_EQ(puma_geometry(**urdf).error().message,
-            "robot 'puma560' has no standard DH table (closed-form IK needs one; URDF arms use "
-            "numeric IK)");
+            "robot 'puma560' has no standard DH table (the PUMA class's closed form reads one; "
+            "a URDF arm has the UR class's, ik_ur.hpp, or numeric IK)");
 
   std::vector<DhRow> five(rows.begin(), rows.end() - 1);
   EXPECT_THAT(message(dh_model(five)), HasSubstr("it has 5 joints, needs 6"));

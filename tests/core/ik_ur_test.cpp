@@ -15,6 +15,7 @@
 
 #include "telear/core/angles.hpp"
 #include "telear/core/ik_branches.hpp"
+#include "telear/core/ik_listing.hpp"
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
@@ -404,6 +405,36 @@ TEST(UrIk, DispatchUsesTheClosedForm) {
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_LE(round_trip_error(model, r->q, moved), 1e-10);
   EXPECT_NEAR(r->q[5], 0.5, 1e-12);
+}
+
+// What `telear kin ik` lists (core/ik_listing.hpp): ur6's closed-form branches, and --config
+// selecting among them; an arm with neither closed form says why it has neither.
+TEST(UrIk, TheKinListingUsesTheClosedForm) {
+  const RobotModelPtr ur6 = shipped("ur6");
+  ASSERT_TRUE(ur6);
+  const Eigen::Isometry3d T = tool_pose(*ur6, *ur6->named_configuration("ready"));
+  auto listing = list_ik_solutions(*ur6, T);
+  ASSERT_TRUE(listing) << listing.error().message;
+  EXPECT_TRUE(listing->closed_form);
+  ASSERT_FALSE(listing->result.solutions.empty());
+  for (const IkSolution& s : listing->result.solutions) {
+    EXPECT_EQ(s.config.size(), 3u) << s.config;
+    EXPECT_LE(round_trip_error(*ur6, s.q, T), 1e-10) << s.config;
+  }
+  const std::string first = listing->result.solutions.front().config;
+  auto one = list_ik_solutions(*ur6, T, first);
+  ASSERT_TRUE(one) << one.error().message;
+  ASSERT_EQ(one->result.solutions.size(), 1u);
+  EXPECT_EQ(one->result.solutions[0].config, first);
+  const RobotModelPtr arm7 = shipped("arm7");
+  ASSERT_TRUE(arm7);
+  EXPECT_EQ(list_ik_solutions(*arm7, tool_pose(*arm7, *arm7->named_configuration("home")), "lun")
+                .error()
+                .message,
+            "--config selects closed-form solutions, and robot 'arm7' has no standard DH table "
+            "(the PUMA class's closed form reads one; a URDF arm has the UR class's, ik_ur.hpp, "
+            "or numeric IK); robot 'arm7' is not of the UR class (closed-form IK): it has 7 "
+            "joints, needs 6");
 }
 
 }  // namespace
