@@ -6,6 +6,8 @@
 #include <functional>
 #include <thread>
 
+#include "telear/core/inverse_kinematics.hpp"
+#include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/session/embedded_servers.hpp"
 #include "telear/session/session.hpp"
@@ -110,6 +112,43 @@ TEST_F(SessionIntegrationTest, APlanExecutesOnTheRobotAndTheMonitorTracksIt) {
   EXPECT_LT(session->monitor()->status().max_command_deviation, 1e-3);
   ASSERT_TRUE(run_until([&] { return (real_q() - goal).cwiseAbs().maxCoeff() < 1e-3; }, 5.0))
       << "the real robot did not reach the plan's end";
+}
+
+TEST_F(SessionIntegrationTest, ACartesianPlanIsExecutedAsPreviewed) {
+  // Out along a straight line of the tool and back along it (docs/trajectory.md, "Cartesian
+  // segments"): the server expands the lines itself and gets the preview's hash.
+  ASSERT_TRUE(session->take_control().ok());
+  // From a pose away from the singularities (the embedded arm starts stretched).
+  Eigen::VectorXd start(6);
+  start << 0.17, -0.70, 0.52, 0.26, 0.79, -0.35;
+  ASSERT_TRUE(session->initialize_real(start));
+  ASSERT_TRUE(run_until([&] { return (real_q() - start).cwiseAbs().maxCoeff() < 1e-6; }, 15.0));
+  ASSERT_TRUE(run_until([&] { return !session->executing(); }, 5.0));
+  ASSERT_TRUE(session->ghost_to_real().ok());
+  Eigen::Isometry3d T = core::tool_pose(*model, start);
+  T.translation() += Eigen::Vector3d(0.06, 0.04, -0.05);
+  auto out = core::solve_ik_nearest(*model, T, start);
+  ASSERT_TRUE(out) << out.error().message;
+  PlanWaypoint line_out(out->q, 0.0, std::nullopt, "out");
+  line_out.cartesian = true;
+  PlanWaypoint line_back(start, 0.0, std::nullopt, "back");
+  line_back.cartesian = true;
+  ASSERT_TRUE(session->plan().add({start, 0.0, std::nullopt, "start"}).ok());
+  ASSERT_TRUE(session->plan().add(line_out).ok());
+  ASSERT_TRUE(session->plan().add(line_back).ok());
+  const ValidationReport report = session->validate_plan();
+  ASSERT_TRUE(report.ok()) << report.summary();
+  ASSERT_TRUE(session->start_preview().ok());
+  const std::string previewed = session->previewed_hash();
+  auto ack = session->execute_plan();
+  ASSERT_TRUE(ack) << ack.error().message;
+  EXPECT_EQ(ack->plan_hash, previewed);
+  ASSERT_TRUE(run_until([&] { return !session->executing(); }, ack->duration_s + 15.0));
+  EXPECT_EQ(session->last_execution_result(), "completed");
+  ASSERT_NE(session->monitor(), nullptr);
+  // The robot's servo command followed the previewed (expanded) trajectory.
+  EXPECT_GT(session->monitor()->status().command_samples, 10);
+  EXPECT_LT(session->monitor()->status().max_command_deviation, 1e-3);
 }
 
 TEST_F(SessionIntegrationTest, ValidationRejectsAPlanThatStartsFarFromTheRealRobot) {
