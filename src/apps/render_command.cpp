@@ -13,7 +13,6 @@
 #include "telear/render/arm_snapshot.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/image_io.hpp"
-#include "telear/vision/camera_file.hpp"
 
 namespace telear::cli {
 namespace {
@@ -23,72 +22,6 @@ constexpr int kGlFailure = 1;
 struct Failure {
   std::string message;
 };
-
-std::vector<std::string> split_pair(const std::string& text) {
-  const size_t comma = text.find(',');
-  if (comma == std::string::npos) return {text};
-  return {text.substr(0, comma), text.substr(comma + 1)};
-}
-
-std::vector<render::SnapshotEye> eyes_from_options(const RenderOptions& options,
-                                                   const core::RobotModel& model,
-                                                   const Eigen::VectorXd& q, int default_width,
-                                                   int default_height) {
-  const std::string& eye = options.eye;
-  if (!eye.empty() && eye != "left" && eye != "right" && eye != "both") {
-    throw Failure{"--eye must be left, right or both, got '" + eye + "'"};
-  }
-  if (options.camera.empty()) {
-    auto eyes = render::whole_arm_view(model, q, default_width, default_height, eye == "both");
-    if (eye == "right") eyes[0].name = "right";
-    return eyes;
-  }
-  const std::vector<std::string> paths = split_pair(options.camera);
-  Result<vision::CameraFile> file = paths.size() == 2
-                                        ? vision::load_stereo_camera_files(paths[0], paths[1])
-                                        : vision::load_camera_file(paths[0]);
-  if (!file) throw Failure{file.error().message};
-  auto posed = [&](const vision::CameraModel& c, bool has_pose, const std::string& name) {
-    if (!has_pose) {
-      throw Failure{"camera file '" + options.camera + "': " + (name.empty() ? "the" : name) +
-                    " camera has no T_cam_base (register it to the robot first)"};
-    }
-    return render::SnapshotEye{name, c};
-  };
-  if (!file->is_stereo()) {
-    if (eye == "right" || eye == "both") {
-      throw Failure{"--eye " + eye + " needs a stereo camera file; '" + options.camera +
-                    "' holds one camera"};
-    }
-    return {posed(file->left, file->left_has_pose, "")};
-  }
-  std::vector<render::SnapshotEye> eyes;
-  if (eye != "right") eyes.push_back(posed(file->left, file->left_has_pose, "left"));
-  if (eye != "left") eyes.push_back(posed(*file->right, file->right_has_pose, "right"));
-  return eyes;
-}
-
-std::vector<core::Image> backgrounds_from_options(const RenderOptions& options) {
-  if (options.background.empty()) return {};
-  std::vector<core::Image> images;
-  for (const std::string& path : split_pair(options.background)) {
-    if (path.empty())
-      throw Failure{"--background: empty file name in '" + options.background + "'"};
-    Result<core::Image> image = render::read_image(path, 3);
-    if (!image) throw Failure{image.error().message};
-    images.push_back(std::move(image.value()));
-  }
-  return images;
-}
-
-std::string eye_output_path(const std::string& output, const std::string& eye) {
-  const size_t dot = output.rfind('.');
-  const size_t slash = output.rfind('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
-    return output + "_" + eye;
-  }
-  return output.substr(0, dot) + "_" + eye + output.substr(dot);
-}
 
 void check_options(const RenderOptions& options) {
   if (options.output.empty()) throw Failure{"-o is required (the PNG to write)"};
@@ -132,10 +65,15 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     auto joints = core::parse_joint_values(*model, options.q, "--q", options.degrees);
     if (!joints) throw Failure{joints.error().message};
     q = *joints;
-    backgrounds = backgrounds_from_options(options);
+    auto read = render::read_snapshot_backgrounds(options.background);
+    if (!read) throw Failure{read.error().message};
+    backgrounds = std::move(*read);
     const int default_width = backgrounds.empty() ? options.width : backgrounds[0].width;
     const int default_height = backgrounds.empty() ? options.height : backgrounds[0].height;
-    eyes = eyes_from_options(options, *model, q, default_width, default_height);
+    auto chosen = render::snapshot_eyes(options.camera, options.eye, *model, q, default_width,
+                                        default_height);
+    if (!chosen) throw Failure{chosen.error().message};
+    eyes = std::move(*chosen);
     if (eyes.size() == 2) {
       auto parsed = render::parse_stereo_layout(options.stereo);
       if (!parsed) throw Failure{"--stereo: " + parsed.error().message};
@@ -179,8 +117,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   if (drawn->size() == 1) {
     images.emplace_back(options.output, std::move(drawn->front()));
   } else {
-    images.emplace_back(eye_output_path(options.output, "left"), std::move((*drawn)[0]));
-    images.emplace_back(eye_output_path(options.output, "right"), std::move((*drawn)[1]));
+    images.emplace_back(render::snapshot_eye_path(options.output, "left"), std::move((*drawn)[0]));
+    images.emplace_back(render::snapshot_eye_path(options.output, "right"), std::move((*drawn)[1]));
   }
   for (const auto& [path, image] : images) {
     if (Status written = render::write_png(path, image); !written) {

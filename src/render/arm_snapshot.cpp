@@ -9,14 +9,23 @@
 #include "telear/core/angles.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/render/arm_renderer.hpp"
+#include "telear/render/image_io.hpp"
 #include "telear/render/offscreen_target.hpp"
 #include "telear/render/overlay.hpp"
 #include "telear/render/scene_objects.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::render {
 namespace {
 
 constexpr double kStereoBaseline = 0.06;  // m, the seed's two cameras
+
+// "a.yaml,b.yaml" -> {"a.yaml", "b.yaml"}; without a comma, the text alone.
+std::vector<std::string> split_pair(const std::string& text) {
+  const size_t comma = text.find(',');
+  if (comma == std::string::npos) return {text};
+  return {text.substr(0, comma), text.substr(comma + 1)};
+}
 
 std::string size_text(int width, int height) {
   return std::to_string(width) + "x" + std::to_string(height);
@@ -48,6 +57,70 @@ std::vector<SnapshotEye> whole_arm_view(const core::RobotModel& model, const Eig
     eyes.push_back({name, c});
   }
   return eyes;
+}
+
+Result<std::vector<SnapshotEye>> snapshot_eyes(const std::string& camera, const std::string& eye,
+                                               const core::RobotModel& model,
+                                               const Eigen::VectorXd& q, int default_width,
+                                               int default_height) {
+  if (!eye.empty() && eye != "left" && eye != "right" && eye != "both") {
+    return Error{"--eye must be left, right or both, got '" + eye + "'"};
+  }
+  if (camera.empty()) {
+    auto eyes = whole_arm_view(model, q, default_width, default_height, eye == "both");
+    if (eye == "right") eyes[0].name = "right";
+    return eyes;
+  }
+  const std::vector<std::string> paths = split_pair(camera);
+  Result<vision::CameraFile> file = paths.size() == 2
+                                        ? vision::load_stereo_camera_files(paths[0], paths[1])
+                                        : vision::load_camera_file(paths[0]);
+  if (!file) return file.error();
+  std::vector<SnapshotEye> eyes;
+  const auto add = [&](const vision::CameraModel& c, bool has_pose, const std::string& name) {
+    if (!has_pose) {
+      return Status(Error{"camera file '" + camera + "': " + (name.empty() ? "the" : name) +
+                          " camera has no T_cam_base (register it to the robot first)"});
+    }
+    eyes.push_back({name, c});
+    return Status::Ok();
+  };
+  if (!file->is_stereo()) {
+    if (eye == "right" || eye == "both") {
+      return Error{"--eye " + eye + " needs a stereo camera file; '" + camera +
+                   "' holds one camera"};
+    }
+    if (Status s = add(file->left, file->left_has_pose, ""); !s) return s.error();
+    return eyes;
+  }
+  if (eye != "right") {
+    if (Status s = add(file->left, file->left_has_pose, "left"); !s) return s.error();
+  }
+  if (eye != "left") {
+    if (Status s = add(*file->right, file->right_has_pose, "right"); !s) return s.error();
+  }
+  return eyes;
+}
+
+Result<std::vector<core::Image>> read_snapshot_backgrounds(const std::string& background) {
+  std::vector<core::Image> images;
+  if (background.empty()) return images;
+  for (const std::string& path : split_pair(background)) {
+    if (path.empty()) return Error{"--background: empty file name in '" + background + "'"};
+    Result<core::Image> image = read_image(path, 3);
+    if (!image) return image.error();
+    images.push_back(std::move(image.value()));
+  }
+  return images;
+}
+
+std::string snapshot_eye_path(const std::string& output, const std::string& eye) {
+  const size_t dot = output.rfind('.');
+  const size_t slash = output.rfind('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
+    return output + "_" + eye;
+  }
+  return output.substr(0, dot) + "_" + eye + output.substr(dot);
 }
 
 Status check_snapshot_inputs(const std::vector<SnapshotEye>& eyes,

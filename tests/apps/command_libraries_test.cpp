@@ -231,6 +231,31 @@ TEST(ArmSnapshot, InputsAreCheckedBeforeAnyGlWork) {
   EXPECT_TRUE(render::check_snapshot_inputs(unequal, {}, render::StereoLayout::kSeparate));
 }
 
+TEST(ArmSnapshot, TheEyesTheBackgroundsAndTheOutputNames) {
+  const auto model = test::puma560();
+  const Eigen::VectorXd q = *model->named_configuration("qn");
+  auto right = render::snapshot_eyes("", "right", *model, q, 64, 48);
+  ASSERT_TRUE(right) << right.error().message;
+  ASSERT_EQ(right->size(), 1u);
+  EXPECT_EQ((*right)[0].name, "right");
+  auto both = render::snapshot_eyes("", "both", *model, q, 64, 48);
+  ASSERT_TRUE(both);
+  EXPECT_EQ(both->size(), 2u);
+  EXPECT_EQ(render::snapshot_eyes("", "middle", *model, q, 64, 48).error().message,
+            "--eye must be left, right or both, got 'middle'");
+  EXPECT_THAT(render::snapshot_eyes("/nonexistent.yaml", "", *model, q, 64, 48).error().message,
+              HasSubstr("/nonexistent.yaml"));
+  auto none = render::read_snapshot_backgrounds("");
+  ASSERT_TRUE(none);
+  EXPECT_TRUE(none->empty());
+  EXPECT_EQ(render::read_snapshot_backgrounds(",b.png").error().message,
+            "--background: empty file name in ',b.png'");
+  EXPECT_THAT(render::read_snapshot_backgrounds("/nonexistent.png").error().message,
+              HasSubstr("/nonexistent.png"));
+  EXPECT_EQ(render::snapshot_eye_path("out/view.png", "left"), "out/view_left.png");
+  EXPECT_EQ(render::snapshot_eye_path("out.d/view", "right"), "out.d/view_right");
+}
+
 // [SECTION] vision: the eval and register tables, calibration from image files
 
 TEST(AccuracyReportText, EveryFigureAndTheVerdict) {

@@ -31,6 +31,23 @@ struct SnapshotEye {
 std::vector<SnapshotEye> whole_arm_view(const core::RobotModel& model, const Eigen::VectorXd& q,
                                         int width, int height, bool stereo);
 
+// The eyes to draw, as `telear render --camera C --eye E` names them. `camera` empty: the
+// whole-arm view (two eyes for "both"; "right" names the single eye right); else a camera file
+// (mono or stereo) or "left.yaml,right.yaml", whose cameras must be registered (T_cam_base).
+// `eye`: "", "left", "right" or "both" ("": every camera of the file). Errors name the option
+// and the file: "--eye both needs a stereo camera file; 'c.yaml' holds one camera".
+Result<std::vector<SnapshotEye>> snapshot_eyes(const std::string& camera, const std::string& eye,
+                                               const core::RobotModel& model,
+                                               const Eigen::VectorXd& q, int default_width,
+                                               int default_height);
+
+// The video frames behind the arm: "" none, "f.png" for every eye, "left.png,right.png" one per
+// eye (PNG or JPEG, read as RGB). Errors name the file.
+Result<std::vector<core::Image>> read_snapshot_backgrounds(const std::string& background);
+
+// Where one eye of a `--stereo separate` snapshot goes: "out.png" -> "out_left.png".
+std::string snapshot_eye_path(const std::string& output, const std::string& eye);
+
 // What must hold before any GL work: each background (one for every eye, or one per eye) has
 // its eye's image size, and a composed stereo layout has two eyes of one size. Errors name
 // the sizes ("--background image is 320x240 but the left camera's image is 640x480").
