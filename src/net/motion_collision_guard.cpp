@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "telear/core/number_format.hpp"
+#include "telear/geometry/carried_objects.hpp"
 #include "telear/geometry/trajectory_collision.hpp"
 
 namespace telear::net {
@@ -17,23 +18,33 @@ std::string millimetres(double m) {
   return core::format_number(m * 1e3, "%.1f mm");
 }
 
-std::string describe(const geometry::PlanCollision& c, double time_s) {
-  return "at t=" + core::format_number(time_s, "%.2f s") + " link '" + c.body + "' touches " +
-         (c.self ? "link '" : "'") + c.other + "' (depth " + millimetres(c.depth_m) + ")";
+// The body in contact: an arm link, or the workspace object the gripper carries (its contacts
+// name it as the body, geometry/carried_objects.hpp).
+std::string body_name(const geometry::PlanCollision& c, const core::Workspace& workspace) {
+  const core::WorkspaceObject* held = workspace.first_graspable();
+  return (held && c.body == held->name ? "the carried '" : "link '") + c.body + "'";
+}
+
+std::string describe(const geometry::PlanCollision& c, double time_s,
+                     const core::Workspace& workspace) {
+  return "at t=" + core::format_number(time_s, "%.2f s") + " " + body_name(c, workspace) +
+         " touches " + (c.self ? "link '" : "'") + c.other + "' (depth " + millimetres(c.depth_m) +
+         ")";
 }
 
 // A jog may end no closer than this below its start's clearance and still count as moving
 // away (the checker samples the path, so a flat minimum reads a hair below the start).
 constexpr double kMovingAwayToleranceM = 1e-4;
 
-// The continuous check of `trajectory` from the gripper opening at the command (the caller
-// holds the guard's mutex: the checker caches poses).
+// The continuous check of `trajectory` from the gripper opening at the command, the object it
+// carries included (the caller holds the guard's mutex: the checker caches poses).
 Result<geometry::TrajectoryCheckReport> check_path(geometry::CollisionChecker& checker,
+                                                   const core::Workspace& workspace,
                                                    const core::Trajectory& trajectory,
                                                    double gripper_fraction) {
   geometry::TrajectoryCheckOptions options;
   options.initial_gripper_fraction = std::clamp(gripper_fraction, 0.0, 1.0);
-  auto report = geometry::check_trajectory(checker, trajectory, options);
+  auto report = geometry::check_trajectory_carrying(checker, trajectory, workspace, options);
   if (!report) return Error{"collision check failed: " + report.error().message};
   return report;
 }
@@ -42,31 +53,38 @@ Result<geometry::TrajectoryCheckReport> check_path(geometry::CollisionChecker& c
 
 Result<std::unique_ptr<MotionCollisionGuard>> MotionCollisionGuard::create(
     const core::RobotDescription& description, const core::Workspace& workspace,
-    std::string workspace_yaml, double safety_margin_m) {
+    std::string workspace_yaml, double safety_margin_m, geometry::MeshCollision mesh_collision) {
   if (!(safety_margin_m >= 0.0 && std::isfinite(safety_margin_m))) {
     return Error{"safety margin " + core::format_number(safety_margin_m, "%g") +
                  " m must be a finite number >= 0"};
   }
-  auto checker = geometry::make_collision_checker(description, workspace);
+  // The graspable objects are the task's targets, not obstacles: the fingers close on the box
+  // at the grasp on purpose. A carried one is checked from its grasp to its release.
+  geometry::CollisionSetupOptions setup;
+  setup.mesh_collision = mesh_collision;
+  auto checker =
+      geometry::make_collision_checker(description, geometry::static_obstacles(workspace), setup);
   if (!checker) return Error{"collision checker: " + checker.error().message};
   return std::unique_ptr<MotionCollisionGuard>(new MotionCollisionGuard(
-      std::move(checker).value(), std::move(workspace_yaml), safety_margin_m));
+      std::move(checker).value(), workspace, std::move(workspace_yaml), safety_margin_m));
 }
 
 MotionCollisionGuard::MotionCollisionGuard(geometry::CollisionChecker checker,
-                                           std::string workspace_yaml, double margin_m)
+                                           core::Workspace workspace, std::string workspace_yaml,
+                                           double margin_m)
     : checker_(std::move(checker)),
+      workspace_(std::move(workspace)),
       workspace_yaml_(std::move(workspace_yaml)),
       margin_m_(margin_m) {}
 
 Status MotionCollisionGuard::check_trajectory(const core::Trajectory& trajectory,
                                               double gripper_fraction) {
   std::lock_guard lock(mutex_);
-  auto report = check_path(checker_, trajectory, gripper_fraction);
+  auto report = check_path(checker_, workspace_, trajectory, gripper_fraction);
   if (!report) return report.error();
   if (!report->collision_free()) {
     const auto& c = report->collisions.front();
-    return Error{"trajectory collides: " + describe(c, c.time_s)};
+    return Error{"trajectory collides: " + describe(c, c.time_s, workspace_)};
   }
   return Status::Ok();
 }
@@ -88,7 +106,7 @@ Status MotionCollisionGuard::check_samples(const core::RobotModel& model,
   auto trajectory = core::Trajectory::create(model, std::move(waypoints), timing);
   if (!trajectory) return Error{"collision check failed: " + trajectory.error().message};
   std::lock_guard lock(mutex_);
-  auto report = check_path(checker_, *trajectory, gripper_fraction);
+  auto report = check_path(checker_, workspace_, *trajectory, gripper_fraction);
   if (!report) return report.error();
   if (report->collision_free()) return Status::Ok();
   const auto& c = report->collisions.front();
@@ -101,7 +119,7 @@ Status MotionCollisionGuard::check_samples(const core::RobotModel& model,
   } else if (k < samples.times.size()) {
     time_s = samples.times[k];
   }
-  return Error{"trajectory collides: " + describe(c, time_s)};
+  return Error{"trajectory collides: " + describe(c, time_s, workspace_)};
 }
 
 Status MotionCollisionGuard::check_jog(const core::RobotModel& model, const Eigen::VectorXd& q_from,
@@ -109,12 +127,12 @@ Status MotionCollisionGuard::check_jog(const core::RobotModel& model, const Eige
   auto trajectory = core::Trajectory::create(model, {{q_from}, {q_to}});
   if (!trajectory) return Error{"collision check failed: " + trajectory.error().message};
   std::lock_guard lock(mutex_);
-  auto report = check_path(checker_, *trajectory, gripper_fraction);
+  auto report = check_path(checker_, workspace_, *trajectory, gripper_fraction);
   if (!report) return report.error();
   if (!report->collision_free()) {
     const auto& c = report->collisions.front();
-    return Error{"jog collides: link '" + c.body + "' would touch " + (c.self ? "link '" : "'") +
-                 c.other + "' (depth " + millimetres(c.depth_m) + ")"};
+    return Error{"jog collides: " + body_name(c, workspace_) + " would touch " +
+                 (c.self ? "link '" : "'") + c.other + "' (depth " + millimetres(c.depth_m) + ")"};
   }
   const geometry::PlanClearance& path = report->min_workspace_clearance;
   if (path.distance_m >= margin_m_) return Status::Ok();

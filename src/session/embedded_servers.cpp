@@ -4,6 +4,7 @@
 #include <system_error>
 
 #include "telear/core/robot_loader.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/net/random_token.hpp"
 #include "telear/sim/rig_robot.hpp"
 #include "telear/sim/sim_rig_source.hpp"
@@ -14,9 +15,20 @@ namespace telear::session {
 Status serve_robot(EmbeddedServersOptions& options, const core::RobotDescription& description) {
   options.urdf = core::urdf_text_for_clients(description);
   options.tip_link = description.tip_link;
+  // The robot server is the collision authority in the robot's shipped workspace, as `telear
+  // robot-server --workspace` is (without one, nothing: self-collision alone would refuse the
+  // PUMA's everyday poses, docs/collision.md). The graspable box is no obstacle to it: the
+  // guard carries it from the grasp, as the session's validation does.
+  std::error_code ec;
+  if (options.workspace_file.empty()) {
+    const std::string workspace = core::default_workspace_file(description.name);
+    if (std::filesystem::exists(workspace, ec)) options.workspace_file = workspace;
+  }
+  if (!options.workspace_file.empty() && !options.robot_description) {
+    options.robot_description = description;
+  }
   if (!options.rig.empty()) return Status::Ok();
   const std::string rig = sim::default_rig_file(description.name);
-  std::error_code ec;
   if (!std::filesystem::exists(rig, ec)) {
     return Error{"the robot '" + description.name + "' has no simulated rig " + rig +
                  " (shipped: puma560, ur6, arm7; docs/simulation.md says how to add one)"};

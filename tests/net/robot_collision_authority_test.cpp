@@ -2,6 +2,8 @@
 // real gRPC on loopback: the simulated PUMA 560 (primitive collision shapes) in its shipped
 // workspace (data/workspaces/puma560_table.yaml). Trajectories and plans through the table are
 // refused with the contact named and nothing moves; jogs toward it stop before the margin.
+// The shipped 7-joint arm in its workspace (data/workspaces/arm7_table.yaml: a tray and the box
+// on it): the fingers closing on the box are no contact, the box carried through the tray is.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,13 +11,17 @@
 #include <chrono>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <thread>
+#include <vector>
 
 #include "robot_test_support.hpp"
+#include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/motion_command.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/collision_checker.hpp"
+#include "telear/geometry/trajectory_collision.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/plan_message.hpp"
 #include "telear/net/robot_client.hpp"
@@ -24,6 +30,7 @@ namespace telear::net::test {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 const core::RobotDescription& puma() {
   static const core::RobotDescription description = [] {
@@ -268,6 +275,158 @@ TEST(RobotCollisionAuthority, AMalformedWorkspaceFailsServerCreation) {
   no_description.workspace_file = table_file();
   EXPECT_THAT(no_description.validate().error().message,
               HasSubstr("needs the robot's description"));
+}
+
+// The shipped 7-joint arm (URDF with meshes) and a pick-and-place in its workspace, as the
+// demo does it: the tool pointing down at the box on the tray (the grip centre is the tool
+// centre point), closed on it at the grasp, carried 0.15 m along y and put down on the tray.
+const core::RobotDescription& arm7() {
+  static const core::RobotDescription description = [] {
+    auto d = core::load_robot_description({"arm7", "", {}});
+    EXPECT_TRUE(d) << d.error().message;
+    return *d;
+  }();
+  return description;
+}
+
+Eigen::VectorXd arm7_ready() {
+  const auto ready = arm7().model->named_configuration("ready");
+  EXPECT_TRUE(ready.has_value());
+  return ready ? *ready : Eigen::VectorXd::Zero(arm7().model->dof());
+}
+
+const Eigen::Vector3d kBox(0.5, -0.3, 0.045);  // its centre; 50 mm cube on the tray (top z = 0.02)
+const Eigen::Vector3d kPlace(0.5, -0.15, 0.045);
+const Eigen::Vector3d kUp(0.0, 0.0, 0.12);
+
+struct TaskPose {
+  Eigen::Vector3d grip;
+  std::optional<double> gripper;  // commanded on arrival
+};
+
+// The joint waypoints through `poses` (IK from the previous one), from the ready pose.
+std::vector<core::JointWaypoint> pick_and_place(const std::vector<TaskPose>& poses) {
+  const core::RobotModel& model = *arm7().model;
+  Eigen::Matrix3d down;
+  down.col(0) = Eigen::Vector3d::UnitX();
+  down.col(1) = -Eigen::Vector3d::UnitY();
+  down.col(2) = -Eigen::Vector3d::UnitZ();
+  std::vector<core::JointWaypoint> waypoints{{arm7_ready()}};
+  for (const TaskPose& pose : poses) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = down;
+    T.translation() = pose.grip;
+    auto ik = core::solve_ik_nearest(model, T, waypoints.back().q);
+    EXPECT_TRUE(ik) << pose.grip.transpose() << ": " << ik.error().message;
+    if (!ik) return {};
+    waypoints.emplace_back(ik->q, pose.gripper ? 1.2 : 0.0, pose.gripper);
+  }
+  return waypoints;
+}
+
+std::vector<TaskPose> demo_like_task(double carry_z) {
+  return {{kBox + kUp, 1.0},
+          {kBox, 0.0},  // the fingers close on the box
+          {kBox + kUp, std::nullopt},
+          {Eigen::Vector3d(kPlace.x(), kPlace.y(), carry_z), std::nullopt},
+          {kPlace, 1.0},  // put down: the fingers open
+          {kPlace + kUp, std::nullopt}};
+}
+
+Result<std::unique_ptr<RobotServer>> create_arm7_server() {
+  RobotServerOptions options = server_options();
+  options.robot_description = arm7();
+  options.workspace_file = core::default_workspace_file("arm7");
+  sim::SimRobotDriverOptions driver_options;
+  driver_options.robot.initial_q = arm7_ready();
+  auto driver = sim::SimRobotDriver::create(arm7().model, driver_options);
+  EXPECT_TRUE(driver) << driver.error().message;
+  return RobotServer::create(std::move(driver).value(), std::move(options));
+}
+
+grpc::Status execute_plan(v1::RobotService::Stub& stub, const v1::Lease& lease,
+                          const std::string& id, std::vector<core::JointWaypoint> waypoints) {
+  auto trajectory = core::Trajectory::create(*arm7().model, std::move(waypoints));
+  EXPECT_TRUE(trajectory) << trajectory.error().message;
+  if (!trajectory) return grpc::Status(grpc::StatusCode::INTERNAL, "no trajectory");
+  v1::ExecutePlanRequest request;
+  request.set_lease_id(lease.lease_id());
+  EXPECT_TRUE(fill_plan_message(id, *trajectory, *request.mutable_plan()).ok());
+  v1::ExecutePlanResponse response;
+  return stub.ExecutePlan(context().get(), request, &response);
+}
+
+TEST(RobotCollisionAuthority, TheFingersClosingOnTheBoxAtTheGraspAreAccepted) {
+  auto server = create_arm7_server();
+  ASSERT_TRUE(server) << server.error().message;
+  auto stub = stub_for(**server);
+  const v1::Lease lease = acquire(*stub);
+  const std::vector<core::JointWaypoint> waypoints =
+      pick_and_place(demo_like_task(kPlace.z() + kUp.z()));
+  ASSERT_EQ(waypoints.size(), 7u);
+  // Why the guard leaves the box out of its static scene: with the box as an obstacle the
+  // fingers closing on it at the grasp are a contact.
+  {
+    auto workspace = geometry::load_workspace(core::default_workspace_file("arm7"));
+    ASSERT_TRUE(workspace) << workspace.error().message;
+    auto checker = geometry::make_collision_checker(arm7(), *workspace);
+    ASSERT_TRUE(checker) << checker.error().message;
+    auto trajectory = core::Trajectory::create(*arm7().model, waypoints);
+    ASSERT_TRUE(trajectory) << trajectory.error().message;
+    auto report = geometry::check_trajectory(*checker, *trajectory);
+    ASSERT_TRUE(report) << report.error().message;
+    ASSERT_FALSE(report->collision_free());
+    EXPECT_EQ(report->collisions.front().other, "box");
+  }
+  const grpc::Status status = execute_plan(*stub, lease, "pick-and-place", waypoints);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  // It runs to the end: the arm comes to rest at the retreat.
+  const Eigen::VectorXd retreat = waypoints.back().q;
+  const v1::RobotState rest = stream_until(
+      *stub,
+      [&retreat](const v1::RobotState& s) {
+        return s.mode() == v1::ROBOT_MODE_IDLE && (q_of(s) - retreat).cwiseAbs().maxCoeff() < 1e-3;
+      },
+      30.0);
+  EXPECT_LT((q_of(rest) - retreat).cwiseAbs().maxCoeff(), 1e-3);
+}
+
+TEST(RobotCollisionAuthority, TheBoxCarriedThroughTheTrayIsRefusedNamingIt) {
+  auto server = create_arm7_server();
+  ASSERT_TRUE(server) << server.error().message;
+  auto stub = stub_for(**server);
+  const v1::Lease lease = acquire(*stub);
+  // Carried at the grip centre 35 mm above the bench: the box's bottom (25 mm below the grip)
+  // 10 mm inside the tray, the fingers' tips (5 mm below) still 10 mm above it.
+  const grpc::Status status =
+      execute_plan(*stub, lease, "box-through-tray", pick_and_place(demo_like_task(0.035)));
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("trajectory 'box-through-tray' rejected: "
+                                                "trajectory collides: at t="));
+  EXPECT_THAT(status.error_message(), HasSubstr("the carried 'box' touches 'tray' (depth "));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_LT((q_of(read_state(*stub)) - arm7_ready()).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(RobotCollisionAuthority, WithoutTheBoxTheArmItselfIsStillCheckedAgainstTheTray) {
+  auto server = create_arm7_server();
+  ASSERT_TRUE(server) << server.error().message;
+  auto stub = stub_for(**server);
+  const v1::Lease lease = acquire(*stub);
+  // The box is no obstacle, the tray still is: the fingers driven 20 mm into it with the
+  // gripper open (nothing grasped) are refused, a link named.
+  const std::vector<TaskPose> into_tray = {
+      {kBox + kUp, 1.0}, {Eigen::Vector3d(kBox.x(), kBox.y(), 0.0), std::nullopt}};
+  const grpc::Status status =
+      execute_plan(*stub, lease, "fingers-into-tray", pick_and_place(into_tray));
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr(" link '"));
+  EXPECT_THAT(status.error_message(), HasSubstr("touches 'tray' (depth "));
+  EXPECT_THAT(status.error_message(), Not(HasSubstr("'box'")));
+  // GetInfo hands clients the whole workspace, the box included.
+  v1::RobotInfo info;
+  ASSERT_TRUE(stub->GetInfo(context().get(), v1::GetInfoRequest(), &info).ok());
+  EXPECT_THAT(info.workspace_yaml(), HasSubstr("graspable: true"));
 }
 
 }  // namespace

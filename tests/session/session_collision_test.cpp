@@ -11,7 +11,9 @@
 #include "telear/geometry/collision_checker.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
+#include "telear/net/motion_collision_guard.hpp"
 #include "telear/session/demo_task.hpp"
+#include "telear/session/embedded_servers.hpp"
 #include "telear/session/ghost_clearance.hpp"
 #include "telear/session/plan_collision.hpp"
 #include "telear/session/session.hpp"
@@ -257,6 +259,13 @@ TEST(CarriedObject, TheBoxIsHeldFromTheGraspToThePlaceAndRestingOnTheTrayIsNoCon
   const ValidationReport report = task.session->validate_plan();
   EXPECT_TRUE(report.ok()) << report.summary();
   EXPECT_THAT(report.summary(), Not(HasSubstr("box hits")));
+  // The robot server's guard decides the same (the one implementation): it accepts the plan,
+  // the fingers closing on the box at the grasp included.
+  auto guard = net::MotionCollisionGuard::create(*task.session->options().description, workspace,
+                                                 "", net::kDefaultSafetyMarginM);
+  ASSERT_TRUE(guard) << guard.error().message;
+  const Status accepted = (*guard)->check_trajectory(*trajectory, 1.0);
+  EXPECT_TRUE(accepted) << accepted.error().message;
 
   // Without a graspable object, or with the gripper never closing, nothing is carried.
   core::Workspace bare = workspace;
@@ -312,6 +321,32 @@ TEST(CarriedObject, APlanThatCarriesTheBoxThroughTheTrayIsRefusedNamingTheBox) {
   EXPECT_EQ(static_cast<std::size_t>(box->segment), carry - 1);
   // The session refuses to execute it.
   EXPECT_FALSE(session.execute_plan().ok());
+  // So does the robot server's guard, naming the carried box.
+  auto guard = net::MotionCollisionGuard::create(
+      *session.options().description, *session.options().workspace, "", net::kDefaultSafetyMarginM);
+  ASSERT_TRUE(guard) << guard.error().message;
+  const Status refused = (*guard)->check_trajectory(*trajectory, 1.0);
+  ASSERT_FALSE(refused);
+  EXPECT_THAT(refused.error().message, HasSubstr("trajectory collides: at t="));
+  EXPECT_THAT(refused.error().message, HasSubstr("the carried 'box' touches 'tray' (depth "));
+}
+
+// The embedded servers of `telear demo` and `telear console` are the collision authority in
+// the robot's shipped workspace, as `telear robot-server --workspace` is.
+TEST(EmbeddedServersCollision, ServeRobotMakesTheRobotServerTheAuthorityInTheShippedWorkspace) {
+  auto robot = geometry::load_robot_assets({"arm7", {}, {}});
+  ASSERT_TRUE(robot) << robot.error().message;
+  EmbeddedServersOptions options;
+  ASSERT_TRUE(serve_robot(options, robot->description).ok());
+  EXPECT_EQ(options.workspace_file, core::default_workspace_file("arm7"));
+  ASSERT_TRUE(options.robot_description.has_value());
+  EXPECT_EQ(options.robot_description->name, "arm7");
+
+  // A workspace the caller chose is kept.
+  EmbeddedServersOptions chosen;
+  chosen.workspace_file = core::default_workspace_file("ur6");
+  ASSERT_TRUE(serve_robot(chosen, robot->description).ok());
+  EXPECT_EQ(chosen.workspace_file, core::default_workspace_file("ur6"));
 }
 
 }  // namespace

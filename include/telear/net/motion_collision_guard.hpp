@@ -1,12 +1,19 @@
 #pragma once
 // The robot server's collision authority (docs/network.md, "Collisions": the server holds
-// the workspace and is the collision authority): every trajectory, plan and jog is checked against the workspace
-// and the arm itself before the driver sees it, so a client with a stale or missing
+// the workspace and is the collision authority): every trajectory, plan and jog is checked against
+// the workspace and the arm itself before the driver sees it, so a client with a stale or missing
 // workspace cannot drive the arm into the table.
 //
 //   trajectories and plans: any contact along the path (geometry/trajectory_collision.hpp,
 //     continuous) is refused: "trajectory collides: at t=1.23 s link 'link5' touches
 //     'table_top' (depth 4.2 mm)".
+//   the graspable object: not an obstacle (the fingers close on it at the grasp on purpose);
+//     where a command's gripper closes on it, it is carried from there to where the gripper
+//     opens and checked against the scene and the arm, as the session's validation does (the
+//     one implementation, geometry/carried_objects.hpp): "... the carried 'box' touches
+//     'table_top' ...", resting contacts up to 1 mm where it is picked or placed excepted.
+//     The guard picks it where the workspace file puts it: it does not follow where the
+//     arm has put it since (a box placed elsewhere and picked again is not seen carried).
 //   jogs: a contact, or a path that brings a link closer to a workspace object than the
 //     safety margin, is refused, naming the link, the object and the clearance. A jog that
 //     starts inside the margin may still move away (its path's clearance never drops below
@@ -37,7 +44,8 @@ class MotionCollisionGuard {
   // is what GetInfo hands to clients. Errors: the checker could not be built (names why).
   static Result<std::unique_ptr<MotionCollisionGuard>> create(
       const core::RobotDescription& description, const core::Workspace& workspace,
-      std::string workspace_yaml, double safety_margin_m);
+      std::string workspace_yaml, double safety_margin_m,
+      geometry::MeshCollision mesh_collision = geometry::MeshCollision::kConvexParts);
 
   const std::string& workspace_yaml() const { return workspace_yaml_; }
   double safety_margin_m() const { return margin_m_; }
@@ -53,11 +61,12 @@ class MotionCollisionGuard {
                    const Eigen::VectorXd& q_to, double gripper_fraction);
 
  private:
-  MotionCollisionGuard(geometry::CollisionChecker checker, std::string workspace_yaml,
-                       double margin_m);
+  MotionCollisionGuard(geometry::CollisionChecker checker, core::Workspace workspace,
+                       std::string workspace_yaml, double margin_m);
 
   std::mutex mutex_;
-  geometry::CollisionChecker checker_;
+  geometry::CollisionChecker checker_;  // the static scene: the graspable objects left out
+  core::Workspace workspace_;           // all of it: the graspable object is picked from it
   std::string workspace_yaml_;
   double margin_m_ = kDefaultSafetyMarginM;
 };

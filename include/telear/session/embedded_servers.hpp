@@ -37,15 +37,17 @@ struct EmbeddedServersOptions {
   double noise_sigma = 1.0;  // grey levels
   std::uint64_t seed = 1;
   // The robot server's collision authority (net/robot_server.hpp): the robot checked and its
-  // workspace (empty: self-collision only); neither: no checks. serve_robot does not set them
-  // yet: the demo's grasp touches the box, which the server's static workspace would refuse.
+  // workspace (empty: self-collision only); neither: no checks. serve_robot sets both for the
+  // robot's shipped workspace.
   std::optional<core::RobotDescription> robot_description;
   std::string workspace_file;
 };
 
 // Options that serve this robot: its URDF and tip on GetInfo (so that a client draws the same
-// arm) and, unless `rig` is set, its shipped simulated rig (data/rigs/NAME_rig.yaml). An
-// error naming the robot when it has no rig.
+// arm); the robot server as the collision authority in its shipped workspace
+// (data/workspaces/NAME_table.yaml, unless `workspace_file` is set; none when there is no such
+// file), with the description; and, unless `rig` is set, its shipped simulated rig
+// (data/rigs/NAME_rig.yaml). An error naming the robot when it has no rig.
 Status serve_robot(EmbeddedServersOptions& options, const core::RobotDescription& description);
 
 class EmbeddedServers {

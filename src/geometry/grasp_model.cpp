@@ -1,8 +1,8 @@
-#include "telear/sim/grasp_model.hpp"
+#include "telear/geometry/grasp_model.hpp"
 
 #include <algorithm>
 
-namespace telear::sim {
+namespace telear::geometry {
 
 Result<GraspModel> GraspModel::create(core::Workspace workspace, GraspModelOptions options) {
   const core::WorkspaceObject* object = workspace.first_graspable();
@@ -42,4 +42,4 @@ double GraspModel::rendered_opening(double opening_m) const {
   return held_ ? std::max(opening_m, width_m_) : opening_m;
 }
 
-}  // namespace telear::sim
+}  // namespace telear::geometry
