@@ -1,11 +1,13 @@
 #include "apps/capture_command.hpp"
 
+#include <opencv2/imgcodecs.hpp>
 #include <ostream>
 
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/net/bearer_auth.hpp"
 #include "telear/session/registration_capture.hpp"
+#include "telear/vision/capture_observations.hpp"
 
 namespace telear::cli {
 namespace {
@@ -77,6 +79,17 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
                                                   });
   if (!result) return fail(err, result.error().message, 1);
   for (const std::string& note : result->notes) out << "note: " << note << "\n";
+  // Where the marker was seen in each eye, for the operator to judge the spread.
+  auto detected = vision::detect_capture_targets(options.output, result->capture, *marker);
+  if (detected) {
+    const std::string coverage = options.output + "/coverage.png";
+    const auto& camera = result->cameras.left;
+    if (cv::imwrite(coverage, vision::coverage_image(*detected, camera.width, camera.height))) {
+      out << "coverage: the marker found at " << detected->left_found << " (left) and "
+          << detected->right_found << " (right) of " << result->capture.poses.size() << " poses; "
+          << coverage << "\n";
+    }
+  }
   out << "wrote " << options.output << "/capture.yaml (" << result->capture.poses.size()
       << " poses); register with: telear register --captures " << options.output << " --robot "
       << options.robot_spec().name_or_path << " -o registered.yaml\n";

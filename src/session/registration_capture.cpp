@@ -293,6 +293,7 @@ Result<RegistrationCaptureResult> capture_for_registration(
   } release{robot, !lease_was_held};
 
   RegistrationCaptureResult out;
+  out.cameras = info->cameras;
   out.capture.robot = model.name();
   out.capture.target = "aruco:" + options.marker.dictionary + ":" +
                        std::to_string(options.marker.id) + ":" +

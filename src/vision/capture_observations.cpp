@@ -1,5 +1,6 @@
 #include "telear/vision/capture_observations.hpp"
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "telear/core/number_format.hpp"
@@ -91,6 +92,40 @@ Result<CaptureObservations> detect_capture_targets(const std::string& directory,
     }
     out.observations.views.push_back(std::move(view));
   }
+  return out;
+}
+
+cv::Mat coverage_image(const CaptureObservations& detected, int width, int height) {
+  cv::Mat out(height, 2 * width, CV_8UC3, cv::Scalar(40, 40, 40));
+  for (int eye = 0; eye < 2; ++eye) {
+    cv::Mat half = out(cv::Rect(eye * width, 0, width, height));
+    std::vector<std::pair<std::size_t, std::vector<cv::Point>>> seen;
+    for (std::size_t v = 0; v < detected.observations.views.size(); ++v) {
+      const HandEyeView& view = detected.observations.views[v];
+      const auto& pixels = eye == 0 ? view.left : view.right;
+      if (pixels.size() < 3) continue;
+      std::vector<cv::Point> polygon;
+      for (const TargetPixel& p : pixels) {
+        polygon.emplace_back(static_cast<int>(std::lround(p.pixel.x())),
+                             static_cast<int>(std::lround(p.pixel.y())));
+      }
+      seen.emplace_back(v, std::move(polygon));
+    }
+    // Translucent fills first, so overlapping markers show brighter, then crisp outlines.
+    for (const auto& [v, polygon] : seen) {
+      cv::Mat fill = half.clone();
+      cv::fillConvexPoly(fill, polygon, cv::Scalar(60, 200, 60), cv::LINE_AA);
+      cv::addWeighted(fill, 0.45, half, 0.55, 0.0, half);
+    }
+    for (const auto& [v, polygon] : seen) {
+      cv::polylines(half, polygon, true, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+      cv::putText(half, std::to_string(v), polygon.front() + cv::Point(2, -3),
+                  cv::FONT_HERSHEY_SIMPLEX, 0.35, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+    }
+    cv::putText(half, eye == 0 ? "left" : "right", cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.6,
+                cv::Scalar(220, 220, 220), 1, cv::LINE_AA);
+  }
+  cv::line(out, cv::Point(width, 0), cv::Point(width, height - 1), cv::Scalar(128, 128, 128));
   return out;
 }
 

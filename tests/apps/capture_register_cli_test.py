@@ -13,6 +13,7 @@ rig's true cameras (its JSON). Bad input exits 2 with one line naming the proble
 import json
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -72,10 +73,15 @@ def main():
                              "--token-file", token, "--arm", "puma560", "--poses", "auto:10",
                              "--frames", "2", "--speed", "1", "--settle", "0.1", "-o",
                              captures])
-            if r.returncode != 0 or "pose 1/10" not in r.stdout:
+            coverage = os.path.join(captures, "coverage.png")
+            if r.returncode != 0 or "pose 1/10" not in r.stdout or \
+                    "coverage: the marker found at" not in r.stdout or \
+                    not os.path.getsize(coverage) > 1000:
                 failures.append(f"capture: status {r.returncode}, {r.stdout!r} {r.stderr!r}")
             else:
                 print(r.stdout)
+                if os.environ.get("TELEAR_TEST_OUTPUT"):  # to look at the coverage image
+                    shutil.copy(coverage, os.environ["TELEAR_TEST_OUTPUT"])
 
             # Bad input: one line, exit 2.
             bad = run(telear, ["capture", "--robot", robot_address, "--vision", vision_address,

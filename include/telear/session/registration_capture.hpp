@@ -63,8 +63,9 @@ struct CaptureProgress {
 };
 
 struct RegistrationCaptureResult {
-  vision::CaptureSet capture;      // as written to DIR/capture.yaml
-  std::vector<std::string> notes;  // skipped poses and why
+  vision::CaptureSet capture;         // as written to DIR/capture.yaml
+  vision::StereoCameraModel cameras;  // the vision server's calibration
+  std::vector<std::string> notes;     // skipped poses and why
 };
 
 // The robot client must be started; the lease is taken here (and released at the end) unless

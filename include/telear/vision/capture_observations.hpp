@@ -10,6 +10,7 @@
 // pose whose frames disagree by more than max_frame_spread_px in an eye keeps no corners in
 // that eye and is named (something moved during the capture).
 
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
@@ -40,5 +41,11 @@ Result<CaptureObservations> detect_capture_targets(const std::string& directory,
                                                    const CaptureSet& capture,
                                                    const core::MarkerMount& marker,
                                                    const CaptureDetectionOptions& options = {});
+
+// Where the marker has been seen in each eye: the two eyes side by side (each width x height,
+// the cameras' image size), every pose's detected marker drawn as a filled quadrilateral
+// (translucent, so overlaps show density) with its outline and pose number, and the
+// uncovered image areas left dark -- what to capture next. BGR, for cv::imwrite.
+cv::Mat coverage_image(const CaptureObservations& detected, int width, int height);
 
 }  // namespace telear::vision
