@@ -19,10 +19,12 @@
 #include "telear/core/number_format.hpp"
 #include "telear/core/pose.hpp"
 #include "telear/core/pose_text.hpp"
+#include "telear/core/robot_description.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/geometry/allowed_collisions.hpp"
 #include "telear/render/arm_snapshot.hpp"
 #include "telear/session/plan_check_report.hpp"
+#include "telear/session/simulated_robot_server.hpp"
 #include "telear/session/vision_source.hpp"
 #include "telear/vision/accuracy_check.hpp"
 #include "telear/vision/image_calibration.hpp"
@@ -367,6 +369,32 @@ TEST(VisionSource, EachKindOpensOrSaysWhatIsWrong) {
   bad.robot_server = "127.0.0.1:1";
   EXPECT_EQ(session::open_vision_source(bad).error().message,
             "--robot-server is for --source sim (the simulated rig follows the robot)");
+}
+
+// [SECTION] session: telear robot-server's server
+
+TEST(SimulatedRobotServer, StartsOnAnEphemeralPortOrSaysWhyNot) {
+  auto description = core::load_robot_description({"puma560", "", {}});
+  ASSERT_TRUE(description) << description.error().message;
+  session::SimulatedRobotServerOptions options;
+  options.server.listen_address = "127.0.0.1:0";
+  options.server.token = "t";
+  options.heartbeat_ns = 5'000'000'000;  // beyond the default bounds: they are widened
+  options.initial_q = *description->model->named_configuration("qr");
+  auto server = session::start_simulated_robot_server(*description, options);
+  ASSERT_TRUE(server) << server.error().message;
+  EXPECT_THAT((*server)->address(), StartsWith("127.0.0.1:"));
+  EXPECT_NE((*server)->address(), "127.0.0.1:0");
+  (*server)->shutdown();
+
+  options.initial_q[2] = 3.0;  // beyond the elbow's limit
+  EXPECT_THAT(session::start_simulated_robot_server(*description, options).error().message,
+              HasSubstr("joint 3"));
+  options.initial_q = *description->model->named_configuration("qr");
+  options.check_collisions = true;
+  options.server.workspace_file = "/nonexistent/ws.yaml";
+  EXPECT_THAT(session::start_simulated_robot_server(*description, options).error().message,
+              HasSubstr("/nonexistent/ws.yaml"));
 }
 
 // [SECTION] geometry: the allowed-collision block is read through core's YAML reader
