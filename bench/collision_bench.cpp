@@ -73,8 +73,11 @@ struct Arm {
                              "collision checker");
       return Arm{std::move(checker), exact.q, exact.plan};
     }
-    auto checker =
-        or_exit(geometry::make_collision_checker(description, workspace), "collision checker");
+    // The meshes' triangles (convex parts are the default: the _hulls cases).
+    geometry::CollisionSetupOptions exact_options;
+    exact_options.mesh_collision = geometry::MeshCollision::kExact;
+    auto checker = or_exit(geometry::make_collision_checker(description, workspace, exact_options),
+                           "collision checker");
     // Seeded random configurations without contact: the inputs of the single checks, and the
     // waypoints of the plan (named configurations first, so the plan starts at the arm's
     // home pose).

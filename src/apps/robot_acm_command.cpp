@@ -22,6 +22,8 @@ int run_robot_acm(const RobotAcmOptions& options, std::ostream& out, std::ostrea
   setup.allowed.samples = options.samples;
   setup.allowed.seed = options.seed;
   setup.allowed.allow_never = options.never;
+  // The matrix is the links' own, stored for both checks: found on the meshes, not the hulls.
+  setup.mesh_collision = geometry::MeshCollision::kExact;
   auto matrix = geometry::sample_allowed_collisions(*description, setup);
   if (!matrix) return fail(matrix.error().message);
   const std::string block =

@@ -10,6 +10,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "telear/core/kinematics.hpp"
@@ -271,8 +272,11 @@ struct CollisionChecker::Impl {
         hit = true;
         for (std::size_t i = 0; i < result.numContacts(); ++i) {
           const fcl::Contactd& c = result.getContact(i);
-          if (c.penetration_depth > depth) {
-            depth = c.penetration_depth;
+          // FCL's own GJK/EPA (GST_INDEP, the hulls' solver) reports the depth negated
+          // (-epa.depth): the magnitude is the depth either way.
+          const double d = std::abs(c.penetration_depth);
+          if (d > depth) {
+            depth = d;
             point = c.pos;
           }
         }

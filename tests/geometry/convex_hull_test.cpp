@@ -106,12 +106,19 @@ TEST(ConvexHull, AMeshSplitsIntoItsConnectedParts) {
 TEST(ConvexHull, TheConvexPartsOfTheShippedArmAreConservative) {
   auto d = core::load_robot_description({"ur6", "", {}});
   ASSERT_TRUE(d) << d.error().message;
-  auto exact = make_collision_checker(*d, core::Workspace{});
+  CollisionSetupOptions exact_options;
+  exact_options.mesh_collision = MeshCollision::kExact;
+  auto exact = make_collision_checker(*d, core::Workspace{}, exact_options);
   ASSERT_TRUE(exact) << exact.error().message;
   CollisionSetupOptions options;
   options.mesh_collision = MeshCollision::kConvexParts;
   auto hulls = make_collision_checker(*d, core::Workspace{}, options);
   ASSERT_TRUE(hulls) << hulls.error().message;
+  // Convex parts are the default (validation everywhere uses them); kExact is the way back.
+  auto by_default = make_collision_checker(*d, core::Workspace{});
+  ASSERT_TRUE(by_default) << by_default.error().message;
+  EXPECT_EQ(by_default->robot().bodies.size(), hulls->robot().bodies.size());
+  EXPECT_EQ(by_default->pairs().size(), hulls->pairs().size());
   // Split into parts: one body per part, of the link's name; pairs of different links only.
   EXPECT_GT(hulls->robot().bodies.size(), exact->robot().bodies.size());
   EXPECT_GT(hulls->pairs().size(), exact->pairs().size());
@@ -168,7 +175,9 @@ TEST(ConvexHull, APlanIntoTheTrayCollidesWithTheHullsNoLater) {
   ASSERT_TRUE(d) << d.error().message;
   auto workspace = load_workspace(core::default_workspace_file("ur6"));
   ASSERT_TRUE(workspace) << workspace.error().message;
-  auto exact = make_collision_checker(*d, *workspace);
+  CollisionSetupOptions exact_options;
+  exact_options.mesh_collision = MeshCollision::kExact;
+  auto exact = make_collision_checker(*d, *workspace, exact_options);
   ASSERT_TRUE(exact) << exact.error().message;
   CollisionSetupOptions options;
   options.mesh_collision = MeshCollision::kConvexParts;
