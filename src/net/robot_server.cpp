@@ -90,7 +90,8 @@ Result<std::unique_ptr<RobotServer>> RobotServer::create(std::unique_ptr<core::R
       workspace_yaml = std::move(text).value();
     }
     auto made = MotionCollisionGuard::create(*options.robot_description, workspace,
-                                             std::move(workspace_yaml), options.safety_margin_m);
+                                             std::move(workspace_yaml), options.safety_margin_m,
+                                             options.mesh_collision);
     if (!made) return Error{"robot server: " + made.error().message};
     guard = std::move(made).value();
   }

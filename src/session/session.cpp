@@ -59,7 +59,9 @@ Result<std::unique_ptr<Session>> Session::create(core::RobotModelPtr model,
     // at the grasp on purpose. Validation checks a carried one (ValidationOptions::workspace).
     core::Workspace obstacles = *options.workspace;
     std::erase_if(obstacles.objects, [](const core::WorkspaceObject& o) { return o.graspable; });
-    auto made = geometry::make_collision_checker(*options.description, obstacles);
+    geometry::CollisionSetupOptions setup;
+    setup.mesh_collision = options.mesh_collision;
+    auto made = geometry::make_collision_checker(*options.description, obstacles, setup);
     if (!made) return Error{"session: collision checker: " + made.error().message};
     checker = std::make_unique<geometry::CollisionChecker>(std::move(*made));
   }

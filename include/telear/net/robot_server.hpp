@@ -51,6 +51,9 @@ struct RobotServerOptions {
   std::string workspace_file;
   // Jogs may not bring a link closer than this to a workspace object (m, >= 0).
   double safety_margin_m = kDefaultSafetyMarginM;
+  // Mesh links as the convex hulls of their parts (conservative, fast), or kExact: their
+  // triangles (docs/collision.md, "Performance"; `telear robot-server --exact-meshes`).
+  geometry::MeshCollision mesh_collision = geometry::MeshCollision::kConvexParts;
 
   // Says which field is wrong and why.
   Status validate() const;

@@ -98,6 +98,9 @@ struct SessionOptions {
   std::optional<core::Workspace> workspace;
   double safety_margin_m = 0.03;
   geometry::TrajectoryCheckOptions plan_check;  // how finely validate_plan() checks
+  // The robot's mesh links as the convex hulls of their parts (conservative: distances at most
+  // 1.4 mm smaller on the shipped arms, a 10 s plan ~25x faster), or kExact: their triangles.
+  geometry::MeshCollision mesh_collision = geometry::MeshCollision::kConvexParts;
 };
 
 struct SessionEvent {
