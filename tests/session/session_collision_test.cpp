@@ -12,6 +12,7 @@
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/motion_collision_guard.hpp"
+#include "telear/net/robot_client.hpp"
 #include "telear/session/demo_task.hpp"
 #include "telear/session/embedded_servers.hpp"
 #include "telear/session/ghost_clearance.hpp"
@@ -347,6 +348,18 @@ TEST(EmbeddedServersCollision, ServeRobotMakesTheRobotServerTheAuthorityInTheShi
   chosen.workspace_file = core::default_workspace_file("ur6");
   ASSERT_TRUE(serve_robot(chosen, robot->description).ok());
   EXPECT_EQ(chosen.workspace_file, core::default_workspace_file("ur6"));
+
+  // The embedded robot server started with them checks collisions and says so on GetInfo.
+  auto servers = EmbeddedServers::create(robot->model(), options);
+  ASSERT_TRUE(servers) << servers.error().message;
+  net::RobotClientOptions client_options;
+  client_options.address = (*servers)->robot_address();
+  client_options.token = (*servers)->token();
+  net::RobotClient client(client_options);
+  auto info = client.get_info();
+  ASSERT_TRUE(info) << info.error().message;
+  EXPECT_TRUE(info->collision_checked);
+  EXPECT_THAT(info->workspace_yaml, HasSubstr("name: arm7_table"));
 }
 
 }  // namespace
