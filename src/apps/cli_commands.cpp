@@ -147,6 +147,9 @@ void add_plan_commands(CLI::App& app, Commands& commands) {
                         "workspace file (default: the robot's shipped table scene)");
   check_app->add_option("--plan", check.plan, "plan file (YAML)")->required();
   check_app->add_flag("--json", check.json, "print JSON");
+  check_app->add_flag("--exact-meshes", check.exact_meshes,
+                      "check mesh links by their triangles, not their parts' convex hulls "
+                      "(slower; the hulls err on the safe side: docs/collision.md)");
   commands.push_back(
       {check_app, [options] { return run_plan_check(*options, std::cout, std::cerr); }});
 

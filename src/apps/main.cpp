@@ -49,6 +49,9 @@ void add_robot_server_command(CLI::App& app, Commands& commands) {
       ->add_option("--safety-margin", robot_server.safety_margin_m,
                    "m: jogs keep every link at least this far from workspace objects")
       ->capture_default_str();
+  robot_server_app->add_flag("--exact-meshes", robot_server.exact_meshes,
+                             "check mesh links by their triangles, not their parts' convex hulls "
+                             "(slower; the hulls err on the safe side: docs/collision.md)");
   commands.push_back(
       {robot_server_app, [options] { return run_robot_server(*options, std::cout, std::cerr); }});
 }

@@ -29,6 +29,7 @@ int run_plan_check(const PlanCheckOptions& options, std::ostream& out, std::ostr
   if (!plan) return fail(plan.error().message);
   geometry::CollisionSetupOptions setup;
   setup.geometry = *geometry_options;
+  if (options.exact_meshes) setup.mesh_collision = geometry::MeshCollision::kExact;
   auto checker = geometry::make_collision_checker(*description, *workspace, setup);
   if (!checker) return fail(checker.error().message);
   auto report = session::check_plan_collisions(*plan, *checker);

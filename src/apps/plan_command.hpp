@@ -15,6 +15,7 @@ struct PlanCheckOptions : RobotArguments {
   std::string workspace;  // empty: the robot's shipped workspace
   std::string plan;
   bool json = false;
+  bool exact_meshes = false;  // mesh links' triangles instead of their parts' convex hulls
 };
 
 int run_plan_check(const PlanCheckOptions& options, std::ostream& out, std::ostream& err);

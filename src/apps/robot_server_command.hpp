@@ -27,6 +27,7 @@ struct RobotServerCommandOptions : RobotArguments {
   std::string log_level = "info";  // trace | debug | info | warn | error | off
   std::string workspace;           // workspace YAML; empty: self-collision only
   double safety_margin_m = net::kDefaultSafetyMarginM;
+  bool exact_meshes = false;  // mesh links' triangles instead of their parts' convex hulls
 };
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,

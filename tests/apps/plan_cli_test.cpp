@@ -1,6 +1,7 @@
 // `telear plan check` end to end: a plan that drives the PUMA's forearm into the table is
 // refused with the contact named (exit 1), a plan that stays clear passes (exit 0), --json has
-// the documented fields, and bad input is one line on stderr with exit code 2.
+// the documented fields, mesh links are convex parts unless --exact-meshes, and bad input is
+// one line on stderr with exit code 2.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -86,6 +87,32 @@ TEST_F(PlanCheckCli, AClearPlanPassesWithItsMinimumClearance) {
   EXPECT_TRUE(json["collision_free"].get<bool>());
   EXPECT_TRUE(json["collisions"].empty());
   EXPECT_GT(json["min_clearance_m"].get<double>(), 0.0);
+}
+
+// ur6's STL links are checked as the convex hulls of their parts by default; --exact-meshes
+// checks their triangles. The hulls contain the links: the clearance can only shrink, and on
+// the shipped arm by no more than a couple of millimetres (docs/collision.md, "Performance").
+TEST_F(PlanCheckCli, MeshLinksAreConvexPartsUnlessExactMeshesIsGiven) {
+  const std::string plan = write("ur6.yaml", R"(robot: ur6
+waypoints:
+  - {q_rad: [0, -1.5707963, -1.5707963, -1.5707963, 1.5707963, 0]}
+  - {q_rad: [-0.3490659, -2.0943951, -1.2217305, -1.3962634, 1.5707963, 0]}
+  - {q_rad: [0.8, -1.3, -1.9, -1.2, 1.2, 0.6]}
+)");
+  const auto hulls = run_telear("plan check --robot ur6 --plan " + plan + " --json");
+  const auto exact = run_telear("plan check --robot ur6 --plan " + plan + " --json --exact-meshes");
+  ASSERT_EQ(hulls.exit_code, 0) << hulls.out << hulls.err;
+  ASSERT_EQ(exact.exit_code, 0) << exact.out << exact.err;
+  const nlohmann::json h = nlohmann::json::parse(hulls.out);
+  const nlohmann::json e = nlohmann::json::parse(exact.out);
+  EXPECT_TRUE(h["collision_free"].get<bool>());
+  EXPECT_TRUE(e["collision_free"].get<bool>());
+  const double hull_m = h["min_workspace_clearance"]["distance_m"].get<double>();
+  const double exact_m = e["min_workspace_clearance"]["distance_m"].get<double>();
+  EXPECT_LE(hull_m, exact_m + 1e-6);
+  EXPECT_GE(hull_m, exact_m - 2e-3);
+  // Not the same check: the hulls' parts step by their own motion bounds.
+  EXPECT_NE(h["configurations_checked"], e["configurations_checked"]);
 }
 
 TEST_F(PlanCheckCli, BadInputIsOneLineOnStderrAndExitCode2) {
