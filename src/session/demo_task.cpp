@@ -13,6 +13,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr double kMaxLift_m = 0.015;  // the most a step is raised off the table
+// A step closer than this to the workspace is raised (touching is not a clearance).
+constexpr double kMinStepClearance_m = 0.008;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -120,12 +122,17 @@ Status rehearse_pick_and_place(Session& session, const DemoTaskInputs& inputs,
     const core::MotionOutcome moved = session.move_ghost(core::CartesianTarget{
         grasp.T_base_tool(model, inputs.grip_in_link_m, task.grip_position_base_m)});
     if (!moved.accepted) return phase_error("rehearsal: " + task.label, moved.rejection.message);
-    // The correction the first rehearsal taught: where the ghost touches the table (the
-    // fingertips reach below the box's centre), raise it 5 mm at a time, as an operator
-    // watching the clearance would, within the grasp model's 2 cm capture distance.
-    for (double lift = 0.005; session.ghost_clearance().level == ClearanceState::Level::kContact &&
-                              lift <= kMaxLift_m + 1e-9;
-         lift += 0.005) {
+    // The correction the first rehearsal taught: where the ghost touches the table or grazes
+    // it (the fingertips reach below the box's bottom: 5 mm on the PUMA), raise it 5 mm at a
+    // time, as an operator watching the clearance would, within the grasp model's 2 cm
+    // capture distance.
+    const auto too_close = [&] {
+      const ClearanceState& c = session.ghost_clearance();
+      return c.level == ClearanceState::Level::kContact ||
+             (c.level == ClearanceState::Level::kWithinMargin &&
+              c.workspace.distance_m < kMinStepClearance_m);
+    };
+    for (double lift = 0.005; too_close() && lift <= kMaxLift_m + 1e-9; lift += 0.005) {
       const core::MotionOutcome raised = session.move_ghost(core::CartesianTarget{
           grasp.T_base_tool(model, inputs.grip_in_link_m,
                             task.grip_position_base_m + Eigen::Vector3d(0.0, 0.0, lift))});

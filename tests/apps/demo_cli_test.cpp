@@ -1,7 +1,8 @@
 // `telear demo` as the README runs it, at low resolution (issue 6's integration test): the
 // pick-and-place plan executes on the simulated robot, tracking stays within tolerance, the
 // calibration's overlay error is under target, the injected delay switches AR -> VR -> AR,
-// the bytes saved are measured, and the video, key frames and reports are written.
+// the bytes saved are measured, the rehearsal into the table is refused naming the contact
+// (issue 13), and the video, key frames and reports are written.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -72,6 +73,34 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
     EXPECT_TRUE(fs::exists(frame.get<std::string>())) << frame;
   }
   EXPECT_TRUE(fs::exists(d + "/report.md"));
+  // Issue 13 on the default PUMA: the first rehearsal, into the table beside the box, fails
+  // on its first contact (a finger in the table top), shown red on the ghost in its own key
+  // frame; the corrected plan (elbow-up to the box far out on the table,
+  // data/workspaces/puma560_table.yaml) is collision-free and executed.
+  ASSERT_TRUE(report.contains("collision")) << report.dump(1);
+  const auto& first = report["collision"]["first_rehearsal"];
+  EXPECT_FALSE(first["collision_free"].get<bool>()) << first;
+  EXPECT_EQ(first["object"], "table_top") << first;
+  EXPECT_NE(first["link"].get<std::string>().find("finger"), std::string::npos) << first;
+  EXPECT_GT(first["time_s"].get<double>(), 0.0);
+  EXPECT_GT(first["depth_m"].get<double>(), 0.0);
+  const auto& final_plan = report["collision"]["final_plan"];
+  EXPECT_TRUE(final_plan["collision_free"].get<bool>()) << final_plan;
+  EXPECT_GT(final_plan["min_clearance_m"].get<double>(), 0.005) << final_plan;
+  EXPECT_FALSE(final_plan["link"].get<std::string>().empty());
+  EXPECT_TRUE(fs::exists(d + "/keyframe_2a_collision.png"));
+  bool collision_key_frame_listed = false;
+  for (const auto& frame : report["outputs"]["key_frames"]) {
+    collision_key_frame_listed =
+        collision_key_frame_listed ||
+        frame.get<std::string>().find("keyframe_2a_collision") != std::string::npos;
+  }
+  EXPECT_TRUE(collision_key_frame_listed) << report["outputs"]["key_frames"];
+  EXPECT_NE(r.out.find("validation of the first rehearsal: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("hits table_top"), std::string::npos) << r.out;
+  EXPECT_NE(
+      test::slurp(d + "/report.md").find("- collision: the first rehearsal, first contact at t = "),
+      std::string::npos);
 
   // A second run reuses the cached calibration.
   const auto again =

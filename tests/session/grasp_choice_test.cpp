@@ -14,8 +14,12 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/workspace.hpp"
+#include "telear/geometry/robot_assets.hpp"
+#include "telear/geometry/workspace_meshes.hpp"
 #include "telear/session/demo_task.hpp"
 #include "telear/session/grasp_choice.hpp"
+#include "telear/session/plan_collision.hpp"
+#include "telear/session/session.hpp"
 #include "telear/sim/stereo_rig.hpp"
 #include "test_util/test_util.hpp"
 
@@ -41,8 +45,8 @@ Fixture make_fixture(const Eigen::Vector3d& box) {
   f.request.grip_in_link_m = arm_body.gripper
                                  ? Eigen::Vector3d(arm_body.gripper->centre.cast<double>())
                                  : Eigen::Vector3d::Zero();
-  Eigen::VectorXd ready_deg(6);
-  ready_deg << 0.0, 30.0, -120.0, 0.0, -45.0, 0.0;
+  Eigen::VectorXd ready_deg(6);  // the demo's start (src/session/demo_workflow.cpp)
+  ready_deg << -90.0, 30.0, -120.0, 0.0, -45.0, 0.0;
   f.request.q_start = ready_deg.unaryExpr([](double d) { return core::radians_from_degrees(d); });
   f.request.camera_base_m = rig->cameras.left.T_cam_base.inverse().translation();
   return f;
@@ -113,6 +117,46 @@ TEST(GraspChoice, AnUnreachableBoxIsAnErrorNamingIt) {
   auto empty = choose_grasp(*f.model, f.request);
   ASSERT_FALSE(empty.ok());
   EXPECT_THAT(empty.error().message, ::testing::HasSubstr("no task positions"));
+}
+
+// What `telear demo` rehearses and executes on the PUMA (its default robot), offline on a
+// collision-checking session: from the demo's start pose the chosen grasp reaches every task
+// position elbow-up (the only branch that clears the table and the pedestal within the shipped
+// elbow range, data/workspaces/puma560_table.yaml), and the plan, the carried box included, is
+// collision-free with the arm at least 5 mm from the workspace.
+TEST(GraspChoice, ThePumasRehearsedPickAndPlaceIsElbowUpAndCollisionFree) {
+  auto robot = geometry::load_robot_assets({"puma560", {}, {}});
+  ASSERT_TRUE(robot) << robot.error().message;
+  auto workspace = geometry::load_workspace(core::default_workspace_file("puma560"));
+  ASSERT_TRUE(workspace) << workspace.error().message;
+  SessionOptions options;
+  options.robot.address = "127.0.0.1:1";  // never connected
+  options.vision.address = "127.0.0.1:1";
+  options.description = robot->description;
+  options.workspace = *workspace;
+  auto session = Session::create(robot->model(), options);
+  ASSERT_TRUE(session) << session.error().message;
+  const Fixture f = make_fixture(shipped_box_centre());
+  ASSERT_TRUE((*session)->move_ghost(core::JointTarget{f.request.q_start}).accepted);
+  DemoTaskInputs inputs;
+  inputs.box_base_m = shipped_box_centre();
+  inputs.grip_in_link_m = f.request.grip_in_link_m;
+  inputs.camera_base_m = f.request.camera_base_m;
+  auto grasp = choose_task_grasp(**session, inputs);
+  ASSERT_TRUE(grasp) << grasp.error().message;
+  (void)(*session)->plan().set_scales(0.5, 0.5);
+  const Status rehearsed = rehearse_pick_and_place(**session, inputs, *grasp);
+  ASSERT_TRUE(rehearsed) << rehearsed.error().message;
+  for (const PlanWaypoint& w : (*session)->plan().waypoints()) {
+    // Elbow-up: the forearm bends down from the elbow (q3 < -90 deg), within the -135 limit.
+    EXPECT_LT(core::degrees_from_radians(w.q[2]), -90.0) << w.label;
+  }
+  const ValidationReport report = (*session)->validate_plan();
+  EXPECT_TRUE(report.ok()) << report.summary();
+  ASSERT_TRUE(report.collision.has_value());
+  EXPECT_TRUE(report.collision->collision_free()) << collision_summary(*report.collision);
+  EXPECT_GT(report.collision->min_workspace_clearance.distance_m, 0.005)
+      << collision_summary(*report.collision);
 }
 
 }  // namespace

@@ -9,7 +9,8 @@
 // table top, 0.1 m along -y of the box; validation fails naming the contact, the preview is
 // stopped just after the contact starts (the links in contact are drawn red: key frame
 // keyframe_2a_collision), and that plan is discarded. While the real task is rehearsed, a step
-// where the ghost touches something is raised 5 mm at a time (up to 15 mm).
+// where the ghost touches something, or comes within 8 mm of it, is raised 5 mm at a time (up
+// to 15 mm).
 //
 // The task: approach 0.12 m above the box, grasp (close the gripper, dwell 1.2 s), lift, carry
 // to 0.2 m along -y of the base, place (open, dwell 1.2 s), retreat 0.12 m up; the gripper's
@@ -90,8 +91,9 @@ Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInpu
 
 // Rehearses the task on the ghost, from where it is, into the session's plan (cleared first):
 // a "start" waypoint, then each step's pose (raised 5 mm at a time, up to 15 mm, where the
-// ghost touches something), its gripper and dwell. `after_step` runs after each step (the
-// demo's recorder ticks and key frame). It needs no server: tests rehearse offline.
+// ghost touches something or comes within 8 mm of it), its gripper and dwell. `after_step` runs
+// after each step (the demo's recorder ticks and key frame). It needs no server: tests rehearse
+// offline.
 Status rehearse_pick_and_place(Session& session, const DemoTaskInputs& inputs,
                                const GraspChoice& grasp, const DemoProgress& progress = {},
                                const std::function<Status(const TaskStep&)>& after_step = {});
