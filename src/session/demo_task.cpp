@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <thread>
 #include <utility>
 
@@ -105,6 +106,27 @@ Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInpu
   request.grip_in_link_m = inputs.grip_in_link_m;
   request.q_start = session.ghost().q();
   request.camera_base_m = inputs.camera_base_m;
+  const SessionOptions& options = session.options();
+  if (session.checks_collisions() && options.description && options.workspace) {
+    // The session's scene, the graspable objects left out as the session does (the fingers
+    // close on the box on purpose). Contacts the rehearsal lifts the step out of (a known
+    // depth under kMaxLift_m: the fingertips below the box's bottom) do not count.
+    core::Workspace obstacles = *options.workspace;
+    std::erase_if(obstacles.objects, [](const core::WorkspaceObject& o) { return o.graspable; });
+    geometry::CollisionSetupOptions setup;
+    setup.mesh_collision = options.mesh_collision;
+    auto made = geometry::make_collision_checker(*options.description, obstacles, setup);
+    if (!made) return Error{"choose the grasp: collision checker: " + made.error().message};
+    auto checker = std::make_shared<geometry::CollisionChecker>(std::move(*made));
+    request.contact = [checker](const Eigen::VectorXd& q) -> std::optional<std::string> {
+      for (const geometry::Contact& c : checker->check(q).contacts) {
+        if (c.depth_m > 0.0 && c.depth_m < kMaxLift_m) continue;
+        return c.body + " – " + c.other + " (" + core::format_number(c.depth_m * 1e3, "%.1f") +
+               " mm deep)";
+      }
+      return std::nullopt;
+    };
+  }
   return choose_grasp(session.model(), request);
 }
 

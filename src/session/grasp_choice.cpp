@@ -70,10 +70,16 @@ Result<GraspChoice> choose_grasp(const core::RobotModel& model, const GraspReque
   }
   const Eigen::Vector3d& first = request.grip_positions_base_m.front();
   const Eigen::Vector3d to_camera = (request.camera_base_m - first).normalized();
+  const auto where = [](const Eigen::Vector3d& p) {
+    return "[" + core::format_number(p.x(), "%.3f") + ", " + core::format_number(p.y(), "%.3f") +
+           ", " + core::format_number(p.z(), "%.3f") + "] m (base frame)";
+  };
+  std::string first_contact;  // of the best candidate that reached every position
   for (const Candidate& c : candidates_by_score(to_camera)) {
     GraspChoice choice{c.R, c.tilt_deg, c.away_deg};
     Eigen::VectorXd q = request.q_start;
     bool reached = true;
+    std::string touched;  // this candidate's first contact
     for (const Eigen::Vector3d& p : request.grip_positions_base_m) {
       auto solution =
           core::solve_ik_nearest(model, choice.T_base_tool(model, request.grip_in_link_m, p), q);
@@ -82,14 +88,23 @@ Result<GraspChoice> choose_grasp(const core::RobotModel& model, const GraspReque
         break;
       }
       q = solution->q;
+      if (touched.empty() && request.contact) {
+        if (const std::optional<std::string> contact = request.contact(q)) {
+          touched = "tilted " + std::to_string(c.tilt_deg) + " deg, the gripper at " + where(p) +
+                    ": " + *contact;
+        }
+      }
     }
-    if (reached) return choice;
+    if (reached && touched.empty()) return choice;
+    if (reached && first_contact.empty()) first_contact = touched;
   }
-  return Error{"choose_grasp: no gripper orientation reaches " + request.object_name + " at [" +
-               core::format_number(first.x(), "%.3f") + ", " +
-               core::format_number(first.y(), "%.3f") + ", " +
-               core::format_number(first.z(), "%.3f") +
-               "] m (base frame) within the joint limits; move it closer to the robot"};
+  if (!first_contact.empty()) {
+    return Error{"choose_grasp: every gripper orientation that reaches " + request.object_name +
+                 " at " + where(first) + " within the joint limits touches the scene on the way (" +
+                 first_contact + "); move it where the arm reaches it clear of the scene"};
+  }
+  return Error{"choose_grasp: no gripper orientation reaches " + request.object_name + " at " +
+               where(first) + " within the joint limits; move it closer to the robot"};
 }
 
 }  // namespace telear::session

@@ -124,39 +124,73 @@ TEST(GraspChoice, AnUnreachableBoxIsAnErrorNamingIt) {
 // position elbow-up (the only branch that clears the table and the pedestal within the shipped
 // elbow range, data/workspaces/puma560_table.yaml), and the plan, the carried box included, is
 // collision-free with the arm at least 5 mm from the workspace.
-TEST(GraspChoice, ThePumasRehearsedPickAndPlaceIsElbowUpAndCollisionFree) {
+std::unique_ptr<Session> collision_checking_puma_session() {
   auto robot = geometry::load_robot_assets({"puma560", {}, {}});
-  ASSERT_TRUE(robot) << robot.error().message;
+  EXPECT_TRUE(robot) << robot.error().message;
   auto workspace = geometry::load_workspace(core::default_workspace_file("puma560"));
-  ASSERT_TRUE(workspace) << workspace.error().message;
+  EXPECT_TRUE(workspace) << workspace.error().message;
+  if (!robot || !workspace) return nullptr;
   SessionOptions options;
   options.robot.address = "127.0.0.1:1";  // never connected
   options.vision.address = "127.0.0.1:1";
   options.description = robot->description;
   options.workspace = *workspace;
   auto session = Session::create(robot->model(), options);
-  ASSERT_TRUE(session) << session.error().message;
+  EXPECT_TRUE(session) << session.error().message;
+  return session ? std::move(*session) : nullptr;
+}
+
+TEST(GraspChoice, ThePumasRehearsedPickAndPlaceIsElbowUpAndCollisionFree) {
+  auto session = collision_checking_puma_session();
+  ASSERT_TRUE(session);
   const Fixture f = make_fixture(shipped_box_centre());
-  ASSERT_TRUE((*session)->move_ghost(core::JointTarget{f.request.q_start}).accepted);
+  ASSERT_TRUE(session->move_ghost(core::JointTarget{f.request.q_start}).accepted);
   DemoTaskInputs inputs;
   inputs.box_base_m = shipped_box_centre();
   inputs.grip_in_link_m = f.request.grip_in_link_m;
   inputs.camera_base_m = f.request.camera_base_m;
-  auto grasp = choose_task_grasp(**session, inputs);
+  auto grasp = choose_task_grasp(*session, inputs);
   ASSERT_TRUE(grasp) << grasp.error().message;
-  (void)(*session)->plan().set_scales(0.5, 0.5);
-  const Status rehearsed = rehearse_pick_and_place(**session, inputs, *grasp);
+  (void)session->plan().set_scales(0.5, 0.5);
+  const Status rehearsed = rehearse_pick_and_place(*session, inputs, *grasp);
   ASSERT_TRUE(rehearsed) << rehearsed.error().message;
-  for (const PlanWaypoint& w : (*session)->plan().waypoints()) {
+  for (const PlanWaypoint& w : session->plan().waypoints()) {
     // Elbow-up: the forearm bends down from the elbow (q3 < -90 deg), within the -135 limit.
     EXPECT_LT(core::degrees_from_radians(w.q[2]), -90.0) << w.label;
   }
-  const ValidationReport report = (*session)->validate_plan();
+  const ValidationReport report = session->validate_plan();
   EXPECT_TRUE(report.ok()) << report.summary();
   ASSERT_TRUE(report.collision.has_value());
   EXPECT_TRUE(report.collision->collision_free()) << collision_summary(*report.collision);
   EXPECT_GT(report.collision->min_workspace_clearance.distance_m, 0.005)
       << collision_summary(*report.collision);
+}
+
+// Where the box stood before (0.65 m out, on the same table) the PUMA's elbow range reaches it
+// only elbow-down, through the table and against its pedestal: on a collision-checking
+// session no orientation is chosen, and the error names the first contact and where.
+TEST(GraspChoice, OnACollisionCheckingSessionABoxReachedOnlyThroughTheTableIsRefused) {
+  auto session = collision_checking_puma_session();
+  ASSERT_TRUE(session);
+  const Eigen::Vector3d near_box(0.55, -0.35, 0.425);
+  const Fixture f = make_fixture(near_box);
+  // Without the scene an orientation reaches it (elbow-down).
+  ASSERT_TRUE(choose_grasp(*f.model, f.request).ok());
+  ASSERT_TRUE(session->move_ghost(core::JointTarget{f.request.q_start}).accepted);
+  DemoTaskInputs inputs;
+  inputs.box_base_m = near_box;
+  inputs.grip_in_link_m = f.request.grip_in_link_m;
+  inputs.camera_base_m = f.request.camera_base_m;
+  auto grasp = choose_task_grasp(*session, inputs);
+  ASSERT_FALSE(grasp.ok());
+  // The first task position is the approach, 0.12 m above the box; the least tilted
+  // orientation that reaches every position has its forearm through the table top.
+  const std::string& message = grasp.error().message;
+  EXPECT_THAT(message, ::testing::HasSubstr("every gripper orientation that reaches the box at "
+                                            "[0.550, -0.350, 0.545] m (base frame) within the "
+                                            "joint limits touches the scene on the way (tilted "));
+  EXPECT_THAT(message, ::testing::HasSubstr("link3 \u2013 table_top ("));
+  EXPECT_THAT(message, ::testing::HasSubstr(" mm deep)); move it where the arm reaches it"));
 }
 
 }  // namespace

@@ -87,6 +87,9 @@ struct DemoTaskOutcome {
 std::vector<TaskStep> demo_task_steps(const DemoTaskInputs& inputs);
 
 // The grasp for the task's steps from where the ghost is (include/telear/session/grasp_choice.hpp).
+// On a collision-checking session an orientation whose IK branch touches the scene at a step
+// is passed over (contacts of a known depth under the 15 mm the rehearsal lifts excepted), and
+// when every one does the error names the first contact.
 Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInputs& inputs);
 
 // Rehearses the task on the ghost, from where it is, into the session's plan (cleared first):

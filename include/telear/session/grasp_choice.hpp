@@ -14,9 +14,14 @@
 // between R's +x and the direction from the first task position to the cameras. In ascending
 // score, the first candidate whose every task position, visited in order from q_start (each
 // seeded by the previous), has an IK solution within the joint limits
-// (include/telear/core/inverse_kinematics.hpp) wins.
+// (include/telear/core/inverse_kinematics.hpp) wins; with `contact` given, also none of
+// those solutions may touch the scene (the nearest IK branch is the one the ghost takes, so
+// a candidate whose branch goes through the table is passed over: the PUMA within its elbow
+// range reaches a box near its pedestal only elbow-down, through the table).
 
 #include <Eigen/Geometry>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +36,9 @@ struct GraspRequest {
   Eigen::VectorXd q_start;                                   // rad or m, the arm now
   Eigen::Vector3d camera_base_m = Eigen::Vector3d::Zero();   // where the cameras are
   std::string object_name = "the box";                       // for the error message
+  // Optional: what the arm at q touches ("link3 – table_top (79.5 mm deep)"), nullopt when
+  // clear. Unset: no scene check.
+  std::function<std::optional<std::string>(const Eigen::VectorXd& q)> contact;
 };
 
 struct GraspChoice {
@@ -48,7 +56,9 @@ struct GraspChoice {
 };
 
 // Errors: an empty task, a q_start of the wrong size, or no candidate reaches every position
-// within the joint limits (the message names the object and its first position).
+// within the joint limits (the message names the object and its first position), or, with
+// `contact`, every candidate that reaches them touches the scene (the message names the
+// least tilted one's first contact and where).
 Result<GraspChoice> choose_grasp(const core::RobotModel& model, const GraspRequest& request);
 
 }  // namespace telear::session
