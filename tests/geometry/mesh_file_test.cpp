@@ -6,8 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "test_util/mesh_test_files.hpp"
 #include "telear/geometry/feature_edges.hpp"
+#include "test_util/mesh_test_files.hpp"
 
 namespace telear::geometry {
 namespace {
