@@ -335,6 +335,9 @@ std::vector<TaskPose> demo_like_task(double carry_z) {
 
 Result<std::unique_ptr<RobotServer>> create_arm7_server() {
   RobotServerOptions options = server_options();
+  // Leases of up to two minutes without a heartbeat: a test that runs the whole pick-and-place
+  // sends none, and a loaded sanitizer build takes many seconds over it.
+  options.lease.max_heartbeat_ns = 120'000'000'000;
   options.robot_description = arm7();
   options.workspace_file = core::default_workspace_file("arm7");
   sim::SimRobotDriverOptions driver_options;
@@ -360,7 +363,6 @@ TEST(RobotCollisionAuthority, TheFingersClosingOnTheBoxAtTheGraspAreAccepted) {
   auto server = create_arm7_server();
   ASSERT_TRUE(server) << server.error().message;
   auto stub = stub_for(**server);
-  const v1::Lease lease = acquire(*stub);
   const std::vector<core::JointWaypoint> waypoints =
       pick_and_place(demo_like_task(kPlace.z() + kUp.z()));
   ASSERT_EQ(waypoints.size(), 7u);
@@ -378,6 +380,9 @@ TEST(RobotCollisionAuthority, TheFingersClosingOnTheBoxAtTheGraspAreAccepted) {
     ASSERT_FALSE(report->collision_free());
     EXPECT_EQ(report->collisions.front().other, "box");
   }
+  // The lease is taken after the offline check above and outlives the whole motion (this test
+  // sends no heartbeat; under a loaded sanitizer build the check and the run take many seconds).
+  const v1::Lease lease = acquire(*stub, "alice", 120'000'000'000);
   const grpc::Status status = execute_plan(*stub, lease, "pick-and-place", waypoints);
   ASSERT_TRUE(status.ok()) << status.error_message();
   // It runs to the end: the arm comes to rest at the retreat.

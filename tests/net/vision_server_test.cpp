@@ -97,7 +97,10 @@ TEST(VisionServer, FramesArriveInOrderWithConsistentSkipCounts) {
 }
 
 TEST(VisionServer, SlowClientSkipsFramesAndDoesNotSlowAFastOne) {
-  auto server = start_synthetic(640, 480, 60);
+  // 30 fps rather than 60: the assertion is about the slow client not slowing the fast one,
+  // and at 60 fps an AddressSanitizer build sharing 2 cores with another test cannot encode
+  // every frame for anyone (fast share 0.73 measured), which says nothing about the slot.
+  auto server = start_synthetic(640, 480, 30);
   ASSERT_TRUE(server);
   RawReader fast(server->address()), slow(server->address());
   fast.open();
@@ -112,7 +115,7 @@ TEST(VisionServer, SlowClientSkipsFramesAndDoesNotSlowAFastOne) {
       slow_skipped += frame.frames_skipped();
       EXPECT_GT(frame.frame_id(), previous);
       previous = frame.frame_id();
-      std::this_thread::sleep_for(100ms);  // a client ten times slower than the source
+      std::this_thread::sleep_for(200ms);  // a client six times slower than the source
     }
   });
   telear::v1::StereoFrame frame;
