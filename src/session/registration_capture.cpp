@@ -24,7 +24,7 @@
 namespace telear::session {
 namespace {
 
-constexpr double kArmRangeRad = 0.35;    // the first three joints' spread around the start
+constexpr double kArmRangeRad = 0.6;     // the first three joints' spread around the start
 constexpr double kWristRangeRad = 0.8;   // the others'
 constexpr double kMarginPx = 30.0;       // corners this far inside both images
 constexpr double kMaxViewAngleDeg = 50;  // the marker faces each camera within this

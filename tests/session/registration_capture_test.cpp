@@ -110,7 +110,7 @@ class RegistrationCaptureTest : public ::testing::Test {
 TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheTruth) {
   RegistrationCaptureOptions options;
   options.directory = (dir / "capture").string();
-  options.auto_poses = 14;
+  options.auto_poses = 18;
   options.frames_per_pose = 2;
   options.velocity_scale = 1.0;
   options.settle_s = 0.1;

@@ -10,7 +10,7 @@
 //     (the operator jogs it there first). There it is detected in both eyes and its pose
 //     found by PnP; with the marker's nominal mount (the robot's marker file) and forward
 //     kinematics that gives a rough pose of each camera. Candidate poses are drawn around the
-//     current one (arm joints within +-0.35 rad, wrist joints within +-0.8 rad, inside the
+//     current one (arm joints within +-0.6 rad, wrist joints within +-0.8 rad, inside the
 //     limits) and kept when the rough cameras see all four corners at least 30 px inside both
 //     images with the marker facing each camera within 50 deg; N of them are chosen to spread
 //     the marker's orientation (farthest-point sampling on the rotation angle between marker
