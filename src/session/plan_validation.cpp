@@ -10,6 +10,7 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/motion_command.hpp"
 #include "telear/core/number_format.hpp"
+#include "telear/geometry/carried_objects.hpp"
 #include "telear/geometry/trajectory_collision.hpp"
 #include "telear/session/plan_collision.hpp"
 
@@ -51,22 +52,15 @@ void check_collisions(geometry::CollisionChecker& checker, const core::Trajector
               core::format_number(safety_margin_m, "%g"));
     return;
   }
-  auto report = geometry::check_trajectory(checker, trajectory, options.collision_check);
+  // With the workspace, the object the gripper carries is checked too (its resting contacts
+  // where picked and placed excepted): the same call the robot server's guard makes.
+  auto report = options.workspace
+                    ? geometry::check_trajectory_carrying(checker, trajectory, *options.workspace,
+                                                          options.collision_check)
+                    : geometry::check_trajectory(checker, trajectory, options.collision_check);
   if (!report) {
     error(-1, -1, "the plan could not be checked for collisions: " + report.error().message);
     return;
-  }
-  if (options.workspace) {
-    // The object the gripper carries (its resting contacts where picked and placed excepted).
-    auto held =
-        check_carried_objects(trajectory, checker, *options.workspace, options.collision_check);
-    if (!held) {
-      error(-1, -1, "the carried object could not be checked: " + held.error().message);
-      return;
-    }
-    report->collisions.insert(report->collisions.end(), held->begin(), held->end());
-    std::stable_sort(report->collisions.begin(), report->collisions.end(),
-                     [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
   }
   for (const geometry::PlanCollision& c : report->collisions) {
     error(c.segment, -1,

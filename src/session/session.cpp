@@ -8,6 +8,7 @@
 #include "telear/core/clock.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/plan_hash.hpp"
+#include "telear/geometry/carried_objects.hpp"
 
 namespace telear::session {
 
@@ -57,11 +58,10 @@ Result<std::unique_ptr<Session>> Session::create(core::RobotModelPtr model,
   if (options.description && options.workspace) {
     // The graspable objects are the task's targets, not obstacles: the fingers touch the box
     // at the grasp on purpose. Validation checks a carried one (ValidationOptions::workspace).
-    core::Workspace obstacles = *options.workspace;
-    std::erase_if(obstacles.objects, [](const core::WorkspaceObject& o) { return o.graspable; });
     geometry::CollisionSetupOptions setup;
     setup.mesh_collision = options.mesh_collision;
-    auto made = geometry::make_collision_checker(*options.description, obstacles, setup);
+    auto made = geometry::make_collision_checker(
+        *options.description, geometry::static_obstacles(*options.workspace), setup);
     if (!made) return Error{"session: collision checker: " + made.error().message};
     checker = std::make_unique<geometry::CollisionChecker>(std::move(*made));
   }
