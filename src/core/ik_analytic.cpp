@@ -347,6 +347,19 @@ std::string unreachable_message(const PumaGeometry& g, const PumaIkSolutions& s)
 
 }  // namespace
 
+std::string singularity_message(unsigned bits, std::string_view wrist, std::string_view elbow,
+                                std::string_view shoulder) {
+  std::string m;
+  const auto add = [&m](std::string_view text) {
+    if (!m.empty()) m += "; ";
+    m += text;
+  };
+  if (bits & static_cast<unsigned>(PumaSingularity::kWrist)) add(wrist);
+  if (bits & static_cast<unsigned>(PumaSingularity::kElbow)) add(elbow);
+  if (bits & static_cast<unsigned>(PumaSingularity::kShoulder)) add(shoulder);
+  return m;
+}
+
 AnalyticIkResult solve_analytic_ik(const RobotModel& model, const PumaGeometry& geometry,
                                    const Eigen::Isometry3d& T_base_tool, std::string_view config) {
   assert(model.dof() == 6 && "solve_analytic_ik(): the model is not a 6-joint arm");
@@ -379,19 +392,12 @@ AnalyticIkResult solve_analytic_ik(const RobotModel& model, const PumaGeometry& 
   }
   if (singular_bits != 0) {
     result.status = IkStatus::kSingular;
-    std::string m;
-    const auto add = [&m](const char* text) { m += (m.empty() ? "" : "; ") + std::string(text); };
-    if (singular_bits & static_cast<unsigned>(PumaSingularity::kWrist)) {
-      add("wrist singularity (q5 ~ 0: joints 4 and 6 aligned, only q4 + q6 is determined)");
-    }
-    if (singular_bits & static_cast<unsigned>(PumaSingularity::kElbow)) {
-      add("elbow singularity (arm fully stretched or folded: 'u' and 'd' coincide)");
-    }
-    if (singular_bits & static_cast<unsigned>(PumaSingularity::kShoulder)) {
-      add("shoulder singularity (wrist centre on the shoulder-offset cylinder: 'l' and 'r' "
-          "coincide)");
-    }
-    result.message = m;
+    result.message = singularity_message(
+        singular_bits,
+        "wrist singularity (q5 ~ 0: joints 4 and 6 aligned, only q4 + q6 is determined)",
+        "elbow singularity (arm fully stretched or folded: 'u' and 'd' coincide)",
+        "shoulder singularity (wrist centre on the shoulder-offset cylinder: 'l' and 'r' "
+        "coincide)");
   }
   return result;
 }

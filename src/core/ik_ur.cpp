@@ -483,20 +483,13 @@ AnalyticIkResult solve_ur_analytic_ik(const RobotModel& model, const UrGeometry&
   }
   if (singular_bits != 0) {
     result.status = IkStatus::kSingular;
-    std::string m;
-    const auto add = [&m](const char* text) { m += (m.empty() ? "" : "; ") + std::string(text); };
-    if (singular_bits & static_cast<unsigned>(PumaSingularity::kWrist)) {
-      add("wrist singularity (axis 6 parallel to axes 2-4: only q6 and q2 + q3 + q4 together "
-          "are determined)");
-    }
-    if (singular_bits & static_cast<unsigned>(PumaSingularity::kElbow)) {
-      add("elbow singularity (arm fully stretched or folded: 'u' and 'd' coincide)");
-    }
-    if (singular_bits & static_cast<unsigned>(PumaSingularity::kShoulder)) {
-      add("shoulder singularity (wrist point in the plane of joint 1's axis and the shoulder "
-          "axis: 'l' and 'r' coincide)");
-    }
-    result.message = m;
+    result.message = singularity_message(
+        singular_bits,
+        "wrist singularity (axis 6 parallel to axes 2-4: only q6 and q2 + q3 + q4 together "
+        "are determined)",
+        "elbow singularity (arm fully stretched or folded: 'u' and 'd' coincide)",
+        "shoulder singularity (wrist point in the plane of joint 1's axis and the shoulder "
+        "axis: 'l' and 'r' coincide)");
   }
   return result;
 }

@@ -104,6 +104,12 @@ enum class PumaSingularity : unsigned {
   kShoulder = 4,  // wrist centre on the shoulder-offset cylinder / joint 1's axis
 };
 
+// The texts of the singularities set in `bits` (PumaSingularity), joined by "; " in the order
+// wrist, elbow, shoulder: one message composition for every closed form, each arm giving its
+// own explanation of what coincides.
+std::string singularity_message(unsigned bits, std::string_view wrist, std::string_view elbow,
+                                std::string_view shoulder);
+
 // Why a target is out of reach (kReachable otherwise).
 enum class PumaReach {
   kReachable,
