@@ -75,7 +75,8 @@ def main():
                              captures])
             coverage = os.path.join(captures, "coverage.png")
             if r.returncode != 0 or "pose 1/10" not in r.stdout or \
-                    "coverage: the marker found at" not in r.stdout or \
+                    not re.search(r"coverage: the marker found at ([4-9]|10) \(left\) and "
+                                  r"([4-9]|10) \(right\)", r.stdout) or \
                     not os.path.getsize(coverage) > 1000:
                 failures.append(f"capture: status {r.returncode}, {r.stdout!r} {r.stderr!r}")
             else:

@@ -139,6 +139,19 @@ TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheT
   for (const auto& note : detected->notes) std::printf("detection: %s\n", note.c_str());
   EXPECT_GE(detected->left_found, 10);
   EXPECT_GE(detected->right_found, 10);
+  // The coverage image marks where each eye found the marker and leaves the rest dark.
+  const cv::Mat coverage =
+      vision::coverage_image(*detected, rig.cameras.left.width, rig.cameras.left.height);
+  ASSERT_EQ(coverage.cols, 2 * rig.cameras.left.width);
+  for (const vision::HandEyeView& view : detected->observations.views) {
+    if (view.right.size() != 4) continue;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const vision::TargetPixel& p : view.right) centre += p.pixel / 4.0;
+    const cv::Vec3b inside = coverage.at<cv::Vec3b>(
+        static_cast<int>(centre.y()), rig.cameras.left.width + static_cast<int>(centre.x()));
+    EXPECT_GT(inside[1], inside[0] + 40) << view.name << ": no green where the marker was";
+  }
+  EXPECT_EQ(coverage.at<cv::Vec3b>(coverage.rows - 1, 5), cv::Vec3b(40, 40, 40));
   auto result = vision::register_hand_eye(
       *model, rig.cameras.left, rig.cameras.right,
       vision::right_from_left(rig.cameras.left.T_cam_base, rig.cameras.right.T_cam_base),
