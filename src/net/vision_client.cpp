@@ -26,7 +26,10 @@ struct Received {
   std::size_t bytes = 0;
 };
 
-vision::CameraModel model_from_intrinsics(const telear::v1::CameraIntrinsics& in) {
+// The intrinsics fields of a CameraInfo; a model name or coefficient count that does not fit
+// is an error (a camera with the wrong lens model would overlay the arm in the wrong place).
+Result<vision::CameraModel> model_from_intrinsics(const telear::v1::CameraIntrinsics& in,
+                                                  const char* eye) {
   vision::CameraModel camera;
   camera.width = in.width();
   camera.height = in.height();
@@ -39,9 +42,17 @@ vision::CameraModel model_from_intrinsics(const telear::v1::CameraIntrinsics& in
     camera.cy = in.cc(1);
   }
   camera.alpha_c = in.alpha_c();
-  if (in.kc_size() == 5) {
-    camera.kc = vision::Distortion::from_array({in.kc(0), in.kc(1), in.kc(2), in.kc(3), in.kc(4)});
+  auto model = vision::parse_distortion_model(
+      in.distortion_model().empty() ? "plumb_bob" : in.distortion_model());
+  if (!model)
+    return Error{std::string("vision server camera info, ") + eye + ": " + model.error().message};
+  auto distortion = vision::Distortion::from_coefficients(
+      *model, std::vector<double>(in.kc().begin(), in.kc().end()));
+  if (!distortion) {
+    return Error{std::string("vision server camera info, ") + eye + ": " +
+                 distortion.error().message};
   }
+  camera.kc = *distortion;
   return camera;
 }
 
@@ -233,8 +244,12 @@ Result<CameraInfoReply> VisionClient::get_camera_info() {
     reply.cameras.left = file->left;
     reply.cameras.right = *file->right;
   } else {
-    reply.cameras.left = model_from_intrinsics(info.left());
-    reply.cameras.right = model_from_intrinsics(info.right());
+    auto left = model_from_intrinsics(info.left(), "left");
+    if (!left) return left.error();
+    auto right = model_from_intrinsics(info.right(), "right");
+    if (!right) return right.error();
+    reply.cameras.left = *left;
+    reply.cameras.right = *right;
   }
   return reply;
 }

@@ -16,7 +16,8 @@ void fill_intrinsics(const vision::CameraModel& camera, telear::v1::CameraIntrin
   out->add_cc(camera.cx);
   out->add_cc(camera.cy);
   out->set_alpha_c(camera.alpha_c);
-  for (double k : camera.kc.as_array()) out->add_kc(k);
+  out->set_distortion_model(vision::distortion_model_name(camera.kc.model));
+  for (double k : camera.kc.coefficients()) out->add_kc(k);
 }
 
 void fill_eye(const std::string& jpeg, int width, int height, std::int64_t capture_ns,

@@ -87,7 +87,7 @@ Result<vision::CameraModel> read_camera(const Context& ctx, const YAML::Node& no
   if (node["kc"]) {
     auto kc = read_numbers(ctx, node["kc"], field + ".kc", 5);
     if (!kc) return kc.error();
-    camera.kc = vision::Distortion{(*kc)[0], (*kc)[1], (*kc)[2], (*kc)[3], (*kc)[4]};
+    camera.kc = vision::Distortion::plumb_bob((*kc)[0], (*kc)[1], (*kc)[2], (*kc)[3], (*kc)[4]);
   }
   if (auto valid = vision::validate_camera(camera); !valid) {
     return ctx.error(field, valid.error().message);

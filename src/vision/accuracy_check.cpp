@@ -54,9 +54,19 @@ std::string accuracy_report_json(const AccuracyReport& report,
     const CameraModel& e = eye->estimate;
     json[eye == &report.left ? "left" : "right"] = {
         {"truth",
-         {{"fx", t.fx}, {"fy", t.fy}, {"cx", t.cx}, {"cy", t.cy}, {"kc", t.kc.as_array()}}},
+         {{"fx", t.fx},
+          {"fy", t.fy},
+          {"cx", t.cx},
+          {"cy", t.cy},
+          {"distortion_model", distortion_model_name(t.kc.model)},
+          {"kc", t.kc.coefficients()}}},
         {"estimate",
-         {{"fx", e.fx}, {"fy", e.fy}, {"cx", e.cx}, {"cy", e.cy}, {"kc", e.kc.as_array()}}},
+         {{"fx", e.fx},
+          {"fy", e.fy},
+          {"cx", e.cx},
+          {"cy", e.cy},
+          {"distortion_model", distortion_model_name(e.kc.model)},
+          {"kc", e.kc.coefficients()}}},
         {"fx_error_percent", 100.0 * (e.fx - t.fx) / t.fx},
         {"fy_error_percent", 100.0 * (e.fy - t.fy) / t.fy},
         {"cx_error_px", e.cx - t.cx},
@@ -103,10 +113,10 @@ std::string accuracy_report_text(const AccuracyReport& report,
     row("fy", t.fy, e.fy, 100.0 * (e.fy - t.fy) / t.fy, "%12.4f", "%+9.4f", " %");
     row("cx", t.cx, e.cx, e.cx - t.cx, "%12.4f", "%+9.4f", " px");
     row("cy", t.cy, e.cy, e.cy - t.cy, "%12.4f", "%+9.4f", " px");
-    const std::array<double, 5> kt = t.kc.as_array();
-    const std::array<double, 5> ke = e.kc.as_array();
-    const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
-    for (int i : {0, 1, 4, 2, 3})
+    const std::vector<double> kt = t.kc.coefficients();
+    const std::vector<double> ke = e.kc.coefficients();
+    const std::vector<const char*> names = t.kc.coefficient_names();
+    for (std::size_t i = 0; i < std::min(kt.size(), ke.size()); ++i)
       row(names[i], kt[i], ke[i], ke[i] - kt[i], "%12.6f", "%+9.6f", "");
     out << "  registration   " << format_number(eye->registration.position_mm, "%9.4f") << " mm  "
         << format_number(eye->registration.rotation_deg, "%9.5f") << " deg\n";

@@ -20,11 +20,14 @@ void write_intrinsics(cv::FileStorage& fs, const CameraModel& camera) {
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) k.at<double>(r, c) = K(r, c);
   }
-  const std::array<double, 5> kc = camera.kc.as_array();
+  std::vector<double> kc = camera.kc.coefficients();
   fs << "image_width" << camera.width;
   fs << "image_height" << camera.height;
   fs << "camera_matrix" << k;
-  fs << "distortion_coefficients" << cv::Mat(1, 5, CV_64F, const_cast<double*>(kc.data()));
+  if (camera.kc.model != DistortionModel::plumb_bob) {
+    fs << "distortion_model" << distortion_model_name(camera.kc.model);
+  }
+  fs << "distortion_coefficients" << cv::Mat(1, static_cast<int>(kc.size()), CV_64F, kc.data());
 }
 
 std::string directory_of(const std::string& path) {
@@ -129,11 +132,12 @@ std::string ros_camera_info_yaml(const CameraModel& camera, const cv::Matx33d& R
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) k[3 * r + c] = K(r, c);
   }
-  const std::array<double, 5> kc = camera.kc.as_array();
+  const std::vector<double> kc = camera.kc.coefficients();
   return "image_width: " + std::to_string(camera.width) +
          "\nimage_height: " + std::to_string(camera.height) + "\ncamera_name: " + camera_name +
-         "\n" + ros_matrix("camera_matrix", 3, 3, k) + "distortion_model: plumb_bob\n" +
-         ros_matrix("distortion_coefficients", 1, 5, kc.data()) +
+         "\n" + ros_matrix("camera_matrix", 3, 3, k) +
+         "distortion_model: " + distortion_model_name(camera.kc.model) + "\n" +
+         ros_matrix("distortion_coefficients", 1, static_cast<int>(kc.size()), kc.data()) +
          ros_matrix("rectification_matrix", 3, 3, R.val) +
          ros_matrix("projection_matrix", 3, 4, P.val);
 }

@@ -162,12 +162,14 @@ void parameter_rows(std::string& out, const std::vector<const CameraModel*>& cam
     }
     out += "\n";
   }
-  const char* names[] = {"k1", "k2", "p1", "p2", "k3"};
-  for (int i = 0; i < 5; ++i) {
+  const std::vector<const char*> names = cameras.front()->kc.coefficient_names();
+  for (std::size_t i = 0; i < names.size(); ++i) {
     out += padded(std::string("  ") + names[i], 12);
     for (std::size_t c = 0; c < cameras.size(); ++c) {
-      const std::string cell = value_pm(cameras[c]->kc.as_array()[static_cast<std::size_t>(i)],
-                                        sds[c]->kc.as_array()[static_cast<std::size_t>(i)], true);
+      const std::vector<double> value = cameras[c]->kc.coefficients();
+      const std::vector<double> sd = sds[c]->kc.coefficients();
+      const std::string cell =
+          value_pm(i < value.size() ? value[i] : 0.0, i < sd.size() ? sd[i] : 0.0, true);
       out += c + 1 < cameras.size() ? padded(cell, 26) : cell;
     }
     out += "\n";

@@ -114,34 +114,60 @@ Eigen::Isometry3d rigid_transform(const YAML::Node& node, const std::string& wha
   return pose;
 }
 
+// The lens model (ROS's distortion_model, plumb_bob when absent) and its D vector. OpenCV's
+// calibrateCamera writes 4, 5, 8, 12 or 14 coefficients for plumb_bob / rational files; the
+// thin-prism and tilt terms beyond the eighth must be zero (telear does not model them), and a
+// plumb_bob file's k4..k6 too.
 Distortion distortion(const YAML::Node& map, const std::string& prefix) {
   const std::string what = join(prefix, "distortion_coefficients");
-  if (const YAML::Node model = map["distortion_model"]) {
-    const std::string name = model.IsScalar() ? model.Scalar() : "";
-    if (name != "plumb_bob" && name != "rational_polynomial") {
-      throw ParseError{join(prefix, "distortion_model") +
-                       ": telear supports plumb_bob (k1, k2, p1, p2, k3), got '" + name + "'"};
-    }
+  DistortionModel model = DistortionModel::plumb_bob;
+  if (const YAML::Node node = map["distortion_model"]) {
+    const std::string name = node.IsScalar() ? node.Scalar() : "";
+    auto parsed = parse_distortion_model(name);
+    if (!parsed) throw ParseError{join(prefix, "distortion_model") + ": " + parsed.error().message};
+    model = *parsed;
   }
   const YAML::Node node = map["distortion_coefficients"];
-  if (!node) return {};  // a lens without distortion may leave the key out
+  if (!node) {  // a lens without distortion may leave the key out
+    Distortion none;
+    none.model = model;
+    return none;
+  }
   const Matrix m = matrix(node, what);
   if (m.rows != 1 && m.cols != 1) {
     throw ParseError{what + ": expected a vector (1xN or Nx1), got " + format_shape(m)};
   }
   const size_t n = m.data.size();
+  if (model == DistortionModel::equidistant) {
+    if (n != 4) {
+      throw ParseError{what + ": equidistant takes 4 coefficients (k1, k2, k3, k4), got " +
+                       std::to_string(n)};
+    }
+    return *Distortion::from_coefficients(model, m.data);
+  }
   if (n != 4 && n != 5 && n != 8 && n != 12 && n != 14) {
     throw ParseError{what + ": expected 4, 5, 8, 12 or 14 coefficients, got " + std::to_string(n)};
   }
-  for (size_t i = 5; i < n; ++i) {
+  const size_t used = model == DistortionModel::rational_polynomial ? 8 : 5;
+  if (model == DistortionModel::rational_polynomial && n < 8) {
+    throw ParseError{what +
+                     ": rational_polynomial takes 8 coefficients (k1, k2, p1, p2, k3, k4, "
+                     "k5, k6), got " +
+                     std::to_string(n)};
+  }
+  for (size_t i = used; i < n; ++i) {
     if (m.data[i] != 0.0) {
-      throw ParseError{what + ": coefficient " + std::to_string(i) +
-                       " is not zero; telear models k1, k2, p1, p2, k3 only"};
+      throw ParseError{what + ": coefficient " + std::to_string(i) + " is not zero; " +
+                       distortion_model_name(model) +
+                       (model == DistortionModel::plumb_bob
+                            ? " models k1, k2, p1, p2, k3 only (set distortion_model: "
+                              "rational_polynomial for k4..k6)"
+                            : " models k1, k2, p1, p2, k3, k4, k5, k6 only")};
     }
   }
-  std::array<double, 5> kc{};
-  for (size_t i = 0; i < std::min<size_t>(n, 5); ++i) kc[i] = m.data[i];
-  return Distortion::from_array(kc);
+  std::vector<double> d(m.data.begin(), m.data.begin() + static_cast<long>(std::min(n, used)));
+  while (d.size() < used) d.push_back(0.0);
+  return *Distortion::from_coefficients(model, d);
 }
 
 struct ParsedCamera {
@@ -216,8 +242,12 @@ void write_camera(cv::FileStorage& fs, const CameraModel& camera) {
   fs << "image_width" << camera.width;
   fs << "image_height" << camera.height;
   fs << "camera_matrix" << mat(camera.K());
-  const std::array<double, 5> kc = camera.kc.as_array();
-  fs << "distortion_coefficients" << cv::Mat(1, 5, CV_64F, const_cast<double*>(kc.data()));
+  std::vector<double> kc = camera.kc.coefficients();
+  // plumb_bob is the default; writing the name only otherwise keeps files of the seed's shape.
+  if (camera.kc.model != DistortionModel::plumb_bob) {
+    fs << "distortion_model" << distortion_model_name(camera.kc.model);
+  }
+  fs << "distortion_coefficients" << cv::Mat(1, static_cast<int>(kc.size()), CV_64F, kc.data());
   cv::Mat T(4, 4, CV_64F);
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) T.at<double>(r, c) = camera.T_cam_base.matrix()(r, c);
@@ -340,7 +370,7 @@ std::string ros_camera_info_yaml(const CameraModel& camera, const std::string& c
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) t.push_back(camera.T_cam_base.matrix()(r, c));
   }
-  const std::array<double, 5> kc = camera.kc.as_array();
+  const std::vector<double> kc = camera.kc.coefficients();
   YAML::Emitter out;
   out.SetDoublePrecision(17);
   YAML::Node root;
@@ -348,8 +378,8 @@ std::string ros_camera_info_yaml(const CameraModel& camera, const std::string& c
   root["image_height"] = camera.height;
   root["camera_name"] = camera_name;
   root["camera_matrix"] = matrix_node(3, 3, k);
-  root["distortion_model"] = "plumb_bob";
-  root["distortion_coefficients"] = matrix_node(1, 5, {kc.begin(), kc.end()});
+  root["distortion_model"] = distortion_model_name(camera.kc.model);
+  root["distortion_coefficients"] = matrix_node(1, static_cast<int>(kc.size()), kc);
   root["rectification_matrix"] = matrix_node(3, 3, {1, 0, 0, 0, 1, 0, 0, 0, 1});
   root["projection_matrix"] = matrix_node(3, 4, p);
   root["T_cam_base"] = matrix_node(4, 4, t);

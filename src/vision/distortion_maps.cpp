@@ -6,20 +6,19 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "telear/vision/opencv_camera.hpp"
+
 namespace telear::vision {
 
 UndistortMaps compute_undistort_maps(const CameraModel& camera) {
   UndistortMaps maps;
   const cv::Size size(camera.width, camera.height);
-  if (camera.alpha_c == 0.0) {
-    cv::Matx33d K;
-    const Eigen::Matrix3d k = camera.K();
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) K(r, c) = k(r, c);
-    }
-    const std::array<double, 5> kc = camera.kc.as_array();
-    cv::initUndistortRectifyMap(K, cv::Mat(1, 5, CV_64F, const_cast<double*>(kc.data())),
-                                cv::noArray(), K, size, CV_32FC1, maps.map_x, maps.map_y);
+  // OpenCV's map for the Brown-Conrady models (it ignores skew, hence the own loop with
+  // alpha_c != 0); equidistant goes through the same loop, which evaluates telear's formulas.
+  if (camera.alpha_c == 0.0 && camera.kc.model != DistortionModel::equidistant) {
+    const cv::Matx33d K = opencv_camera_matrix(camera);
+    cv::initUndistortRectifyMap(K, opencv_distortion(camera.kc), cv::noArray(), K, size, CV_32FC1,
+                                maps.map_x, maps.map_y);
   } else {
     maps.map_x.create(size, CV_32FC1);
     maps.map_y.create(size, CV_32FC1);

@@ -41,17 +41,15 @@ Eigen::Isometry3d perturbed(const Vector6& delta, const Eigen::Isometry3d& T) {
   return E * T;
 }
 
-// The camera model of camera_model.hpp (pinhole, skew, Brown-Conrady), for automatic
-// derivatives. False for points at or behind the camera's z = 0 plane.
+// The camera model of camera_model.hpp (pinhole, skew, any of the three lens models), for
+// automatic derivatives. False for points at or behind the camera's z = 0 plane.
 template <typename T>
 bool project(const CameraModel& c, const T* p_cam, T* uv) {
   if (!(p_cam[2] > T(1e-9))) return false;
   const T x = p_cam[0] / p_cam[2];
   const T y = p_cam[1] / p_cam[2];
-  const T r2 = x * x + y * y;
-  const T radial = T(1.0) + r2 * (T(c.kc.k1) + r2 * (T(c.kc.k2) + r2 * T(c.kc.k3)));
-  const T xd = x * radial + T(2.0 * c.kc.p1) * x * y + T(c.kc.p2) * (r2 + T(2.0) * x * x);
-  const T yd = y * radial + T(c.kc.p1) * (r2 + T(2.0) * y * y) + T(2.0 * c.kc.p2) * x * y;
+  T xd, yd;
+  distort_normalized(c.kc, x, y, xd, yd);
   uv[0] = T(c.fx) * (xd + T(c.alpha_c) * yd) + T(c.cx);
   uv[1] = T(c.fy) * yd + T(c.cy);
   return true;

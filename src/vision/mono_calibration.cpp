@@ -134,9 +134,9 @@ Result<MonoCalibration> calibrate_mono(const CalibrationPattern& pattern,
     const auto d = [&dist](int i) {
       return i < static_cast<int>(dist.total()) ? dist.at<double>(i) : 0.0;
     };
-    camera.kc = {d(0), d(1), d(2), d(3), d(4)};
+    camera.kc = Distortion::plumb_bob(d(0), d(1), d(2), d(3), d(4));
     const auto s = [&std_intrinsics](int i) { return std_intrinsics.at<double>(i); };
-    result.std_dev = {s(0), s(1), s(2), s(3), {s(4), s(5), s(6), s(7), s(8)}};
+    result.std_dev = {s(0), s(1), s(2), s(3), Distortion::plumb_bob(s(4), s(5), s(6), s(7), s(8))};
     result.rms_px = rms;
     for (std::size_t k = 0; k < active.size(); ++k) {
       CalibratedView view;

@@ -7,6 +7,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "telear/core/number_format.hpp"
+#include "telear/vision/opencv_camera.hpp"
 #include "telear/vision/opencv_pose.hpp"
 
 namespace telear::vision {
@@ -18,8 +19,7 @@ cv::Mat camera_matrix(const CameraModel& camera) {
 }
 
 cv::Mat distortion_vector(const CameraModel& camera) {
-  const std::array<double, 5> kc = camera.kc.as_array();
-  return cv::Mat(1, 5, CV_64F, const_cast<double*>(kc.data())).clone();
+  return opencv_distortion(camera.kc);
 }
 
 CameraModel camera_from(const cv::Mat& K, const cv::Mat& dist, cv::Size size) {
@@ -33,7 +33,7 @@ CameraModel camera_from(const cv::Mat& K, const cv::Mat& dist, cv::Size size) {
   const auto d = [&dist](int i) {
     return i < static_cast<int>(dist.total()) ? dist.at<double>(i) : 0.0;
   };
-  camera.kc = {d(0), d(1), d(2), d(3), d(4)};
+  camera.kc = Distortion::plumb_bob(d(0), d(1), d(2), d(3), d(4));
   return camera;
 }
 
@@ -163,7 +163,7 @@ struct Covariance {
 };
 
 IntrinsicsStdDev intrinsics_std(const Eigen::VectorXd& sd) {
-  return {sd(0), sd(1), sd(2), sd(3), {sd(4), sd(5), sd(6), sd(7), sd(8)}};
+  return {sd(0), sd(1), sd(2), sd(3), Distortion::plumb_bob(sd(4), sd(5), sd(6), sd(7), sd(8))};
 }
 
 Covariance joint_covariance(const std::vector<cv::Point3f>& object,

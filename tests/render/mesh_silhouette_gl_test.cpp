@@ -64,7 +64,7 @@ vision::CameraModel test_camera(bool with_distortion) {
   vision::CameraModel camera = vision::look_at_camera(
       kWidth, kHeight, 45.0 * std::numbers::pi / 180.0, Eigen::Vector3d(1.3, -0.95, 0.9),
       Eigen::Vector3d(0.25, -0.1, 0.3), Eigen::Vector3d::UnitZ());
-  if (with_distortion) camera.kc = {-0.28, 0.07, 0.0009, -0.0004, 0.0};
+  if (with_distortion) camera.kc = vision::Distortion::plumb_bob(-0.28, 0.07, 0.0009, -0.0004, 0.0);
   return camera;
 }
 
@@ -87,8 +87,8 @@ cv::Mat opencv_silhouette(const core::ArmBody& body,
   const Eigen::Vector3d r = core::rotation_vector(camera.T_cam_base.linear());
   const Eigen::Vector3d t = camera.T_cam_base.translation();
   const cv::Matx33d K(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
-  const std::array<double, 5> kc = camera.kc.as_array();
-  const cv::Mat distortion(1, 5, CV_64F, const_cast<double*>(kc.data()));
+  const std::vector<double> kc = camera.kc.coefficients();
+  const cv::Mat distortion(1, static_cast<int>(kc.size()), CV_64F, const_cast<double*>(kc.data()));
   cv::Mat fine(kHeight * kSupersample, kWidth * kSupersample, CV_8U, cv::Scalar(0));
   for (int k = 0; k < body.part_count(); ++k) {
     const core::Mesh& mesh = body.parts[static_cast<std::size_t>(k)].mesh;

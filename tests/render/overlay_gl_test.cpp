@@ -52,12 +52,14 @@ std::vector<Eigen::Vector2d> opencv_project(const vision::CameraModel& camera,
   for (const Eigen::Vector3d& p : points) object.emplace_back(p.x(), p.y(), p.z());
   const Eigen::Vector3d r = core::rotation_vector(camera.T_cam_base.linear());
   const Eigen::Vector3d t = camera.T_cam_base.translation();
-  const std::array<double, 5> kc = camera.kc.as_array();
+  const std::vector<double> kc = camera.kc.coefficients();
   std::vector<cv::Point2d> image;
-  cv::projectPoints(
-      object, cv::Vec3d(r.x(), r.y(), r.z()), cv::Vec3d(t.x(), t.y(), t.z()),
-      cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1),
-      with_distortion ? cv::Mat(1, 5, CV_64F, const_cast<double*>(kc.data())) : cv::Mat(), image);
+  cv::projectPoints(object, cv::Vec3d(r.x(), r.y(), r.z()), cv::Vec3d(t.x(), t.y(), t.z()),
+                    cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1),
+                    with_distortion ? cv::Mat(1, static_cast<int>(kc.size()), CV_64F,
+                                              const_cast<double*>(kc.data()))
+                                    : cv::Mat(),
+                    image);
   std::vector<Eigen::Vector2d> out;
   for (const cv::Point2d& p : image) out.emplace_back(p.x, p.y);
   return out;
@@ -131,7 +133,7 @@ class OverlayTest : public GlTest {
     vision::CameraModel pinhole = shipped;
     pinhole.kc = {};
     vision::CameraModel barrel = shipped;
-    barrel.kc = {-0.3, 0, 0, 0, 0};
+    barrel.kc = vision::Distortion::plumb_bob(-0.3, 0, 0, 0, 0);
     return {{"no distortion", pinhole}, {"k1 = -0.3", barrel}, {"shipped rig", shipped}};
   }
 
@@ -209,7 +211,7 @@ TEST_F(OverlayTest, SkewedCameraInBothModes) {
 // projection of a point is remapped onto the pixel where the arm's point is drawn.
 TEST_F(OverlayTest, UndistortedVideoPutsTheRawFeatureUnderTheRenderedPoint) {
   vision::CameraModel camera = shipped;
-  camera.kc = {-0.3, 0, 0, 0, 0};
+  camera.kc = vision::Distortion::plumb_bob(-0.3, 0, 0, 0, 0);
   auto overlay = Overlay::create(camera, {.mode = OverlayMode::kUndistorted});
   ASSERT_TRUE(overlay) << overlay.error().message;
   const std::vector<Eigen::Vector3d> points = joint_origins(*model);

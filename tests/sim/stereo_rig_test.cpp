@@ -173,7 +173,7 @@ TEST(Supersampling, ScaledCameraRefinesThePixelGrid) {
   camera.fy = 510;
   camera.cx = 320.3;
   camera.cy = 239.1;
-  camera.kc = {-0.28, 0.07, 0.001, -0.0004, 0.0};
+  camera.kc = vision::Distortion::plumb_bob(-0.28, 0.07, 0.001, -0.0004, 0.0);
   const vision::CameraModel scaled = supersampled_camera(camera, 4);
   const Eigen::Vector3d p(0.13, -0.08, 1.1);
   const Eigen::Vector2d uv = *camera.project(p);
@@ -236,7 +236,7 @@ class StereoRigSceneTest : public render::test::GlTest {
       points.emplace_back(q.x(), q.y(), q.z());
     }
     const cv::Matx33d K(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
-    const auto kc = camera.kc.as_array();
+    const std::vector<double> kc = camera.kc.coefficients();
     std::vector<cv::Point2d> uv;
     cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K,
                       std::vector<double>(kc.begin(), kc.end()), uv);

@@ -21,7 +21,7 @@ CameraModel camera(double x) {
   c.cx = 331.7;
   c.cy = 236.2;
   c.alpha_c = 0.001;
-  c.kc = {-0.29, 0.11, 0.0011, -0.0007, -0.02};
+  c.kc = Distortion::plumb_bob(-0.29, 0.11, 0.0011, -0.0007, -0.02);
   c.T_cam_base = core::pose_from_xyz_rpy({x, -0.2, 1.5}, {2.1, 0.1, -0.3});
   return c;
 }
@@ -30,7 +30,8 @@ void expect_same(const CameraModel& a, const CameraModel& b) {
   EXPECT_EQ(a.width, b.width);
   EXPECT_EQ(a.height, b.height);
   EXPECT_LT((a.K() - b.K()).cwiseAbs().maxCoeff(), 1e-12);
-  for (size_t i = 0; i < 5; ++i) EXPECT_EQ(a.kc.as_array()[i], b.kc.as_array()[i]);
+  EXPECT_EQ(a.kc.model, b.kc.model);
+  EXPECT_EQ(a.kc.coefficients(), b.kc.coefficients());
   EXPECT_LT((a.T_cam_base.matrix() - b.T_cam_base.matrix()).cwiseAbs().maxCoeff(), 1e-12);
 }
 
@@ -183,11 +184,15 @@ TEST(CameraFile, ErrorsNameTheFieldAndWhy) {
             "coefficients, got 6");
   EXPECT_EQ(error_of(with("   cols: 5\n   dt: d\n   data: [ -0.3, 0.1, 0., 0., 0. ]",
                           "   cols: 8\n   dt: d\n   data: [ -0.3, 0.1, 0., 0., 0., 0.2, 0, 0 ]")),
-            "camera file 'cam.yaml': distortion_coefficients: coefficient 5 is not zero; telear "
-            "models k1, k2, p1, p2, k3 only");
+            "camera file 'cam.yaml': distortion_coefficients: coefficient 5 is not zero; "
+            "plumb_bob models k1, k2, p1, p2, k3 only (set distortion_model: "
+            "rational_polynomial for k4..k6)");
   EXPECT_EQ(error_of(with("image_width: 640", "image_width: 640\ndistortion_model: equidistant")),
-            "camera file 'cam.yaml': distortion_model: telear supports plumb_bob (k1, k2, p1, "
-            "p2, k3), got 'equidistant'");
+            "camera file 'cam.yaml': distortion_coefficients: equidistant takes 4 coefficients "
+            "(k1, k2, k3, k4), got 5");
+  EXPECT_EQ(error_of(with("image_width: 640", "image_width: 640\ndistortion_model: kb8")),
+            "camera file 'cam.yaml': distortion_model: unknown distortion model 'kb8' (expected "
+            "plumb_bob, rational_polynomial or equidistant)");
   EXPECT_EQ(error_of(with("image_width: 640",
                           "image_width: 640\nT_cam_base: [1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0, "
                           "0, 0, 1]")),

@@ -17,7 +17,7 @@ CameraModel camera(double alpha_c = 0.0) {
   c.cx = 163.2;
   c.cy = 118.9;
   c.alpha_c = alpha_c;
-  c.kc = {-0.3, 0.0, 0.001, -0.0005, 0.0};
+  c.kc = Distortion::plumb_bob(-0.3, 0.0, 0.001, -0.0005, 0.0);
   return c;
 }
 

@@ -23,12 +23,13 @@ std::vector<cv::Point2d> project_exact(const vision::CameraModel& camera,
     tvec.at<double>(r) = T_cam_target.translation()(r);
   }
   cv::Rodrigues(R, rvec);
-  const std::array<double, 5> kc = camera.kc.as_array();
+  const std::vector<double> kc = camera.kc.coefficients();
   const std::vector<cv::Point3f> object = vision::pattern_object_points(pattern);
   std::vector<cv::Point3d> object_d(object.begin(), object.end());
   std::vector<cv::Point2d> image;
   cv::projectPoints(object_d, rvec, tvec, camera_matrix(camera),
-                    cv::Mat(1, 5, CV_64F, const_cast<double*>(kc.data())), image);
+                    cv::Mat(1, static_cast<int>(kc.size()), CV_64F, const_cast<double*>(kc.data())),
+                    image);
   return image;
 }
 
@@ -60,7 +61,7 @@ SyntheticRig default_rig() {
   left.fy = 802.5;
   left.cx = 321.7;
   left.cy = 238.4;
-  left.kc = {-0.3, 0.1, 0.0012, -0.0008, 0.0};
+  left.kc = vision::Distortion::plumb_bob(-0.3, 0.1, 0.0012, -0.0008, 0.0);
   vision::CameraModel& right = rig.right;
   right.width = 640;
   right.height = 480;
@@ -68,7 +69,7 @@ SyntheticRig default_rig() {
   right.fy = 804.8;
   right.cx = 316.2;
   right.cy = 243.9;
-  right.kc = {-0.29, 0.095, -0.0006, 0.0009, 0.0};
+  right.kc = vision::Distortion::plumb_bob(-0.29, 0.095, -0.0006, 0.0009, 0.0);
   // Right camera centre 6 cm along the left camera's x axis (plus a little y, z), turned
   // about 1 degree: X_R = R (X_L - c) with c the right centre in the left frame.
   const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.8 * kDeg, Eigen::Vector3d::UnitY()) *
