@@ -16,6 +16,8 @@
 #include "telear/core/number_format.hpp"
 #include "telear/core/trajectory.hpp"
 #include "telear/core/yaml_reader.hpp"
+#include "telear/session/capture_session.hpp"
+#include "telear/session/marker_visibility.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/capture_observations.hpp"
 #include "telear/vision/hand_eye_registration.hpp"
@@ -26,9 +28,6 @@ namespace {
 
 constexpr double kArmRangeRad = 0.6;     // the first three joints' spread around the start
 constexpr double kWristRangeRad = 0.8;   // the others'
-constexpr double kMarginPx = 30.0;       // corners this far inside both images
-constexpr double kMaxViewAngleDeg = 50;  // the marker faces each camera within this
-constexpr double kPoll = 0.01;           // s
 
 using Clock = std::chrono::steady_clock;
 
@@ -36,56 +35,13 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-bool sees(const vision::CameraModel& camera, const Eigen::Isometry3d& T_base_marker,
-          const core::MarkerMount& marker) {
-  const Eigen::Vector3d centre = T_base_marker.translation();
-  const Eigen::Vector3d camera_centre = camera.T_cam_base.inverse().translation();
-  const Eigen::Vector3d normal = T_base_marker.linear().col(2);
-  const double cos_view = normal.dot((camera_centre - centre).normalized());
-  if (cos_view < std::cos(core::radians_from_degrees(kMaxViewAngleDeg))) return false;
-  for (const Eigen::Vector3d& p : vision::marker_target_points(marker)) {
-    const auto uv = camera.project(T_base_marker * p);
-    if (!uv || uv->x() < kMarginPx || uv->y() < kMarginPx || uv->x() > camera.width - kMarginPx ||
-        uv->y() > camera.height - kMarginPx) {
-      return false;
-    }
-  }
-  return true;
-}
-
 double rotation_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return std::abs(Eigen::AngleAxisd(Eigen::Matrix3d(a.transpose() * b)).angle());
-}
-
-cv::Mat bgr_of(const core::Image& image) {
-  const cv::Mat rgb(image.height, image.width, CV_8UC3,
-                    const_cast<std::uint8_t*>(image.pixels.data()));
-  cv::Mat bgr;
-  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  return bgr;
 }
 
 cv::Mat rgb_view(const core::Image& image) {
   return cv::Mat(image.height, image.width, CV_8UC3,
                  const_cast<std::uint8_t*>(image.pixels.data()));
-}
-
-// The newest frame captured (both eyes) after `after_ns` (client clock), waiting up to timeout.
-std::shared_ptr<const net::DecodedStereoFrame> frame_after(net::VisionClient& vision,
-                                                           std::int64_t after_ns,
-                                                           std::uint64_t after_id,
-                                                           double timeout_s) {
-  const auto start = Clock::now();
-  while (seconds_since(start) < timeout_s) {
-    if (auto frame = vision.latest_frame()) {
-      const auto& f = **frame;
-      if (f.frame_id > after_id && std::min(f.capture_ns_left, f.capture_ns_right) > after_ns) {
-        return *frame;
-      }
-    }
-    std::this_thread::sleep_for(std::chrono::duration<double>(kPoll));
-  }
-  return nullptr;
 }
 
 // Sends the move as a plan and waits for rest near `target`; the measured state at rest.
@@ -203,18 +159,16 @@ std::vector<Eigen::VectorXd> choose_capture_poses(const core::RobotModel& model,
                                                   const Eigen::VectorXd& q_start,
                                                   const vision::StereoCameraModel& rough,
                                                   const core::MarkerMount& marker, int count,
-                                                  std::uint64_t seed) {
+                                                  std::uint64_t seed, const core::ArmBody* body,
+                                                  const core::Workspace* workspace) {
   struct Candidate {
     Eigen::VectorXd q;
     Eigen::Isometry3d T_base_marker;
   };
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  core::KinematicsData data(model);
-  const auto marker_at = [&](const Eigen::VectorXd& q) {
-    core::forward_kinematics(model, data, q);
-    return Eigen::Isometry3d(data.T_base_link.back() * marker.T_flange_marker);
-  };
+  MarkerVisibility visibility(model, marker, body, workspace);
+  const auto marker_at = [&](const Eigen::VectorXd& q) { return visibility.marker_pose(q); };
   std::vector<Candidate> candidates;
   const int tries = std::min(20000, 80 * count);
   for (int t = 0; t < tries; ++t) {
@@ -224,8 +178,9 @@ std::vector<Eigen::VectorXd> choose_capture_poses(const core::RobotModel& model,
       const double lo = model.lower_limits()[j], hi = model.upper_limits()[j];
       if (std::isfinite(lo) && std::isfinite(hi)) q[j] = std::clamp(q[j], lo + 0.01, hi - 0.01);
     }
-    const Eigen::Isometry3d T = marker_at(q);
-    if (sees(rough.left, T, marker) && sees(rough.right, T, marker)) candidates.push_back({q, T});
+    if (visibility.visible(rough.left, q) && visibility.visible(rough.right, q)) {
+      candidates.push_back({q, marker_at(q)});
+    }
   }
   // Farthest-point sampling: rotation angle plus position (2 rad per metre), from the start.
   std::vector<Eigen::Isometry3d> chosen_poses = {marker_at(q_start)};
@@ -265,21 +220,8 @@ Result<RegistrationCaptureResult> capture_for_registration(
     const RegistrationCaptureOptions& options,
     const std::function<void(const CaptureProgress&)>& progress) {
   if (Status s = options.validate(); !s) return s.error();
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(options.directory, ec);
-  if (ec) return Error{"capture: cannot create '" + options.directory + "': " + ec.message()};
-  if (fs::exists(fs::path(options.directory) / "capture.yaml")) {
-    return Error{"capture: '" + options.directory +
-                 "' already holds a capture (capture.yaml): give a new folder"};
-  }
-  auto info = vision.get_camera_info();
-  if (!info) return Error{"capture: camera info: " + info.error().message};
-  if (!info->found) {
-    return Error{
-        "capture: the vision server has no camera calibration (start it with "
-        "--calibration FILE): registration needs the intrinsics"};
-  }
+  auto info = open_capture_folder(vision, options.directory);
+  if (!info) return info.error();
   const bool lease_was_held = robot.lease_held();
   if (!lease_was_held) {
     if (Status s = robot.acquire_lease(); !s) return Error{"capture: lease: " + s.error().message};
@@ -306,8 +248,15 @@ Result<RegistrationCaptureResult> capture_for_registration(
     if (!frame) return Error{"capture: no video frame from the vision server within 5 s"};
     auto rough = rough_cameras(model, *state, *frame, info->cameras, options.marker);
     if (!rough) return Error{"capture: " + rough.error().message};
+    std::optional<core::ArmBody> body = options.body;
+    if (!body) {
+      auto description = core::body_description_for(model);
+      if (!description) return Error{"capture: the arm's body: " + description.error().message};
+      body = core::build_arm_body(*description);
+    }
     poses = choose_capture_poses(model, state->state.q, *rough, options.marker, options.auto_poses,
-                                 options.seed);
+                                 options.seed, &*body,
+                                 options.workspace ? &*options.workspace : nullptr);
     if (poses.empty()) {
       return Error{
           "capture: no pose around the current one keeps the marker in both cameras' "
@@ -339,30 +288,14 @@ Result<RegistrationCaptureResult> capture_for_registration(
     pose.q_commanded = poses[static_cast<std::size_t>(p)];
     pose.q = rest->state.q;
     pose.joint_time_ns = rest->capture_ns;
-    const std::int64_t rest_ns = rest->capture_client_ns();
-    const auto start = Clock::now();
-    while (static_cast<int>(pose.frames.size()) < options.frames_per_pose &&
-           seconds_since(start) < options.pose_timeout_s) {
-      const auto frame = frame_after(vision, rest_ns, last_frame_id, 2.0);
-      if (!frame) continue;
-      last_frame_id = frame->frame_id;
-      if (std::abs(frame->capture_ns_left - frame->capture_ns_right) > options.max_sync_skew_ns) {
-        continue;  // not one stereo exposure
-      }
-      vision::CapturedFrame captured;
-      captured.frame_id = frame->frame_id;
-      captured.left_time_ns = frame->capture_ns_left;
-      captured.right_time_ns = frame->capture_ns_right;
-      const int f = static_cast<int>(pose.frames.size());
-      captured.left_image = vision::captured_image_path(index, f, true);
-      captured.right_image = vision::captured_image_path(index, f, false);
-      if (Status s = vision::write_captured_images(options.directory, captured, bgr_of(frame->left),
-                                                   bgr_of(frame->right));
-          !s) {
-        return Error{"capture: " + s.error().message};
-      }
-      pose.frames.push_back(captured);
-    }
+    PoseFramesOptions frames_options;
+    frames_options.frames = options.frames_per_pose;
+    frames_options.max_sync_skew_ns = options.max_sync_skew_ns;
+    frames_options.timeout_s = options.pose_timeout_s;
+    auto frames =
+        capture_pose_frames(vision, options.directory, index, *rest, frames_options, last_frame_id);
+    if (!frames) return frames.error();
+    pose.frames = std::move(*frames);
     if (pose.frames.empty()) {
       report.message = label + " skipped: no synchronized stereo frame after the arm settled";
       out.notes.push_back(report.message);
@@ -379,14 +312,7 @@ Result<RegistrationCaptureResult> capture_for_registration(
     return Error{"capture: no pose was captured (" +
                  (out.notes.empty() ? std::string("no poses") : out.notes.back()) + ")"};
   }
-  // The calibration the poses were captured with, so `register --captures DIR` needs no --rig.
-  if (!info->calibration_yaml.empty()) {
-    const std::string path = (fs::path(options.directory) / "cameras.yaml").string();
-    if (Status s = vision::write_files_atomically({{path, info->calibration_yaml}}); !s) {
-      return Error{"capture: " + s.error().message};
-    }
-    out.capture.camera_file = "cameras.yaml";
-  }
+  if (Status s = write_capture_cameras(options.directory, *info, out.capture); !s) return s.error();
   if (Status s = vision::write_capture_manifest(out.capture, options.directory); !s) {
     return Error{"capture: " + s.error().message};
   }
