@@ -12,7 +12,10 @@
 //     kinematics that gives a rough pose of each camera. Candidate poses are drawn around the
 //     current one (arm joints within +-0.6 rad, wrist joints within +-0.8 rad, inside the
 //     limits) and kept when the rough cameras see all four corners at least 30 px inside both
-//     images with the marker facing each camera within 50 deg; N of them are chosen to spread
+//     images with the marker facing each camera within 50 deg, and no sight line from the
+//     marker to either camera crosses the arm's own body or a workspace object
+//     (marker_visibility.hpp: poses where the arm hid the marker cost a move and gave
+//     nothing); N of them are chosen to spread
 //     the marker's orientation (farthest-point sampling on the rotation angle between marker
 //     orientations), then visited in nearest-neighbour order to keep the moves short.
 //
@@ -27,12 +30,15 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "telear/core/arm_body.hpp"
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/result.hpp"
 #include "telear/core/robot_model.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/net/robot_client.hpp"
 #include "telear/net/vision_client.hpp"
 #include "telear/vision/capture_folder.hpp"
@@ -51,6 +57,11 @@ struct RegistrationCaptureOptions {
   double pose_timeout_s = 60.0;  // per pose: move, settle and frames
   std::int64_t max_sync_skew_ns = 5'000'000;
   core::MarkerMount marker;  // detected for auto poses; its spec goes into the manifest
+  // Auto poses: what may hide the marker from a camera (marker_visibility.hpp). The arm's
+  // body, unset: the robot's body file (core::body_description_for); the objects around the
+  // robot, unset: none known.
+  std::optional<core::ArmBody> body;
+  std::optional<core::Workspace> workspace;
 
   Status validate() const;  // names the field and the range
 };
@@ -87,6 +98,8 @@ std::vector<Eigen::VectorXd> choose_capture_poses(const core::RobotModel& model,
                                                   const Eigen::VectorXd& q_start,
                                                   const vision::StereoCameraModel& rough,
                                                   const core::MarkerMount& marker, int count,
-                                                  std::uint64_t seed);
+                                                  std::uint64_t seed,
+                                                  const core::ArmBody* body = nullptr,
+                                                  const core::Workspace* workspace = nullptr);
 
 }  // namespace telear::session
