@@ -31,11 +31,15 @@ json camera_json(const CameraModel& camera, const IntrinsicsStdDev& sd, double r
   j["cx"] = value_std(camera.cx, sd.cx);
   j["cy"] = value_std(camera.cy, sd.cy);
   j["alpha_c"] = value_std(camera.alpha_c, 0.0);
-  j["k1"] = value_std(camera.kc.k1, sd.kc.k1);
-  j["k2"] = value_std(camera.kc.k2, sd.kc.k2);
-  j["p1"] = value_std(camera.kc.p1, sd.kc.p1);
-  j["p2"] = value_std(camera.kc.p2, sd.kc.p2);
-  j["k3"] = value_std(camera.kc.k3, sd.kc.k3);
+  // The model's ROS name, then its coefficients by name in D-vector order (plumb_bob: k1 k2
+  // p1 p2 k3; rational_polynomial: ... k4 k5 k6; equidistant: k1 k2 k3 k4).
+  j["distortion_model"] = distortion_model_name(camera.kc.model);
+  const std::vector<const char*> names = camera.kc.coefficient_names();
+  const std::vector<double> values = camera.kc.coefficients();
+  const std::vector<double> sds = sd.kc.coefficients();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    j[names[i]] = value_std(values[i], i < sds.size() ? sds[i] : 0.0);
+  }
   return j;
 }
 
@@ -231,7 +235,12 @@ std::string calibration_summary(const CalibrationReport& report) {
          std::to_string(report.image_size.width) + "x" + std::to_string(report.image_size.height) +
          ": " + std::to_string(report.views_given) + (stereo ? " pairs" : " images") + " given, " +
          std::to_string(views_used(report)) + " used, " + std::to_string(views_rejected(report)) +
-         " rejected\n\n";
+         " rejected\n";
+  const CameraModel& first = stereo ? report.stereo->cameras.left : report.mono->camera;
+  out += std::string("lens model ") + distortion_model_name(first.kc.model) + ": D = (";
+  const std::vector<const char*> names = first.kc.coefficient_names();
+  for (std::size_t i = 0; i < names.size(); ++i) out += (i > 0 ? ", " : "") + std::string(names[i]);
+  out += ")\n\n";
 
   if (stereo) {
     const StereoCalibration& s = *report.stereo;

@@ -1,15 +1,117 @@
 #include "telear/vision/mono_calibration.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
 #include "telear/core/number_format.hpp"
+#include "telear/vision/opencv_camera.hpp"
 #include "telear/vision/opencv_pose.hpp"
+#include "telear/vision/projection_jacobian.hpp"
 
 namespace telear::vision {
-namespace {}  // namespace
+namespace {
+
+// One solve's output in the form both solvers' results are turned into.
+struct Solve {
+  double rms = 0.0;
+  cv::Mat K, dist;
+  std::vector<cv::Mat> rvecs, tvecs;
+  std::vector<double> view_errors;                    // rms of each view, pixels
+  std::vector<double> intrinsics_std;                 // fx fy cx cy D..., 0 when fixed
+  std::vector<Eigen::Matrix<double, 6, 1>> pose_std;  // rvec, tvec per view
+};
+
+// cv::fisheye::calibrate returns neither standard deviations nor per-view errors: both come
+// from the Gauss-Newton covariance sigma^2 (J^T J)^-1 of the problem it solved (free
+// intrinsics and every view's pose), J from cv::fisheye::projectPoints.
+void fisheye_uncertainty(const std::vector<cv::Point3f>& object,
+                         const std::vector<std::vector<cv::Point2f>>& image_points,
+                         const std::vector<int>& free, Solve& s) {
+  const auto views = static_cast<Eigen::Index>(image_points.size());
+  const auto n_free = static_cast<Eigen::Index>(free.size());
+  const auto rows_per_view = static_cast<Eigen::Index>(2 * object.size());
+  const Eigen::Index parameters = n_free + 6 * views;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows_per_view * views, parameters);
+  double sum_squares = 0.0;
+  s.view_errors.clear();
+  for (Eigen::Index i = 0; i < views; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const ViewProjection p = project_view(object, image_points[k], s.rvecs[k], s.tvecs[k], s.K,
+                                          s.dist, DistortionModel::equidistant);
+    for (Eigen::Index f = 0; f < n_free; ++f) {
+      J.block(i * rows_per_view, f, rows_per_view, 1) =
+          p.d_intrinsics.col(free[static_cast<std::size_t>(f)]);
+    }
+    J.block(i * rows_per_view, n_free + 6 * i, rows_per_view, 6) = p.d_pose;
+    sum_squares += p.residual.squaredNorm();
+    s.view_errors.push_back(
+        std::sqrt(p.residual.squaredNorm() / static_cast<double>(object.size())));
+  }
+  const double total_points = static_cast<double>(object.size()) * static_cast<double>(views);
+  s.rms = std::sqrt(sum_squares / total_points);
+  const double sigma2 = sum_squares / static_cast<double>(J.rows() - parameters);
+  const Eigen::MatrixXd covariance =
+      sigma2 * (J.transpose() * J).ldlt().solve(Eigen::MatrixXd::Identity(parameters, parameters));
+  const Eigen::VectorXd sd = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  s.intrinsics_std.assign(
+      static_cast<std::size_t>(intrinsic_parameter_count(DistortionModel::equidistant)), 0.0);
+  for (Eigen::Index f = 0; f < n_free; ++f)
+    s.intrinsics_std[static_cast<std::size_t>(free[static_cast<std::size_t>(f)])] = sd(f);
+  s.pose_std.clear();
+  for (Eigen::Index i = 0; i < views; ++i) s.pose_std.push_back(sd.segment<6>(n_free + 6 * i));
+}
+
+Result<Solve> solve(const std::vector<cv::Point3f>& object,
+                    const std::vector<std::vector<cv::Point2f>>& image_points, cv::Size image_size,
+                    const CalibrationOptions& options) {
+  std::vector<std::vector<cv::Point3f>> object_points(image_points.size(), object);
+  const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
+                                  options.max_iterations, DBL_EPSILON);
+  Solve s;
+  try {
+    if (options.model == DistortionModel::equidistant) {
+      cv::Matx33d K;
+      cv::Vec4d D;
+      s.rms = cv::fisheye::calibrate(object_points, image_points, image_size, K, D, s.rvecs,
+                                     s.tvecs, calibration_flags(options), criteria);
+      s.K = cv::Mat(K, true);
+      s.dist = cv::Mat(D, true).reshape(1, 1);
+    } else {
+      cv::Mat std_intrinsics, std_extrinsics, per_view;
+      s.rms = cv::calibrateCamera(object_points, image_points, image_size, s.K, s.dist, s.rvecs,
+                                  s.tvecs, std_intrinsics, std_extrinsics, per_view,
+                                  calibration_flags(options), criteria);
+      if (!std::isfinite(s.rms) || !cv::checkRange(s.K) || !cv::checkRange(s.dist)) return s;
+      // OpenCV returns 5 (plumb_bob) or 8 (rational) coefficients with the model's flags.
+      const int count = static_cast<int>(distortion_coefficient_count(options.model));
+      s.dist = s.dist.reshape(1, 1).colRange(0, count).clone();
+      for (int i = 0; i < 4 + count; ++i) s.intrinsics_std.push_back(std_intrinsics.at<double>(i));
+      for (std::size_t k = 0; k < image_points.size(); ++k) {
+        s.view_errors.push_back(per_view.at<double>(static_cast<int>(k)));
+        Eigen::Matrix<double, 6, 1> pose;
+        for (int i = 0; i < 6; ++i)
+          pose(i) = std_extrinsics.at<double>(static_cast<int>(6 * k) + i);
+        s.pose_std.push_back(pose);
+      }
+      return s;
+    }
+  } catch (const cv::Exception& e) {
+    return Error{"calibration failed (" + e.msg +
+                 "); the views are probably degenerate: use views tilted in different "
+                 "directions, not all parallel to the image plane"};
+  }
+  for (cv::Mat& m : s.rvecs) m.convertTo(m, CV_64F);
+  for (cv::Mat& m : s.tvecs) m.convertTo(m, CV_64F);
+  if (std::isfinite(s.rms) && cv::checkRange(s.K) && cv::checkRange(s.dist)) {
+    fisheye_uncertainty(object, image_points, free_intrinsic_parameters(options), s);
+  }
+  return s;
+}
+
+}  // namespace
 
 Status CalibrationOptions::validate() const {
   if (!(outlier_factor == 0.0 || (std::isfinite(outlier_factor) && outlier_factor > 1.0))) {
@@ -19,15 +121,47 @@ Status CalibrationOptions::validate() const {
     return Error{"outlier_floor_px must be a finite number >= 0"};
   }
   if (min_views < 3) return Error{"min_views must be at least 3"};
+  if (zero_tangential && model == DistortionModel::equidistant) {
+    return Error{"zero_tangential: the equidistant (fisheye) model has no tangential terms"};
+  }
   if (max_iterations < 1) return Error{"max_iterations must be at least 1"};
   return Status::Ok();
 }
 
 int calibration_flags(const CalibrationOptions& options) {
+  if (options.model == DistortionModel::equidistant) {
+    // The poses are re-solved after each intrinsics update (OpenCV's fisheye sample does the
+    // same; without it the solve often stalls far from the minimum); skew is not estimated,
+    // as for the other models.
+    return cv::fisheye::CALIB_RECOMPUTE_EXTRINSIC | cv::fisheye::CALIB_FIX_SKEW;
+  }
   int flags = 0;
-  if (options.fix_k3) flags |= cv::CALIB_FIX_K3;
+  if (options.model == DistortionModel::rational_polynomial) {
+    flags |= cv::CALIB_RATIONAL_MODEL;
+  } else if (options.fix_k3) {
+    flags |= cv::CALIB_FIX_K3;
+  }
   if (options.zero_tangential) flags |= cv::CALIB_ZERO_TANGENT_DIST;
   return flags;
+}
+
+std::vector<int> free_intrinsic_parameters(const CalibrationOptions& options) {
+  std::vector<int> free;
+  for (int i = 0; i < intrinsic_parameter_count(options.model); ++i) {
+    const bool tangential = options.model != DistortionModel::equidistant && (i == 6 || i == 7);
+    if (options.zero_tangential && tangential) continue;
+    if (options.model == DistortionModel::plumb_bob && options.fix_k3 && i == 8) continue;
+    free.push_back(i);
+  }
+  return free;
+}
+
+IntrinsicsStdDev intrinsics_std_dev(const std::vector<double>& full, DistortionModel model) {
+  assert(static_cast<int>(full.size()) == intrinsic_parameter_count(model));
+  IntrinsicsStdDev sd{full[0], full[1], full[2], full[3], {}};
+  sd.kc = Distortion::from_coefficients(model, std::vector<double>(full.begin() + 4, full.end()))
+              .value();
+  return sd;
 }
 
 double median_of(std::vector<double> values) {
@@ -81,31 +215,17 @@ Result<MonoCalibration> calibrate_mono(const CalibrationPattern& pattern,
 
   MonoCalibration result;
   while (true) {
-    std::vector<std::vector<cv::Point3f>> object_points(active.size(), object);
     std::vector<std::vector<cv::Point2f>> image_points;
     for (std::size_t i : active) image_points.push_back(views[i].image_points);
 
-    cv::Mat K, dist, std_intrinsics, std_extrinsics, per_view;
-    std::vector<cv::Mat> rvecs, tvecs;
-    double rms = 0.0;
-    try {
-      rms =
-          cv::calibrateCamera(object_points, image_points, image_size, K, dist, rvecs, tvecs,
-                              std_intrinsics, std_extrinsics, per_view, calibration_flags(options),
-                              cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
-                                               options.max_iterations, DBL_EPSILON));
-    } catch (const cv::Exception& e) {
-      return Error{"calibration failed (" + e.msg +
-                   "); the views are probably degenerate: use views tilted in different "
-                   "directions, not all parallel to the image plane"};
-    }
-    if (!std::isfinite(rms) || !cv::checkRange(K) || !cv::checkRange(dist)) {
+    auto solved = solve(object, image_points, image_size, options);
+    if (!solved) return solved.error();
+    const Solve& sol = *solved;
+    if (!std::isfinite(sol.rms) || !cv::checkRange(sol.K) || !cv::checkRange(sol.dist)) {
       return Error{"calibration diverged; use views tilted in different directions"};
     }
 
-    std::vector<double> errors(active.size());
-    for (std::size_t k = 0; k < active.size(); ++k)
-      errors[k] = per_view.at<double>(static_cast<int>(k));
+    const std::vector<double>& errors = sol.view_errors;
     const double median = median_of(errors);
     const auto worst =
         static_cast<std::size_t>(std::max_element(errors.begin(), errors.end()) - errors.begin());
@@ -126,28 +246,21 @@ Result<MonoCalibration> calibrate_mono(const CalibrationPattern& pattern,
     CameraModel& camera = result.camera;
     camera.width = image_size.width;
     camera.height = image_size.height;
-    camera.fx = K.at<double>(0, 0);
-    camera.fy = K.at<double>(1, 1);
-    camera.cx = K.at<double>(0, 2);
-    camera.cy = K.at<double>(1, 2);
+    camera.fx = sol.K.at<double>(0, 0);
+    camera.fy = sol.K.at<double>(1, 1);
+    camera.cx = sol.K.at<double>(0, 2);
+    camera.cy = sol.K.at<double>(1, 2);
     camera.alpha_c = 0.0;
-    const auto d = [&dist](int i) {
-      return i < static_cast<int>(dist.total()) ? dist.at<double>(i) : 0.0;
-    };
-    camera.kc = Distortion::plumb_bob(d(0), d(1), d(2), d(3), d(4));
-    const auto s = [&std_intrinsics](int i) { return std_intrinsics.at<double>(i); };
-    result.std_dev = {s(0), s(1), s(2), s(3), Distortion::plumb_bob(s(4), s(5), s(6), s(7), s(8))};
-    result.rms_px = rms;
+    camera.kc = Distortion::from_coefficients(options.model, std::vector<double>(sol.dist)).value();
+    result.std_dev = intrinsics_std_dev(sol.intrinsics_std, options.model);
+    result.rms_px = sol.rms;
     for (std::size_t k = 0; k < active.size(); ++k) {
       CalibratedView view;
       view.name = views[active[k]].name;
       view.rms_px = errors[k];
-      view.T_cam_target = pose_from_rvec_tvec(rvecs[k], tvecs[k]);
-      const int row = static_cast<int>(6 * k);
-      for (int i = 0; i < 3; ++i) {
-        view.rotation_std(i) = std_extrinsics.at<double>(row + i);
-        view.translation_std(i) = std_extrinsics.at<double>(row + 3 + i);
-      }
+      view.T_cam_target = pose_from_rvec_tvec(sol.rvecs[k], sol.tvecs[k]);
+      view.rotation_std = sol.pose_std[k].head<3>();
+      view.translation_std = sol.pose_std[k].tail<3>();
       result.views.push_back(std::move(view));
     }
     return result;

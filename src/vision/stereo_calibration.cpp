@@ -9,6 +9,7 @@
 #include "telear/core/number_format.hpp"
 #include "telear/vision/opencv_camera.hpp"
 #include "telear/vision/opencv_pose.hpp"
+#include "telear/vision/projection_jacobian.hpp"
 
 namespace telear::vision {
 namespace {
@@ -22,7 +23,8 @@ cv::Mat distortion_vector(const CameraModel& camera) {
   return opencv_distortion(camera.kc);
 }
 
-CameraModel camera_from(const cv::Mat& K, const cv::Mat& dist, cv::Size size) {
+CameraModel camera_from(const cv::Mat& K, const cv::Mat& dist, cv::Size size,
+                        DistortionModel model) {
   CameraModel camera;
   camera.width = size.width;
   camera.height = size.height;
@@ -30,10 +32,7 @@ CameraModel camera_from(const cv::Mat& K, const cv::Mat& dist, cv::Size size) {
   camera.fy = K.at<double>(1, 1);
   camera.cx = K.at<double>(0, 2);
   camera.cy = K.at<double>(1, 2);
-  const auto d = [&dist](int i) {
-    return i < static_cast<int>(dist.total()) ? dist.at<double>(i) : 0.0;
-  };
-  camera.kc = Distortion::plumb_bob(d(0), d(1), d(2), d(3), d(4));
+  camera.kc = Distortion::from_coefficients(model, std::vector<double>(dist.reshape(1, 1))).value();
   return camera;
 }
 
@@ -45,59 +44,15 @@ CameraModel camera_from(const cv::Mat& K, const cv::Mat& dist, cv::Size size) {
 // the 2 P left components, then the 2 P right components. The right pose of view i is
 // compose((r_i, t_i), (om, T)): R_Ri = R R_i, t_Ri = R t_i + T (cv::composeRT).
 
-// Intrinsic parameter i of projectPoints' Jacobian (columns 6..14: fx fy cx cy k1 k2 p1 p2 k3)
-// that the options leave free.
+// The intrinsics (fx fy cx cy, then the model's D vector) that the options leave free.
 std::vector<int> free_intrinsics(const StereoCalibrationOptions& options) {
   if (!options.refine_intrinsics) return {};
-  std::vector<int> free;
-  for (int i = 0; i < 9; ++i) {
-    if (options.calibration.zero_tangential && (i == 6 || i == 7)) continue;
-    if (options.calibration.fix_k3 && i == 8) continue;
-    free.push_back(i);
-  }
-  return free;
+  return free_intrinsic_parameters(options.calibration);
 }
 
 struct ViewPose {
   cv::Mat rvec, tvec;  // 3x1 double
 };
-
-// Residuals (predicted - observed) and Jacobian blocks of one camera's view.
-struct Projection {
-  Eigen::VectorXd residual;      // 2P
-  Eigen::MatrixXd d_pose;        // 2P x 6: (rvec, tvec) of the pose used
-  Eigen::MatrixXd d_intrinsics;  // 2P x 9: fx fy cx cy k1 k2 p1 p2 k3
-};
-
-Eigen::MatrixXd to_eigen(const cv::Mat& m) {
-  Eigen::MatrixXd e(m.rows, m.cols);
-  for (int r = 0; r < m.rows; ++r) {
-    for (int c = 0; c < m.cols; ++c) e(r, c) = m.at<double>(r, c);
-  }
-  return e;
-}
-
-Projection project(const std::vector<cv::Point3f>& object, const std::vector<cv::Point2f>& observed,
-                   const cv::Mat& rvec, const cv::Mat& tvec, const cv::Mat& K,
-                   const cv::Mat& dist) {
-  std::vector<cv::Point2d> predicted;
-  cv::Mat jacobian;
-  std::vector<cv::Point3d> object_d(object.begin(), object.end());
-  cv::projectPoints(object_d, rvec, tvec, K, dist, predicted, jacobian);
-  const Eigen::MatrixXd J = to_eigen(jacobian);
-  Projection p;
-  const auto n = static_cast<Eigen::Index>(observed.size());
-  p.residual.resize(2 * n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    p.residual(2 * j) =
-        predicted[static_cast<std::size_t>(j)].x - observed[static_cast<std::size_t>(j)].x;
-    p.residual(2 * j + 1) =
-        predicted[static_cast<std::size_t>(j)].y - observed[static_cast<std::size_t>(j)].y;
-  }
-  p.d_pose = J.leftCols(6);
-  p.d_intrinsics = J.middleCols(6, 9);
-  return p;
-}
 
 struct RightPose {
   cv::Mat rvec, tvec;
@@ -111,13 +66,16 @@ RightPose compose_right(const ViewPose& left, const cv::Mat& om, const cv::Mat& 
   cv::composeRT(left.rvec, left.tvec, om, T, right.rvec, right.tvec, dr3dr1, dr3dt1, dr3dr2, dr3dt2,
                 dt3dr1, dt3dt1, dt3dr2, dt3dt2);
   right.d_left_pose.resize(6, 6);
-  right.d_left_pose << to_eigen(dr3dr1), to_eigen(dr3dt1), to_eigen(dt3dr1), to_eigen(dt3dt1);
+  right.d_left_pose << eigen_from_mat(dr3dr1), eigen_from_mat(dr3dt1), eigen_from_mat(dt3dr1),
+      eigen_from_mat(dt3dt1);
   right.d_stereo.resize(6, 6);
-  right.d_stereo << to_eigen(dr3dr2), to_eigen(dr3dt2), to_eigen(dt3dr2), to_eigen(dt3dt2);
+  right.d_stereo << eigen_from_mat(dr3dr2), eigen_from_mat(dr3dt2), eigen_from_mat(dt3dr2),
+      eigen_from_mat(dt3dt2);
   return right;
 }
 
 struct JointSolution {
+  DistortionModel model = DistortionModel::plumb_bob;
   cv::Mat K[2], dist[2], om, T;
   std::vector<ViewPose> poses;
 };
@@ -130,15 +88,13 @@ void solve_left_poses(const std::vector<cv::Point3f>& object,
   s.poses.clear();
   for (const StereoPatternView& view : views) {
     ViewPose pose;
-    cv::solvePnP(object, view.left_points, s.K[0], s.dist[0], pose.rvec, pose.tvec);
-    pose.rvec.convertTo(pose.rvec, CV_64F);
-    pose.tvec.convertTo(pose.tvec, CV_64F);
+    solve_view_pose(object, view.left_points, s.K[0], s.dist[0], s.model, pose.rvec, pose.tvec);
     for (int iteration = 0; iteration < 20; ++iteration) {
-      const Projection left =
-          project(object, view.left_points, pose.rvec, pose.tvec, s.K[0], s.dist[0]);
+      const ViewProjection left =
+          project_view(object, view.left_points, pose.rvec, pose.tvec, s.K[0], s.dist[0], s.model);
       const RightPose rp = compose_right(pose, s.om, s.T);
-      const Projection right =
-          project(object, view.right_points, rp.rvec, rp.tvec, s.K[1], s.dist[1]);
+      const ViewProjection right =
+          project_view(object, view.right_points, rp.rvec, rp.tvec, s.K[1], s.dist[1], s.model);
       Eigen::MatrixXd J(left.residual.size() + right.residual.size(), 6);
       J << left.d_pose, right.d_pose * rp.d_left_pose;
       Eigen::VectorXd r(J.rows());
@@ -162,10 +118,6 @@ struct Covariance {
   std::size_t points = 0;              // per camera
 };
 
-IntrinsicsStdDev intrinsics_std(const Eigen::VectorXd& sd) {
-  return {sd(0), sd(1), sd(2), sd(3), Distortion::plumb_bob(sd(4), sd(5), sd(6), sd(7), sd(8))};
-}
-
 Covariance joint_covariance(const std::vector<cv::Point3f>& object,
                             const std::vector<StereoPatternView>& views, const JointSolution& s,
                             const std::vector<int>& free) {
@@ -181,11 +133,11 @@ Covariance joint_covariance(const std::vector<cv::Point3f>& object,
   for (std::size_t i = 0; i < views.size(); ++i) {
     const Eigen::Index pose_col = stereo_col + 6 + 6 * static_cast<Eigen::Index>(i);
     const ViewPose& pose = s.poses[i];
-    const Projection left =
-        project(object, views[i].left_points, pose.rvec, pose.tvec, s.K[0], s.dist[0]);
+    const ViewProjection left = project_view(object, views[i].left_points, pose.rvec, pose.tvec,
+                                             s.K[0], s.dist[0], s.model);
     const RightPose rp = compose_right(pose, s.om, s.T);
-    const Projection right =
-        project(object, views[i].right_points, rp.rvec, rp.tvec, s.K[1], s.dist[1]);
+    const ViewProjection right =
+        project_view(object, views[i].right_points, rp.rvec, rp.tvec, s.K[1], s.dist[1], s.model);
     for (Eigen::Index k = 0; k < n_free; ++k) {
       J.block(row, k, 2 * points, 1) = left.d_intrinsics.col(free[static_cast<std::size_t>(k)]);
       J.block(row + 2 * points, n_free + k, 2 * points, 1) =
@@ -205,10 +157,10 @@ Covariance joint_covariance(const std::vector<cv::Point3f>& object,
       sigma2 * JtJ.ldlt().solve(Eigen::MatrixXd::Identity(parameters, parameters));
   const Eigen::VectorXd sd = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
   for (int c = 0; c < 2; ++c) {
-    Eigen::VectorXd full = Eigen::VectorXd::Zero(9);
+    std::vector<double> full(static_cast<std::size_t>(intrinsic_parameter_count(s.model)), 0.0);
     for (Eigen::Index k = 0; k < n_free; ++k)
-      full(free[static_cast<std::size_t>(k)]) = sd(c * n_free + k);
-    result.intrinsics[c] = intrinsics_std(full);
+      full[static_cast<std::size_t>(free[static_cast<std::size_t>(k)])] = sd(c * n_free + k);
+    result.intrinsics[c] = intrinsics_std_dev(full, s.model);
   }
   result.rotation_std = sd.segment(stereo_col, 3);
   result.translation_std = sd.segment(stereo_col + 3, 3);
@@ -267,7 +219,10 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
     if (!mono_right) return Error{"right camera: " + mono_right.error().message};
 
     // Step 2: joint refinement.
+    const DistortionModel model = options.calibration.model;
+    const bool fisheye = model == DistortionModel::equidistant;
     JointSolution s;
+    s.model = model;
     s.K[0] = camera_matrix(mono_left->camera);
     s.K[1] = camera_matrix(mono_right->camera);
     s.dist[0] = distortion_vector(mono_left->camera);
@@ -279,22 +234,72 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
       right_points.push_back(v.right_points);
     }
     cv::Mat R, T, E, F, per_view;
-    const int flags = options.refine_intrinsics
-                          ? cv::CALIB_USE_INTRINSIC_GUESS | calibration_flags(options.calibration)
-                          : cv::CALIB_FIX_INTRINSIC;
+    const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
+                                    options.calibration.max_iterations, 1e-10);
     double rms = 0.0;
     try {
-      rms = cv::stereoCalibrate(object_points, left_points, right_points, s.K[0], s.dist[0], s.K[1],
-                                s.dist[1], image_size, R, T, E, F, per_view, flags,
-                                cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
-                                                 options.calibration.max_iterations, 1e-10));
+      if (fisheye) {
+        const int flags = options.refine_intrinsics
+                              ? cv::fisheye::CALIB_USE_INTRINSIC_GUESS | cv::fisheye::CALIB_FIX_SKEW
+                              : cv::fisheye::CALIB_FIX_INTRINSIC;
+        cv::fisheye::stereoCalibrate(object_points, left_points, right_points, s.K[0], s.dist[0],
+                                     s.K[1], s.dist[1], image_size, R, T, flags, criteria);
+        for (cv::Mat& d : s.dist) d = d.reshape(1, 1);
+      } else {
+        // The model's flag also with fixed intrinsics: it tells OpenCV to use all 8 terms.
+        const int model_flag =
+            model == DistortionModel::rational_polynomial ? cv::CALIB_RATIONAL_MODEL : 0;
+        const int flags = options.refine_intrinsics ? cv::CALIB_USE_INTRINSIC_GUESS |
+                                                          calibration_flags(options.calibration)
+                                                    : cv::CALIB_FIX_INTRINSIC | model_flag;
+        rms =
+            cv::stereoCalibrate(object_points, left_points, right_points, s.K[0], s.dist[0], s.K[1],
+                                s.dist[1], image_size, R, T, E, F, per_view, flags, criteria);
+        // CALIB_RATIONAL_MODEL returns (and needs) 8 coefficients, plumb_bob 5.
+        for (cv::Mat& d : s.dist) {
+          d = d.reshape(1, 1)
+                  .colRange(0, static_cast<int>(distortion_coefficient_count(model)))
+                  .clone();
+        }
+      }
     } catch (const cv::Exception& e) {
       return Error{"stereo calibration failed (" + e.msg +
                    "); use pairs tilted in different directions"};
     }
     if (!std::isfinite(rms) || !cv::checkRange(s.K[0]) || !cv::checkRange(s.K[1]) ||
-        !cv::checkRange(R) || !cv::checkRange(T)) {
+        !cv::checkRange(s.dist[0]) || !cv::checkRange(s.dist[1]) || !cv::checkRange(R) ||
+        !cv::checkRange(T)) {
       return Error{"stereo calibration diverged; use pairs tilted in different directions"};
+    }
+    R.convertTo(R, CV_64F);
+    T = T.reshape(1, 3);
+    T.convertTo(T, CV_64F);
+    cv::Rodrigues(R, s.om);
+    s.T = T.clone();
+    if (fisheye) {
+      // cv::fisheye::stereoCalibrate returns neither the per-view errors nor E and F: the
+      // errors come from the left poses that fit both images (as for the covariance below),
+      // E = [T]x R and F = K_R^-T E K_L^-1 as cv::stereoCalibrate forms them.
+      solve_left_poses(object, active, s);
+      per_view.create(static_cast<int>(active.size()), 2, CV_64F);
+      double sum_squares = 0.0;
+      for (std::size_t k = 0; k < active.size(); ++k) {
+        const ViewPose& pose = s.poses[k];
+        const ViewProjection left = project_view(object, active[k].left_points, pose.rvec,
+                                                 pose.tvec, s.K[0], s.dist[0], model);
+        const RightPose rp = compose_right(pose, s.om, s.T);
+        const ViewProjection right = project_view(object, active[k].right_points, rp.rvec, rp.tvec,
+                                                  s.K[1], s.dist[1], model);
+        const double n = static_cast<double>(object.size());
+        per_view.at<double>(static_cast<int>(k), 0) = std::sqrt(left.residual.squaredNorm() / n);
+        per_view.at<double>(static_cast<int>(k), 1) = std::sqrt(right.residual.squaredNorm() / n);
+        sum_squares += left.residual.squaredNorm() + right.residual.squaredNorm();
+      }
+      rms = std::sqrt(sum_squares / (2.0 * static_cast<double>(object.size() * active.size())));
+      const cv::Matx33d Tx(0.0, -T.at<double>(2), T.at<double>(1), T.at<double>(2), 0.0,
+                           -T.at<double>(0), -T.at<double>(1), T.at<double>(0), 0.0);
+      E = cv::Mat(Tx * cv::Matx33d(R));
+      F = cv::Mat(cv::Matx33d(s.K[1]).inv().t() * cv::Matx33d(E) * cv::Matx33d(s.K[0]).inv());
     }
 
     // Step 3: outliers, in either image.
@@ -341,18 +346,26 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
     result.F = cv::Matx33d(F);
     StereoRectification& rect = result.rectification;
     cv::Mat R1, R2, P1, P2, Q;
-    cv::stereoRectify(s.K[0], s.dist[0], s.K[1], s.dist[1], image_size, R, T, R1, R2, P1, P2, Q,
-                      cv::CALIB_ZERO_DISPARITY, options.rectify_alpha, image_size, &rect.left_roi,
-                      &rect.right_roi);
+    if (fisheye) {
+      // Bouguet's rectification for the fisheye model; alpha is its `balance` (OpenCV's
+      // default scaling, -1, is balance 0). It computes no valid-pixel rectangles: the whole
+      // image is reported.
+      cv::fisheye::stereoRectify(s.K[0], s.dist[0], s.K[1], s.dist[1], image_size, R, T, R1, R2, P1,
+                                 P2, Q, cv::fisheye::CALIB_ZERO_DISPARITY, image_size,
+                                 std::max(0.0, options.rectify_alpha));
+      rect.left_roi = rect.right_roi = cv::Rect(0, 0, image_size.width, image_size.height);
+    } else {
+      cv::stereoRectify(s.K[0], s.dist[0], s.K[1], s.dist[1], image_size, R, T, R1, R2, P1, P2, Q,
+                        cv::CALIB_ZERO_DISPARITY, options.rectify_alpha, image_size, &rect.left_roi,
+                        &rect.right_roi);
+    }
     rect.R1 = cv::Matx33d(R1);
     rect.R2 = cv::Matx33d(R2);
     rect.P1 = cv::Matx34d(P1);
     rect.P2 = cv::Matx34d(P2);
     rect.Q = cv::Matx44d(Q);
 
-    cv::Rodrigues(R, s.om);
-    T.convertTo(s.T, CV_64F);
-    solve_left_poses(object, active, s);
+    if (!fisheye) solve_left_poses(object, active, s);
     const Covariance cov = joint_covariance(object, active, s, free_intrinsics(options));
     result.left_std_dev = options.refine_intrinsics ? cov.intrinsics[0] : mono_left->std_dev;
     result.right_std_dev = options.refine_intrinsics ? cov.intrinsics[1] : mono_right->std_dev;
@@ -362,8 +375,8 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
     result.left_rms_px = std::sqrt(cov.sum_squares[0] / static_cast<double>(cov.points));
     result.right_rms_px = std::sqrt(cov.sum_squares[1] / static_cast<double>(cov.points));
 
-    result.cameras.left = camera_from(s.K[0], s.dist[0], image_size);
-    result.cameras.right = camera_from(s.K[1], s.dist[1], image_size);
+    result.cameras.left = camera_from(s.K[0], s.dist[0], image_size, model);
+    result.cameras.right = camera_from(s.K[1], s.dist[1], image_size, model);
     result.cameras.right.T_cam_base = pose_from_rvec_tvec(s.om, s.T);
     for (std::size_t k = 0; k < active.size(); ++k) {
       StereoCalibratedView view;

@@ -7,8 +7,16 @@
 // the pattern's points in the order of pattern_object_points(). They can come from images
 // (telear/vision/calibration_images.hpp) or from anywhere else (simulation, a file of corners).
 //
-// Estimated: fx, fy, cx, cy and the distortion kc = (k1, k2, p1, p2), k3 held at 0 unless
-// options.fix_k3 is false; skew alpha_c is 0 (OpenCV does not estimate it, and modern sensors
+// Lens models (options.model, the ROS names of include/telear/vision/camera_model.hpp):
+//   plumb_bob            cv::calibrateCamera: fx, fy, cx, cy and kc = (k1, k2, p1, p2), k3 held
+//                        at 0 unless options.fix_k3 is false (below);
+//   rational_polynomial  cv::calibrateCamera with CALIB_RATIONAL_MODEL: fx, fy, cx, cy and all
+//                        eight of (k1, k2, p1, p2, k3, k4, k5, k6) (fix_k3 does not apply: the
+//                        denominator's terms are what the model is chosen for);
+//   equidistant          cv::fisheye::calibrate (CALIB_RECOMPUTE_EXTRINSIC | CALIB_FIX_SKEW):
+//                        fx, fy, cx, cy and (k1, k2, k3, k4). OpenCV does not return its
+//                        standard deviations, so telear computes them (below).
+// Skew alpha_c is 0 (OpenCV does not estimate it, and modern sensors
 // have square pixel grids). k3 is held by default, as Bouguet's toolbox does: with views of
 // a 9x6 board it is poorly determined (sigma ~ 0.3) and trades off against k2, and on the
 // synthetic rig a free k3 made the distortion worse away from the observed corners even when
@@ -20,7 +28,8 @@
 //   overall    rms   = sqrt( sum_ij |u_ij - proj(X_j)|^2 / sum_i n_i )
 // Standard deviations are 1-sigma from the Gauss-Newton covariance sigma^2 (J^T J)^-1 with
 // sigma^2 = (sum of squared residual components) / (residual components - free parameters),
-// as OpenCV computes them.
+// as OpenCV computes them for cv::calibrateCamera; for equidistant telear forms the same
+// covariance itself from cv::fisheye::projectPoints' Jacobian (intrinsics and every pose).
 //
 // Outliers: after each solve the view with the largest rms_i is rejected and the problem
 // solved again when rms_i > outlier_factor x median(rms) and rms_i > outlier_floor_px, as
@@ -45,11 +54,12 @@ struct PatternView {
 };
 
 struct CalibrationOptions {
+  DistortionModel model = DistortionModel::plumb_bob;  // the lens model to estimate
   double outlier_factor = 3.0;    // reject views with rms > factor x median; 0 keeps every view
   double outlier_floor_px = 0.1;  // ... and rms above this (no rejections among perfect views)
   int min_views = 3;              // fewer usable views is an error
-  bool fix_k3 = true;             // hold k3 at 0 (two radial terms; docs/calibration.md)
-  bool zero_tangential = false;   // hold p1, p2 at 0
+  bool fix_k3 = true;             // plumb_bob: hold k3 at 0 (two radial terms; docs/calibration.md)
+  bool zero_tangential = false;   // hold p1, p2 at 0 (not for equidistant, which has none)
   int max_iterations = 100;       // Levenberg-Marquardt iterations per solve
 
   // The error names the field and the violated constraint.
@@ -96,8 +106,16 @@ Result<MonoCalibration> calibrate_mono(const CalibrationPattern& pattern,
                                        const std::vector<PatternView>& views, cv::Size image_size,
                                        const CalibrationOptions& options = {});
 
-// The cv::calibrateCamera flags the options select.
+// The flags the options select: cv::calibrateCamera's (plumb_bob, rational_polynomial) or
+// cv::fisheye::calibrate's (equidistant).
 int calibration_flags(const CalibrationOptions& options);
+
+// The intrinsic parameters the options leave free, as indices into (fx, fy, cx, cy, then the
+// model's D vector in Distortion::coefficients() order).
+std::vector<int> free_intrinsic_parameters(const CalibrationOptions& options);
+
+// Standard deviations in that order (0 for a fixed parameter) -> IntrinsicsStdDev of `model`.
+IntrinsicsStdDev intrinsics_std_dev(const std::vector<double>& full, DistortionModel model);
 
 // Median of a non-empty list of per-view errors.
 double median_of(std::vector<double> values);
