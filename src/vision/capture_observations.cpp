@@ -1,6 +1,7 @@
 #include "telear/vision/capture_observations.hpp"
 
 #include <cmath>
+#include <map>
 #include <opencv2/imgproc.hpp>
 
 #include "telear/core/number_format.hpp"
@@ -9,19 +10,29 @@
 namespace telear::vision {
 namespace {
 
-// The mean of the frames' corners, or empty when none found the marker or they spread.
-std::vector<Eigen::Vector2d> average_corners(const std::vector<std::vector<Eigen::Vector2d>>& found,
-                                             double max_spread_px, double& spread_px) {
+// Point id -> pixel, one frame's detection.
+using FramePoints = std::map<int, Eigen::Vector2d>;
+
+// The mean of the frames' points, point by point (a board's partial views may differ in which
+// corners they hold), or empty when none found the target or the frames spread.
+std::vector<TargetPixel> average_points(const std::vector<FramePoints>& found, double max_spread_px,
+                                        double& spread_px) {
   spread_px = 0.0;
-  if (found.empty()) return {};
-  std::vector<Eigen::Vector2d> mean(4, Eigen::Vector2d::Zero());
-  for (const auto& corners : found) {
-    for (std::size_t k = 0; k < 4; ++k) mean[k] += corners[k];
+  std::map<int, std::pair<Eigen::Vector2d, int>> sums;
+  for (const FramePoints& frame : found) {
+    for (const auto& [id, pixel] : frame) {
+      auto& [sum, count] = sums.try_emplace(id, Eigen::Vector2d::Zero(), 0).first->second;
+      sum += pixel;
+      ++count;
+    }
   }
-  for (auto& m : mean) m /= static_cast<double>(found.size());
-  for (const auto& corners : found) {
-    for (std::size_t k = 0; k < 4; ++k)
-      spread_px = std::max(spread_px, (corners[k] - mean[k]).norm());
+  std::vector<TargetPixel> mean;
+  for (const auto& [id, sum] : sums) mean.push_back({id, sum.first / sum.second});
+  for (const FramePoints& frame : found) {
+    for (const TargetPixel& m : mean) {
+      const auto it = frame.find(m.point);
+      if (it != frame.end()) spread_px = std::max(spread_px, (it->second - m.pixel).norm());
+    }
   }
   if (spread_px > max_spread_px) return {};
   return mean;
@@ -30,20 +41,32 @@ std::vector<Eigen::Vector2d> average_corners(const std::vector<std::vector<Eigen
 }  // namespace
 
 std::vector<Eigen::Vector3d> marker_target_points(const core::MarkerMount& marker) {
-  const double h = marker.side_m / 2.0;
-  return {{-h, h, 0.0}, {h, h, 0.0}, {h, -h, 0.0}, {-h, -h, 0.0}};
+  return registration_target_from_mount(marker).points();
 }
 
 Result<CaptureObservations> detect_capture_targets(const std::string& directory,
                                                    const CaptureSet& capture,
                                                    const core::MarkerMount& marker,
                                                    const CaptureDetectionOptions& options) {
+  return detect_capture_targets(directory, capture, registration_target_from_mount(marker),
+                                options);
+}
+
+Result<CaptureObservations> detect_capture_targets(const std::string& directory,
+                                                   const CaptureSet& capture,
+                                                   const RegistrationTarget& target,
+                                                   const CaptureDetectionOptions& options) {
   CaptureObservations out;
-  out.observations.target_points = marker_target_points(marker);
+  out.target = target;
+  out.observations.target_points = target.points();
+  const bool board = target.is_board();
+  const std::string what = board ? "board" : "marker";
+  TargetDetectionOptions detection;
+  detection.min_corners = 1;  // the pose's average is checked against options.min_corners
   for (std::size_t p = 0; p < capture.poses.size(); ++p) {
     const CapturedPose& pose = capture.poses[p];
     const std::string name = "pose " + std::to_string(p);
-    std::vector<std::vector<Eigen::Vector2d>> left, right;
+    std::vector<FramePoints> left, right;
     for (const CapturedFrame& frame : pose.frames) {
       auto images = read_captured_images(directory, frame);
       if (!images) return images.error();
@@ -55,40 +78,58 @@ Result<CaptureObservations> detect_capture_targets(const std::string& directory,
         } else {
           rgb = *image;
         }
-        std::vector<Eigen::Vector2d> corners = detect_aruco_marker(rgb, marker.id);
-        if (!corners.empty()) found->push_back(std::move(corners));
+        const TargetDetection d = detect_registration_target(rgb, target, detection);
+        if (!d.found()) continue;
+        FramePoints points;
+        for (std::size_t i = 0; i < d.ids.size(); ++i) points[d.ids[i]] = d.pixels[i];
+        found->push_back(std::move(points));
       }
     }
     HandEyeView view;
     view.name = name;
     view.q = pose.q;
     const std::size_t frames = pose.frames.size();
-    for (auto [eye, found, pixels, count] :
+    bool seen[2] = {false, false};
+    int eye = -1;
+    for (auto [label, found, pixels, count] :
          {std::tuple{"left", &left, &view.left, &out.left_found},
           std::tuple{"right", &right, &view.right, &out.right_found}}) {
+      ++eye;
+      const std::string eye_name = label;
       double spread = 0.0;
-      const std::vector<Eigen::Vector2d> mean =
-          average_corners(*found, options.max_frame_spread_px, spread);
+      std::vector<TargetPixel> mean = average_points(*found, options.max_frame_spread_px, spread);
       if (found->empty()) {
-        out.notes.push_back(name + ": the marker was not found in the " + eye + " eye");
+        if (!board)
+          out.notes.push_back(name + ": the marker was not found in the " + eye_name + " eye");
         continue;
       }
       if (mean.empty()) {
-        out.notes.push_back(name + ": the " + std::string(eye) + " eye's corners moved by " +
+        out.notes.push_back(name + ": the " + eye_name + " eye's corners moved by " +
                             core::format_fixed(spread, 2) + " px across its frames (more than " +
                             core::format_fixed(options.max_frame_spread_px, 2) +
                             "): not used; was the arm at rest?");
         continue;
       }
+      if (board && static_cast<int>(mean.size()) < options.min_corners) {
+        out.notes.push_back(name + ": the " + eye_name + " eye saw " + std::to_string(mean.size()) +
+                            " corners of the board (fewer than " +
+                            std::to_string(options.min_corners) + "): not used");
+        continue;
+      }
       if (found->size() < frames) {
-        out.notes.push_back(name + ": the " + std::string(eye) + " eye found the marker in " +
+        out.notes.push_back(name + ": the " + eye_name + " eye found the " + what + " in " +
                             std::to_string(found->size()) + " of " + std::to_string(frames) +
                             " frames");
       }
-      for (std::size_t k = 0; k < mean.size(); ++k) {
-        pixels->push_back({static_cast<int>(k), mean[k]});
-      }
+      *pixels = std::move(mean);
+      seen[eye] = true;
       ++*count;
+    }
+    if (board && seen[0] != seen[1]) {
+      out.notes.push_back(name + ": the board was seen in the " + (seen[0] ? "left" : "right") +
+                          " eye only");
+    } else if (board && !seen[0] && !seen[1]) {
+      out.notes.push_back(name + ": the board was not found in either eye");
     }
     out.observations.views.push_back(std::move(view));
   }
@@ -100,22 +141,29 @@ cv::Mat coverage_image(const CaptureObservations& detected, int width, int heigh
   for (int eye = 0; eye < 2; ++eye) {
     cv::Mat half = out(cv::Rect(eye * width, 0, width, height));
     std::vector<std::pair<std::size_t, std::vector<cv::Point>>> seen;
+    std::vector<cv::Point> dots;  // a board's corners
     for (std::size_t v = 0; v < detected.observations.views.size(); ++v) {
       const HandEyeView& view = detected.observations.views[v];
       const auto& pixels = eye == 0 ? view.left : view.right;
       if (pixels.size() < 3) continue;
-      std::vector<cv::Point> polygon;
+      std::vector<cv::Point> points, polygon;
       for (const TargetPixel& p : pixels) {
-        polygon.emplace_back(static_cast<int>(std::lround(p.pixel.x())),
-                             static_cast<int>(std::lround(p.pixel.y())));
+        points.emplace_back(static_cast<int>(std::lround(p.pixel.x())),
+                            static_cast<int>(std::lround(p.pixel.y())));
       }
+      // A marker's four corners are their own hull; a board's seen corners are scattered.
+      cv::convexHull(points, polygon);
       seen.emplace_back(v, std::move(polygon));
+      if (pixels.size() > 4) dots.insert(dots.end(), points.begin(), points.end());
     }
     // Translucent fills first, so overlapping markers show brighter, then crisp outlines.
     for (const auto& [v, polygon] : seen) {
       cv::Mat fill = half.clone();
       cv::fillConvexPoly(fill, polygon, cv::Scalar(60, 200, 60), cv::LINE_AA);
       cv::addWeighted(fill, 0.45, half, 0.55, 0.0, half);
+    }
+    for (const cv::Point& c : dots) {
+      cv::circle(half, c, 1, cv::Scalar(255, 255, 255), cv::FILLED, cv::LINE_AA);
     }
     for (const auto& [v, polygon] : seen) {
       cv::polylines(half, polygon, true, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);

@@ -31,7 +31,8 @@ Result<CaptureRegistration> register_captures(const core::RobotModel& model,
                                               const std::string& directory,
                                               const std::string& rig_file,
                                               const core::MarkerMount& marker,
-                                              const HandEyeOptions& options) {
+                                              const HandEyeOptions& options,
+                                              const std::optional<RegistrationTarget>& target) {
   CaptureRegistration out;
   auto capture = load_capture_folder(directory);
   if (!capture) return capture.error();
@@ -61,7 +62,18 @@ Result<CaptureRegistration> register_captures(const core::RobotModel& model,
   if (!T_right_left) return T_right_left.error();
   out.T_right_left = *T_right_left;
 
-  auto detected = detect_capture_targets(directory, out.capture, marker);
+  RegistrationTarget chosen = registration_target_from_mount(marker);
+  if (target) {
+    chosen = *target;
+  } else if (!out.capture.target.empty()) {
+    auto recorded = parse_registration_target(out.capture.target);
+    if (!recorded) {
+      return Error{"capture '" + directory + "': " + recorded.error().message +
+                   " (give the target with --target SPEC)"};
+    }
+    chosen = *recorded;
+  }
+  auto detected = detect_capture_targets(directory, out.capture, chosen);
   if (!detected) return detected.error();
   out.detected = std::move(*detected);
   auto result = register_hand_eye(model, cameras->left, *cameras->right, out.T_right_left,
@@ -77,9 +89,10 @@ Result<CaptureRegistration> register_captures(const core::RobotModel& model,
 std::string capture_registration_report(const CaptureRegistration& r) {
   std::ostringstream out;
   const HandEyeResult& h = r.result;
-  out << "capture: " << r.capture.poses.size() << " poses; marker found at "
-      << r.detected.left_found << " (left) and " << r.detected.right_found
-      << " (right); calibration " << r.camera_file << "\n";
+  out << "capture: " << r.capture.poses.size() << " poses; " << r.detected.target.description()
+      << " (" << r.detected.target.spec() << ") found at " << r.detected.left_found
+      << " (left) and " << r.detected.right_found << " (right); calibration " << r.camera_file
+      << "\n";
   for (const std::string& note : r.detected.notes) out << "  note: " << note << "\n";
   for (const std::string& note : h.notes) out << "  note: " << note << "\n";
   out << "per pose (RMS over both eyes):\n";
@@ -90,10 +103,10 @@ std::string capture_registration_report(const CaptureRegistration& r) {
   out << "bundle adjustment (" << h.views_used << " poses, " << h.iterations << " iterations):\n"
       << eye_line("left", h.left) << eye_line("right", h.right);
   out << "uncertainty (1 sigma): base " << fixed(h.base_sigma.position_mm, 3) << " mm, "
-      << fixed(h.base_sigma.rotation_deg, 4) << " deg; marker on the flange "
+      << fixed(h.base_sigma.rotation_deg, 4) << " deg; target on the flange "
       << fixed(h.target_sigma.position_mm, 3) << " mm, " << fixed(h.target_sigma.rotation_deg, 4)
       << " deg\n";
-  out << "marker on the flange: xyz " << vector3(h.T_flange_target.translation(), 4) << " m\n";
+  out << "target on the flange: xyz " << vector3(h.T_flange_target.translation(), 4) << " m\n";
   out << "camera centres in the base frame (m): left "
       << vector3(h.T_left_base.inverse().translation(), 4) << ", right "
       << vector3(h.T_right_base.inverse().translation(), 4) << "\n";

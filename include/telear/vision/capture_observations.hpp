@@ -3,12 +3,16 @@
 // hand-eye observations (telear/vision/hand_eye_registration.hpp): the target is detected in
 // every saved image, as `telear register --captures DIR` does.
 //
-// Target: the flange's ArUco marker (telear/core/marker_mount.hpp: dictionary, id, side). Its
-// points are the marker's four corners in the marker's own frame; where it sits on the flange
-// is what the registration estimates. Each eye's corners are averaged over the frames of a
-// pose that found it (the arm is at rest, so the average only lowers the sensor noise); a
-// pose whose frames disagree by more than max_frame_spread_px in an eye keeps no corners in
-// that eye and is named (something moved during the capture).
+// Target: a registration target (telear/vision/registration_target.hpp: an ArUco marker, an
+// AprilTag or a ChArUco board), by default the flange's ArUco marker
+// (telear/core/marker_mount.hpp: dictionary, id, side). Its points are given in the target's
+// own frame; where it sits on the flange is what the registration estimates. Each eye's
+// points are averaged, point by point, over the frames of a pose that found them (the arm is
+// at rest, so the average only lowers the sensor noise); a pose whose frames disagree by more
+// than max_frame_spread_px in an eye keeps no points in that eye and is named (something
+// moved during the capture). A board may be seen partly: the corners found are used, and a
+// view with fewer than min_corners of them is named and not used in that eye; a board seen
+// in one eye only at a pose is named too (that pose still counts, through the stereo pair).
 
 #include <opencv2/core.hpp>
 #include <string>
@@ -18,33 +22,42 @@
 #include "telear/core/result.hpp"
 #include "telear/vision/capture_folder.hpp"
 #include "telear/vision/hand_eye_registration.hpp"
+#include "telear/vision/registration_target.hpp"
 
 namespace telear::vision {
 
 struct CaptureDetectionOptions {
   double max_frame_spread_px = 1.0;  // corners of one pose's frames further apart: moved
+  int min_corners = 4;               // a board's corners in one eye, fewer: not used
 };
 
 struct CaptureObservations {
+  RegistrationTarget target;
   HandEyeObservations observations;
   std::vector<std::string> notes;  // per pose and eye: not found, moved, found in some frames
-  int left_found = 0;              // poses whose marker was found in the left eye
+  int left_found = 0;              // poses whose target was found in the left eye
   int right_found = 0;
 };
 
 // The marker's corners in its own frame, in cv::aruco's order (marker_mount.hpp).
 std::vector<Eigen::Vector3d> marker_target_points(const core::MarkerMount& marker);
 
-// Reads every image of `capture` (folder `directory`) and detects `marker`; views are named
+// Reads every image of `capture` (folder `directory`) and detects `target`; views are named
 // "pose N" after the capture's order. Errors: an image that cannot be read (naming it).
+Result<CaptureObservations> detect_capture_targets(const std::string& directory,
+                                                   const CaptureSet& capture,
+                                                   const RegistrationTarget& target,
+                                                   const CaptureDetectionOptions& options = {});
+// The same for the robot's marker (registration_target_from_mount).
 Result<CaptureObservations> detect_capture_targets(const std::string& directory,
                                                    const CaptureSet& capture,
                                                    const core::MarkerMount& marker,
                                                    const CaptureDetectionOptions& options = {});
 
-// Where the marker has been seen in each eye: the two eyes side by side (each width x height,
-// the cameras' image size), every pose's detected marker drawn as a filled quadrilateral
-// (translucent, so overlaps show density) with its outline and pose number, and the
+// Where the target has been seen in each eye: the two eyes side by side (each width x height,
+// the cameras' image size), every pose's detected points drawn as their filled outline (the
+// marker's quadrilateral, the convex hull of a board's seen corners; translucent, so overlaps
+// show density) with the outline, a dot at each board corner and the pose number, and the
 // uncovered image areas left dark -- what to capture next. BGR, for cv::imwrite.
 cv::Mat coverage_image(const CaptureObservations& detected, int width, int height);
 
