@@ -1,11 +1,19 @@
 #include "apps/capture_command.hpp"
 
+#include <cmath>
+#include <iostream>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <ostream>
+#include <sstream>
+#include <vector>
 
+#include "telear/core/angles.hpp"
 #include "telear/core/marker_mount.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/net/bearer_auth.hpp"
+#include "telear/session/capture_session.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/vision/capture_observations.hpp"
 
@@ -19,9 +27,183 @@ int fail(std::ostream& err, const std::string& message, int code = 2) {
   return code;
 }
 
+// [SECTION] --manual
+
+constexpr double kJogValidityS = 2.0;  // one typed step is a whole jog: long enough to finish it
+
+const char* kManualHelp =
+    "  j N D      jog joint N (from 1) by D degrees (mm for a prismatic joint), e.g. j 2 +5\n"
+    "  x|y|z D    move the tool D mm along the base's x, y or z axis, e.g. z -20\n"
+    "  a, Enter   add the pose the arm is at (waits until it is at rest)\n"
+    "  s          solve with the poses so far (the folder stays open)\n"
+    "  q          finish (the folder is complete after every pose)\n"
+    "  h          these commands\n";
+
+std::vector<std::string> words_of(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+std::optional<double> number_of(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+// Sends one jog; a lease that lapsed while the operator was typing is taken again once (the
+// typed command shows the operator is there), saying so.
+void jog(net::RobotClient& robot, const core::MotionCommand& command, std::ostream& out) {
+  auto ack = robot.jog(command, kJogValidityS);
+  if (!ack && ack.error().message.find("lease lapsed") != std::string::npos) {
+    out << "the lease had lapsed: taking it again\n";
+    if (Status s = robot.acquire_lease(); !s) {
+      out << "lease: " << s.error().message << "\n";
+      return;
+    }
+    ack = robot.jog(command, kJogValidityS);
+  }
+  if (!ack) {
+    out << "jog refused: " << ack.error().message << "\n";
+    return;
+  }
+  out << "jog: target";
+  for (int j = 0; j < ack->target_q.size(); ++j) {
+    out << " " << core::format_fixed(core::degrees_from_radians(ack->target_q[j]), 2);
+  }
+  out << " deg\n";
+  if (!ack->singularity_warning.empty()) out << "warning: " << ack->singularity_warning << "\n";
+}
+
+void print_pose(const session::CaptureSession& capture, const session::CapturedPoseReport& pose,
+                std::ostream& out) {
+  const vision::CaptureObservations& detected = capture.detected();
+  out << pose.summary() << " (" << capture.poses().size() << " poses, marker in "
+      << detected.left_found << " left / " << detected.right_found << " right)\n";
+  for (const std::string& note : pose.notes) out << "  " << note << "\n";
+}
+
 }  // namespace
 
+int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ostream& out,
+                       std::ostream& err) {
+  if (options.robot_server.empty()) return fail(err, "--robot: give the robot server HOST:PORT");
+  if (options.vision_server.empty()) return fail(err, "--vision: give the vision server HOST:PORT");
+  if (options.output.empty()) return fail(err, "-o: give the folder to write");
+  auto model = core::load_robot(options.robot_spec());
+  if (!model) return fail(err, "--arm: " + model.error().message);
+  auto marker = core::marker_mount_for(**model);
+  if (!marker) return fail(err, "marker: " + marker.error().message);
+  session::CaptureSessionOptions capture_options;
+  capture_options.directory = options.output;
+  capture_options.frames_per_pose = options.frames;
+  capture_options.settle_s = options.settle_s;
+  capture_options.marker = *marker;
+  if (Status s = capture_options.validate(); !s) return fail(err, s.error().message);
+  std::string token;
+  if (!options.token_file.empty()) {
+    auto t = net::load_token_file(options.token_file);
+    if (!t) return fail(err, "--token-file: " + t.error().message);
+    token = *t;
+  }
+  net::RobotClientOptions robot_options;
+  robot_options.address = options.robot_server;
+  robot_options.token = token;
+  robot_options.client_name = "telear-capture";
+  net::RobotClient robot(robot_options);
+  robot.start();
+  net::VisionClientOptions vision_options;
+  vision_options.address = options.vision_server;
+  vision_options.token = token;
+  vision_options.client_name = "telear-capture";
+  vision_options.jpeg_quality = 100;  // the least loss the stream offers, at the source's size
+  net::VisionClient vision(vision_options);
+  vision.start();
+
+  const core::RobotModel& arm = **model;
+  auto opened = session::CaptureSession::open(arm, robot, vision, capture_options);
+  if (!opened) return fail(err, opened.error().message, 1);
+  session::CaptureSession& capture = **opened;
+  if (Status s = robot.acquire_lease(); !s) return fail(err, "lease: " + s.error().message, 1);
+  out << "manual capture into " << options.output << " (" << arm.name() << ", marker id "
+      << marker->id << "): jog the arm until both cameras see the marker, add the pose, and "
+      << "repeat over the images, turning the wrist\n"
+      << kManualHelp << std::flush;
+
+  for (std::string line; std::getline(in, line);) {
+    const std::vector<std::string> w = words_of(line.substr(0, line.find('#')));
+    const std::string verb = w.empty() ? "a" : w[0];
+    if (verb == "q") break;
+    if (verb == "h" || verb == "?") {
+      out << kManualHelp;
+    } else if (verb == "a") {
+      out << "adding pose " << capture.poses().size() << " ...\n" << std::flush;
+      auto added = capture.add_current_pose();
+      if (added) {
+        print_pose(capture, *added, out);
+      } else {
+        out << "not added: " << added.error().message << "\n";
+      }
+    } else if (verb == "s") {
+      out << "solving with " << capture.poses().size() << " poses ...\n" << std::flush;
+      auto solved = capture.solve();
+      if (solved) {
+        out << vision::capture_registration_report(*solved);
+      } else {
+        out << "not solved: " << solved.error().message << "\n";
+      }
+    } else if (verb == "j" && w.size() == 3) {
+      const auto joint = number_of(w[1]);
+      const auto delta = number_of(w[2]);
+      if (!joint || *joint != std::floor(*joint) || *joint < 1 || *joint > arm.dof() || !delta) {
+        out << "'" << line << "': j N D with N 1.." << arm.dof() << " and D a number\n";
+      } else {
+        const int j = static_cast<int>(*joint) - 1;
+        const bool prismatic = arm.joint(j).type == core::JointType::kPrismatic;
+        jog(robot,
+            core::JointIncrement{j,
+                                 prismatic ? *delta / 1000.0 : core::radians_from_degrees(*delta)},
+            out);
+      }
+    } else if ((verb == "x" || verb == "y" || verb == "z") && w.size() == 2) {
+      const auto delta = number_of(w[1]);
+      if (!delta) {
+        out << "'" << line << "': " << verb << " D with D in mm\n";
+      } else {
+        core::CartesianIncrement step;
+        step.frame = core::MotionFrame::kBase;
+        step.dX[verb[0] - 'x'] = *delta / 1000.0;
+        jog(robot, step, out);
+      }
+    } else {
+      out << "'" << line << "': unknown command (h: the commands)\n";
+    }
+    out << std::flush;
+  }
+  (void)robot.release_lease();
+
+  if (capture.poses().empty()) {
+    return fail(err, "no pose was added: nothing to register (" + options.output + ")", 1);
+  }
+  const std::string coverage = options.output + "/coverage.png";
+  if (cv::imwrite(coverage, capture.coverage())) {
+    out << "coverage: the marker found at " << capture.detected().left_found << " (left) and "
+        << capture.detected().right_found << " (right) of " << capture.poses().size() << " poses; "
+        << coverage << "\n";
+  }
+  out << "wrote " << options.output << "/capture.yaml (" << capture.poses().size()
+      << " poses); register with: telear register --captures " << options.output << " --robot "
+      << options.robot_spec().name_or_path << " -o registered.yaml\n";
+  return 0;
+}
+
 int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& err) {
+  if (options.manual) return run_manual_capture(options, std::cin, out, err);
   if (options.robot_server.empty()) return fail(err, "--robot: give the robot server HOST:PORT");
   if (options.vision_server.empty()) return fail(err, "--vision: give the vision server HOST:PORT");
   if (options.output.empty()) return fail(err, "-o: give the folder to write");

@@ -272,6 +272,8 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   capture_app->add_option("--seed", capture.seed, "seed of the automatic poses")
       ->capture_default_str();
+  capture_app->add_flag("--manual", capture.manual,
+                        "the operator jogs the arm and adds each pose (commands on stdin)");
   capture_app->add_option("-o,--output", capture.output, "folder to write")->required();
   commands.push_back({capture_app, [capture_shared] {
                         return run_capture(*capture_shared, std::cout, std::cerr);

@@ -9,6 +9,7 @@
 #include "telear/core/number_format.hpp"
 #include "telear/core/plan_hash.hpp"
 #include "telear/geometry/carried_objects.hpp"
+#include "telear/session/capture_session.hpp"
 
 namespace telear::session {
 
@@ -107,6 +108,42 @@ void Session::disconnect() {
   vision_->stop();
   connected_ = false;
   log(SessionEvent::Kind::kInfo, "disconnected");
+}
+
+// [SECTION] registration capture
+
+Status Session::open_capture(CaptureSessionOptions options) {
+  if (!connected_) return Error{"registration capture: not connected"};
+  if (!in_control()) {
+    return Error{
+        "registration capture: take control first (the lease: nobody else moves the "
+        "arm between the poses)"};
+  }
+  close_capture();
+  net::VisionClientOptions vision = options_.vision;
+  vision.width = 0;  // the source's size: what the calibration describes
+  vision.height = 0;
+  vision.jpeg_quality = 100;
+  vision.max_rate_hz = 0.0;
+  vision.client_name += "-capture";
+  auto client = std::make_unique<net::VisionClient>(vision);
+  client->start();
+  const std::string directory = options.directory;
+  auto opened = CaptureSession::open(*model_, *robot_, *client, std::move(options));
+  if (!opened) return opened.error();
+  capture_vision_ = std::move(client);
+  capture_ = std::move(*opened);
+  log(SessionEvent::Kind::kInfo, "registration capture into " + directory);
+  return Status::Ok();
+}
+
+void Session::close_capture() {
+  if (!capture_) return;
+  log(SessionEvent::Kind::kInfo, "registration capture closed (" +
+                                     std::to_string(capture_->poses().size()) + " poses in " +
+                                     capture_->directory() + ")");
+  capture_.reset();
+  capture_vision_.reset();
 }
 
 bool Session::robot_connected() const {

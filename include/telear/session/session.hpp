@@ -70,6 +70,9 @@
 
 namespace telear::session {
 
+class CaptureSession;  // telear/session/capture_session.hpp
+struct CaptureSessionOptions;
+
 struct SessionOptions {
   net::RobotClientOptions robot;
   net::VisionClientOptions vision;
@@ -204,6 +207,16 @@ class Session {
   // The outcome of the last execution: "completed", "cancelled: ...", "aborted: ..." or empty.
   const std::string& last_execution_result() const { return last_result_; }
 
+  // [SECTION] registration capture (telear/session/capture_session.hpp, the console's
+  // Registration panel): a CaptureSession on this session's robot client and on a vision client
+  // of its own, at the cameras' own size and JPEG quality 100 (the live view may be reduced).
+  // Opening needs the lease (nobody else moves the arm between the operator's poses); opening
+  // again closes the previous capture, whose folder stays as it is on disk.
+  Status open_capture(CaptureSessionOptions options);
+  CaptureSession* capture() { return capture_.get(); }
+  const CaptureSession* capture() const { return capture_.get(); }
+  void close_capture();
+
   // [SECTION] per frame
   // Advances the preview by dt (s), feeds the monitor, the display mode and the registration
   // check. Call once per displayed frame.
@@ -254,6 +267,8 @@ class Session {
   std::deque<std::pair<double, Eigen::VectorXd>> state_history_;  // capture time (s), q
   SessionView view_;
   std::deque<SessionEvent> events_;
+  std::unique_ptr<net::VisionClient> capture_vision_;  // before capture_: outlives it
+  std::unique_ptr<CaptureSession> capture_;
   std::int64_t epoch_ns_ = 0;
 };
 
