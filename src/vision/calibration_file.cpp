@@ -9,6 +9,9 @@
 #include <cstring>
 #include <opencv2/core/persistence.hpp>
 
+#include "telear/vision/camera_file.hpp"
+#include "telear/vision/opencv_storage.hpp"
+
 namespace telear::vision {
 namespace {
 
@@ -24,9 +27,7 @@ void write_intrinsics(cv::FileStorage& fs, const CameraModel& camera) {
   fs << "image_width" << camera.width;
   fs << "image_height" << camera.height;
   fs << "camera_matrix" << k;
-  if (camera.kc.model != DistortionModel::plumb_bob) {
-    fs << "distortion_model" << distortion_model_name(camera.kc.model);
-  }
+  fs << "distortion_model" << distortion_model_name(camera.kc.model);
   fs << "distortion_coefficients" << cv::Mat(1, static_cast<int>(kc.size()), CV_64F, kc.data());
 }
 
@@ -161,7 +162,21 @@ Result<StereoGeometry> load_stereo_geometry(const std::string& path) {
   const std::string where = "stereo calibration '" + path + "': ";
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) {
-    return Error{where + "no such file"};
+    if (path.find(',') == std::string::npos) return Error{where + "no such file"};
+    // "left.yaml,right.yaml": a pair of ROS camera_info files states its geometry in R and P.
+    auto pair = load_camera_file(path);
+    if (!pair) return Error{where + pair.error().message};
+    if (!pair->T_right_left) {
+      return Error{where +
+                   "the two files do not state the pair's geometry (give ROS camera_info "
+                   "files of one rectified pair, without T_cam_base)"};
+    }
+    StereoGeometry geometry;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) geometry.R(r, c) = pair->T_right_left->linear()(r, c);
+      geometry.T(r) = pair->T_right_left->translation()(r);
+    }
+    return geometry;
   }
   cv::FileStorage fs;
   try {
@@ -214,13 +229,26 @@ Status check_output_path(const std::string& path, const std::string& option) {
   return Status::Ok();
 }
 
+Result<std::string> text_for_path(const std::string& text, const std::string& path) {
+  if (opencv_storage_format_of_path(path) != OpenCvStorageFormat::xml) return text;
+  if (text.rfind("%YAML", 0) != 0) return text;
+  auto xml = convert_opencv_storage(text, OpenCvStorageFormat::xml);
+  if (!xml) return Error{"cannot write '" + path + "' as XML: " + xml.error().message};
+  return xml;
+}
+
 Status write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
   std::vector<std::string> temporaries;
   auto discard = [&temporaries]() {
     for (const std::string& t : temporaries) ::unlink(t.c_str());
   };
-  for (const auto& [path, text] : files) {
-    auto temporary = write_temporary(path, text);
+  for (const auto& [path, given] : files) {
+    auto text = text_for_path(given, path);
+    if (!text) {
+      discard();
+      return text.error();
+    }
+    auto temporary = write_temporary(path, *text);
     if (!temporary) {
       discard();
       return temporary.error();

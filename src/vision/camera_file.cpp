@@ -4,10 +4,14 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -83,6 +87,41 @@ std::string format_shape(const Matrix& m) {
   return std::to_string(m.rows) + "x" + std::to_string(m.cols);
 }
 
+std::string format_number(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  return buffer;
+}
+
+// A rotation matrix as files carry it. Files typed by hand carry rotations to ~6 decimals;
+// accept those and snap to the nearest rotation, so that downstream checks at 1e-6 hold.
+// `part` says what in `what` must be a rotation ("the rotation part" of a transform).
+Eigen::Matrix3d rotation(const Eigen::Matrix3d& R, const std::string& what,
+                         const std::string& part) {
+  const double orthonormality = (R * R.transpose() - Eigen::Matrix3d::Identity()).norm();
+  if (!(orthonormality <= 1e-4)) {
+    throw ParseError{what + ": " + part +
+                     " is not orthonormal (|R R^T - I| = " + format_number(orthonormality) + ")"};
+  }
+  if (R.determinant() < 0.0) {
+    throw ParseError{what + ": " + part + " is a reflection (determinant -1)"};
+  }
+  return Eigen::Quaterniond(R).normalized().toRotationMatrix();
+}
+
+// A 3x3 matrix {rows: 3, cols: 3, data} or a list of 9 numbers, row-major.
+Eigen::Matrix3d matrix3(const YAML::Node& node, const std::string& what) {
+  const Matrix m = matrix(node, what);
+  if (m.data.size() != 9 || (m.rows != 3 && m.rows != 1)) {
+    throw ParseError{what + ": expected a 3x3 matrix, got " + format_shape(m)};
+  }
+  Eigen::Matrix3d M;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) M(r, c) = m.data[static_cast<size_t>(3 * r + c)];
+  }
+  return M;
+}
+
 Eigen::Isometry3d rigid_transform(const YAML::Node& node, const std::string& what) {
   const Matrix m = matrix(node, what);
   if (m.data.size() != 16 || (m.rows != 4 && m.rows != 1)) {
@@ -95,21 +134,8 @@ Eigen::Isometry3d rigid_transform(const YAML::Node& node, const std::string& wha
   if ((T.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) {
     throw ParseError{what + ": the last row must be 0 0 0 1"};
   }
-  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-  const double orthonormality = (R * R.transpose() - Eigen::Matrix3d::Identity()).norm();
-  // Files typed by hand carry rotations to ~6 decimals; accept those and snap to the nearest
-  // rotation, so that downstream checks at 1e-6 hold.
-  if (orthonormality > 1e-4) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.3g", orthonormality);
-    throw ParseError{what + ": the rotation part is not orthonormal (|R R^T - I| = " +
-                     std::string(buffer) + ")"};
-  }
-  if (R.determinant() < 0.0) {
-    throw ParseError{what + ": the rotation part is a reflection (determinant -1)"};
-  }
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::Quaterniond(R).normalized().toRotationMatrix();
+  pose.linear() = rotation(T.topLeftCorner<3, 3>(), what, "the rotation part");
   pose.translation() = T.topRightCorner<3, 1>();
   return pose;
 }
@@ -170,9 +196,43 @@ Distortion distortion(const YAML::Node& map, const std::string& prefix) {
   return *Distortion::from_coefficients(model, d);
 }
 
+// A ROS camera_info file's rectification_matrix and projection_matrix (both or neither).
+std::optional<Rectification> rectification(const YAML::Node& map, const std::string& prefix) {
+  const YAML::Node r_node = map["rectification_matrix"];
+  const YAML::Node p_node = map["projection_matrix"];
+  if (!r_node && !p_node) return std::nullopt;
+  const std::string r_what = join(prefix, "rectification_matrix");
+  const std::string p_what = join(prefix, "projection_matrix");
+  if (!r_node || !p_node) {
+    throw ParseError{(r_node ? p_what : r_what) +
+                     ": missing (a ROS camera_info file gives rectification_matrix and "
+                     "projection_matrix together)"};
+  }
+  Rectification rect;
+  rect.R = rotation(matrix3(r_node, r_what), r_what, "the matrix");
+  const Matrix m = matrix(p_node, p_what);
+  if (m.data.size() != 12 || (m.rows != 3 && m.rows != 1)) {
+    throw ParseError{p_what + ": expected a 3x4 matrix, got " + format_shape(m)};
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) rect.P(r, c) = m.data[static_cast<size_t>(4 * r + c)];
+  }
+  if ((rect.P.row(2) - Eigen::RowVector4d(0, 0, 1, 0)).cwiseAbs().maxCoeff() > 1e-12) {
+    throw ParseError{p_what + ": the last row must be 0 0 1 0, got " + format_number(rect.P(2, 0)) +
+                     " " + format_number(rect.P(2, 1)) + " " + format_number(rect.P(2, 2)) + " " +
+                     format_number(rect.P(2, 3))};
+  }
+  if (rect.P(1, 0) != 0.0) throw ParseError{p_what + ": [1][0] must be 0"};
+  if (!(rect.P(0, 0) > 0.0)) throw ParseError{p_what + ": fx' ([0][0]) must be positive"};
+  if (!(rect.P(1, 1) > 0.0)) throw ParseError{p_what + ": fy' ([1][1]) must be positive"};
+  return rect;
+}
+
 struct ParsedCamera {
   CameraModel camera;
   bool has_pose = false;
+  std::optional<Rectification> rectification;
+  std::string name;  // camera_name
 };
 
 ParsedCamera camera(const YAML::Node& map, const std::string& prefix) {
@@ -204,6 +264,10 @@ ParsedCamera camera(const YAML::Node& map, const std::string& prefix) {
   c.fy = k[4];
   c.cy = k[5];
   c.kc = distortion(map, prefix);
+  parsed.rectification = rectification(map, prefix);
+  if (const YAML::Node name = map["camera_name"]; name && name.IsScalar()) {
+    parsed.name = name.Scalar();
+  }
   if (const YAML::Node pose = map["T_cam_base"]) {
     c.T_cam_base = rigid_transform(pose, join(prefix, "T_cam_base"));
     parsed.has_pose = true;
@@ -243,10 +307,9 @@ void write_camera(cv::FileStorage& fs, const CameraModel& camera) {
   fs << "image_height" << camera.height;
   fs << "camera_matrix" << mat(camera.K());
   std::vector<double> kc = camera.kc.coefficients();
-  // plumb_bob is the default; writing the name only otherwise keeps files of the seed's shape.
-  if (camera.kc.model != DistortionModel::plumb_bob) {
-    fs << "distortion_model" << distortion_model_name(camera.kc.model);
-  }
+  // Named even for plumb_bob, the readers' default: a reader that does not default (ROS
+  // tools, people) sees which model the D vector belongs to.
+  fs << "distortion_model" << distortion_model_name(camera.kc.model);
   fs << "distortion_coefficients" << cv::Mat(1, static_cast<int>(kc.size()), CV_64F, kc.data());
   cv::Mat T(4, 4, CV_64F);
   for (int r = 0; r < 4; ++r) {
@@ -264,11 +327,60 @@ Status write_text(const std::string& text, const std::string& path) {
   return Status::Ok();
 }
 
+// A stereo calibration file's R and T (X_R = R X_L + T, stereo_calibration.hpp), when given.
+std::optional<Eigen::Isometry3d> stereo_geometry(const YAML::Node& root) {
+  if (!root["R"] && !root["T"]) return std::nullopt;
+  if (!root["R"]) throw ParseError{"R: missing (a stereo file's geometry needs R and T)"};
+  if (!root["T"]) throw ParseError{"T: missing (a stereo file's geometry needs R and T)"};
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = rotation(matrix3(root["R"], "R"), "R", "the matrix");
+  const Matrix t = matrix(root["T"], "T");
+  if (t.data.size() != 3 || (t.rows != 1 && t.cols != 1)) {
+    throw ParseError{"T: expected a vector of 3 values, got " + format_shape(t)};
+  }
+  T.translation() = Eigen::Vector3d(t.data[0], t.data[1], t.data[2]);
+  return T;
+}
+
+void set_left(CameraFile& file, ParsedCamera parsed) {
+  file.left = parsed.camera;
+  file.left_has_pose = parsed.has_pose;
+  file.left_rectification = parsed.rectification;
+  file.left_name = parsed.name;
+}
+
+void set_right(CameraFile& file, ParsedCamera parsed) {
+  file.right = parsed.camera;
+  file.right_has_pose = parsed.has_pose;
+  file.right_rectification = parsed.rectification;
+  file.right_name = parsed.name;
+}
+
+bool is_regular_file(const std::string& path) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
+}
+
+std::string storage_text(OpenCvStorageFormat format,
+                         const std::function<void(cv::FileStorage&)>& write) {
+  cv::FileStorage fs(format == OpenCvStorageFormat::xml ? ".xml" : ".yaml",
+                     cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  write(fs);
+  return fs.releaseAndGetString();
+}
+
 }  // namespace
 
 Result<CameraFile> parse_camera_yaml(const std::string& text, const std::string& source) {
   const std::string where = "camera file '" + source + "': ";
-  const auto loaded = core::load_yaml(strip_opencv_directive(text), where);
+  std::string yaml = text;
+  if (is_xml_text(text)) {
+    // One parser for both layouts: cv::FileStorage rewrites the XML as its YAML.
+    auto converted = convert_opencv_storage(text, OpenCvStorageFormat::yaml);
+    if (!converted) return Error{where + converted.error().message};
+    yaml = std::move(*converted);
+  }
+  const auto loaded = core::load_yaml(strip_opencv_directive(yaml), where);
   if (!loaded) return loaded.error();
   try {
     const YAML::Node& root = *loaded;
@@ -277,16 +389,11 @@ Result<CameraFile> parse_camera_yaml(const std::string& text, const std::string&
     if (root["left"] || root["right"]) {
       if (!root["left"]) throw ParseError{"left: missing (a stereo file needs left and right)"};
       if (!root["right"]) throw ParseError{"right: missing (a stereo file needs left and right)"};
-      ParsedCamera left = camera(root["left"], "left");
-      ParsedCamera right = camera(root["right"], "right");
-      file.left = left.camera;
-      file.left_has_pose = left.has_pose;
-      file.right = right.camera;
-      file.right_has_pose = right.has_pose;
+      set_left(file, camera(root["left"], "left"));
+      set_right(file, camera(root["right"], "right"));
+      file.T_right_left = stereo_geometry(root);
     } else {
-      ParsedCamera mono = camera(root, "");
-      file.left = mono.camera;
-      file.left_has_pose = mono.has_pose;
+      set_left(file, camera(root, ""));
     }
     return file;
   } catch (const ParseError& e) {
@@ -297,9 +404,17 @@ Result<CameraFile> parse_camera_yaml(const std::string& text, const std::string&
 }
 
 Result<CameraFile> load_camera_file(const std::string& path) {
+  if (const auto comma = path.find(','); comma != std::string::npos && !is_regular_file(path) &&
+                                         path.find(',', comma + 1) == std::string::npos) {
+    return load_stereo_camera_files(path.substr(0, comma), path.substr(comma + 1));
+  }
   bool ok = false;
   const std::string text = read_file(path, ok);
   if (!ok) return Error{"cannot open camera file '" + path + "'"};
+  if (opencv_storage_format_of_path(path) == OpenCvStorageFormat::xml && !is_xml_text(text)) {
+    return Error{"camera file '" + path +
+                 "': not valid OpenCV FileStorage XML: the text does not start with '<'"};
+  }
   return parse_camera_yaml(text, path);
 }
 
@@ -315,39 +430,104 @@ Result<CameraFile> load_stereo_camera_files(const std::string& left_path,
   if (right->is_stereo()) {
     return Error{"camera file '" + right_path + "': is a stereo file; give one camera per file"};
   }
+  // Two ROS camera_info files not registered to the robot: a rectified pair, whose R and P
+  // are the only statement of the baseline.
+  if (left->left_rectification && right->left_rectification && !left->left_has_pose &&
+      !right->left_has_pose) {
+    return load_ros_stereo_pair(left_path, right_path);
+  }
   CameraFile file;
   file.left = left->left;
   file.left_has_pose = left->left_has_pose;
+  file.left_rectification = left->left_rectification;
+  file.left_name = left->left_name;
   file.right = right->left;
   file.right_has_pose = right->left_has_pose;
+  file.right_rectification = right->left_rectification;
+  file.right_name = right->left_name;
   return file;
 }
 
+Result<CameraFile> load_ros_stereo_pair(const std::string& left_path,
+                                        const std::string& right_path) {
+  Result<CameraFile> left = load_camera_file(left_path);
+  if (!left) return left.error();
+  Result<CameraFile> right = load_camera_file(right_path);
+  if (!right) return right.error();
+  const auto check = [](const CameraFile& file, const std::string& path) -> Status {
+    if (file.is_stereo()) {
+      return Error{"camera file '" + path + "': is a stereo file; give one camera per file"};
+    }
+    if (!file.left_rectification) {
+      return Error{"camera file '" + path +
+                   "': rectification_matrix and projection_matrix: missing (not a ROS "
+                   "camera_info file of a stereo pair)"};
+    }
+    return Status::Ok();
+  };
+  if (Status s = check(*left, left_path); !s) return s.error();
+  if (Status s = check(*right, right_path); !s) return s.error();
+  const std::string where = "stereo pair '" + left_path + "', '" + right_path + "': ";
+  const CameraModel& l = left->left;
+  const CameraModel& r = right->left;
+  if (l.width != r.width || l.height != r.height) {
+    return Error{where + "the two files disagree in image size: left " + std::to_string(l.width) +
+                 "x" + std::to_string(l.height) + ", right " + std::to_string(r.width) + "x" +
+                 std::to_string(r.height) + " (one rectified pair has one image size)"};
+  }
+  if (l.kc.model != r.kc.model) {
+    return Error{where + "the two files disagree in distortion_model: left " +
+                 distortion_model_name(l.kc.model) + ", right " +
+                 distortion_model_name(r.kc.model)};
+  }
+  auto T_right_left =
+      right_from_left_rectified(*left->left_rectification, *right->left_rectification);
+  if (!T_right_left) return Error{where + T_right_left.error().message};
+  CameraFile file;
+  file.left = l;
+  file.left.T_cam_base = Eigen::Isometry3d::Identity();
+  file.left_rectification = left->left_rectification;
+  file.left_name = left->left_name;
+  file.right = r;
+  file.right->T_cam_base = *T_right_left;
+  file.right_rectification = right->left_rectification;
+  file.right_name = right->left_name;
+  file.T_right_left = *T_right_left;
+  return file;
+}
+
+std::string opencv_camera_text(const CameraModel& camera, OpenCvStorageFormat format) {
+  return storage_text(format, [&camera](cv::FileStorage& fs) { write_camera(fs, camera); });
+}
+
+std::string opencv_stereo_camera_text(const StereoCameraModel& cameras,
+                                      OpenCvStorageFormat format) {
+  return storage_text(format, [&cameras](cv::FileStorage& fs) {
+    fs << "left"
+       << "{";
+    write_camera(fs, cameras.left);
+    fs << "}";
+    fs << "right"
+       << "{";
+    write_camera(fs, cameras.right);
+    fs << "}";
+  });
+}
+
 std::string opencv_camera_yaml(const CameraModel& camera) {
-  cv::FileStorage fs(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
-  write_camera(fs, camera);
-  return fs.releaseAndGetString();
+  return opencv_camera_text(camera, OpenCvStorageFormat::yaml);
 }
 
 std::string opencv_stereo_camera_yaml(const StereoCameraModel& cameras) {
-  cv::FileStorage fs(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
-  fs << "left"
-     << "{";
-  write_camera(fs, cameras.left);
-  fs << "}";
-  fs << "right"
-     << "{";
-  write_camera(fs, cameras.right);
-  fs << "}";
-  return fs.releaseAndGetString();
+  return opencv_stereo_camera_text(cameras, OpenCvStorageFormat::yaml);
 }
 
 Status write_camera_file(const CameraModel& camera, const std::string& path) {
-  return write_text(opencv_camera_yaml(camera), path);
+  return write_text(opencv_camera_text(camera, opencv_storage_format_of_path(path)), path);
 }
 
 Status write_stereo_camera_file(const StereoCameraModel& cameras, const std::string& path) {
-  return write_text(opencv_stereo_camera_yaml(cameras), path);
+  return write_text(opencv_stereo_camera_text(cameras, opencv_storage_format_of_path(path)), path);
 }
 
 std::string ros_camera_info_yaml(const CameraModel& camera, const std::string& camera_name) {

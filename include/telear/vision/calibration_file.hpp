@@ -1,6 +1,7 @@
 #pragma once
 // Calibration output files: OpenCV FileStorage YAML with the camera keys of docs/cameras.md
-// (image_width, image_height, camera_matrix, distortion_coefficients), per camera in `left`
+// (image_width, image_height, camera_matrix, distortion_model, distortion_coefficients with
+// the model's 5, 8 or 4 values), per camera in `left`
 // and `right` maps for a stereo pair, and *without* T_cam_base: the cameras are calibrated
 // but not registered to the robot yet (`telear register` adds the poses; until then
 // load_camera_file() reads has_pose = false and `telear render` asks for registration).
@@ -13,6 +14,9 @@
 //   P1, P2: 3x4, Q: 4x4   rectified projections and disparity-to-depth matrix
 //   rms_px                the calibration's reprojection RMS, pixels
 //   calibration_pattern   the pattern spec used, e.g. "chessboard:9x6:0.025"
+//
+// A target path ending in ".xml" gets the same keys as OpenCV FileStorage XML
+// (write_files_atomically converts; see text_for_path).
 //
 // Files are replaced atomically: every text goes first to a temporary file in its target's
 // directory, and only when all were written are they renamed over their targets; on
@@ -33,7 +37,8 @@ std::string mono_calibration_yaml(const MonoCalibration& calibration,
 std::string stereo_calibration_yaml(const StereoCalibration& calibration,
                                     const CalibrationPattern& pattern);
 
-// ROS camera_info YAML (camera_calibration_parsers' layout, plumb_bob), without telear's
+// ROS camera_info YAML (camera_calibration_parsers' layout, the camera's distortion_model and
+// its D vector), without telear's
 // T_cam_base key. Mono: rectification I, projection [K | 0]. Stereo, one camera (`right`
 // selects it): rectification_matrix R1 or R2 and projection_matrix P1 or P2.
 std::string ros_mono_camera_info_yaml(const MonoCalibration& calibration,
@@ -41,8 +46,9 @@ std::string ros_mono_camera_info_yaml(const MonoCalibration& calibration,
 std::string ros_stereo_camera_info_yaml(const StereoCalibration& calibration, bool right,
                                         const std::string& camera_name);
 
-// R, T of a stereo calibration file (X_R = R X_L + T), for registration. Errors name the
-// file and say what is missing or wrong.
+// R, T of a stereo calibration file (X_R = R X_L + T), for registration, in YAML or XML; or of
+// a pair of ROS camera_info files given as "left.yaml,right.yaml" (load_ros_stereo_pair).
+// Errors name the file and say what is missing or wrong.
 struct StereoGeometry {
   cv::Matx33d R;
   cv::Vec3d T;
@@ -53,7 +59,12 @@ Result<StereoGeometry> load_stereo_geometry(const std::string& path);
 // missing or not writable, or `path` is a directory. `option` names the CLI option.
 Status check_output_path(const std::string& path, const std::string& option);
 
-// (path, text) pairs written all-or-nothing as described above.
+// `text` as it goes to `path`: OpenCV FileStorage YAML (text starting with "%YAML") bound for
+// a path ending in ".xml" is converted to FileStorage XML with the same keys; anything else is
+// returned unchanged.
+Result<std::string> text_for_path(const std::string& text, const std::string& path);
+
+// (path, text) pairs written all-or-nothing as described above, through text_for_path().
 Status write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace telear::vision
