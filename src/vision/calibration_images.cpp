@@ -3,6 +3,7 @@
 #include <glob.h>
 
 #include <algorithm>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 
 namespace telear::vision {
@@ -16,6 +17,7 @@ std::string size_text(cv::Size size) {
 // `fatal` stops the whole run (the pattern does not describe the board).
 struct ImageResult {
   std::vector<cv::Point2f> points;
+  std::vector<int> ids;  // each point's index in pattern_object_points()
   std::string problem;
   std::string fatal;
 };
@@ -35,18 +37,19 @@ ImageResult process_image(const std::string& path, const CalibrationPattern& pat
     image.release();
   }
   if (image.empty()) {
-    return {{}, "cannot decode image (corrupt or not an image file); replace or delete it", {}};
+    return {{}, {}, "cannot decode image (corrupt or not an image file); replace or delete it", {}};
   }
   if (image_size.empty()) {
     image_size = image.size();
   } else if (image.size() != image_size) {
     return {{},
+            {},
             "image is " + size_text(image.size()) + " but the first image is " +
                 size_text(image_size) + "; use images from one camera at one resolution",
             {}};
   }
-  auto points = detect_pattern(image, pattern);
-  if (!points) return {{}, points.error().message, {}};
+  auto points = detect_pattern_points(image, pattern);
+  if (!points) return {{}, {}, points.error().message, {}};
   if (pattern.kind == PatternKind::kChessboard && size_check.remaining > 0) {
     --size_check.remaining;
     if (const auto board = larger_chessboard(image, pattern)) {
@@ -55,12 +58,42 @@ ImageResult process_image(const std::string& path, const CalibrationPattern& pat
       right.rows = board->height;
       return {{},
               {},
+              {},
               "the pattern " + pattern.spec() + " is smaller than the board in '" +
                   file_name_of(path) + "', which has " + std::to_string(board->width) + "x" +
                   std::to_string(board->height) + " inner corners; calibrate with " + right.spec()};
     }
   }
-  return {std::move(*points), {}, {}};
+  return {std::move(points->image_points), std::move(points->ids), {}, {}};
+}
+
+// Partial views (ChArUco): the object points of the corners seen; empty for a whole pattern,
+// which the calibration takes as pattern_object_points().
+std::vector<cv::Point3f> view_object_points(const CalibrationPattern& pattern,
+                                            const std::vector<int>& ids) {
+  if (pattern.kind != PatternKind::kCharuco) return {};
+  return pattern_object_points(pattern, ids);
+}
+
+// A stereo pair of ChArUco views keeps the corners both images show (by id), in left order.
+// Returns the number of common corners.
+std::size_t keep_common_corners(ImageResult& left, ImageResult& right) {
+  std::map<int, cv::Point2f> right_by_id;
+  for (std::size_t k = 0; k < right.ids.size(); ++k) right_by_id[right.ids[k]] = right.points[k];
+  ImageResult l, r;
+  for (std::size_t k = 0; k < left.ids.size(); ++k) {
+    const auto found = right_by_id.find(left.ids[k]);
+    if (found == right_by_id.end()) continue;
+    l.points.push_back(left.points[k]);
+    l.ids.push_back(left.ids[k]);
+    r.points.push_back(found->second);
+    r.ids.push_back(left.ids[k]);
+  }
+  left.points = std::move(l.points);
+  left.ids = std::move(l.ids);
+  right.points = std::move(r.points);
+  right.ids = std::move(r.ids);
+  return left.ids.size();
 }
 
 // Reverses `right` when its first-to-last direction opposes the left's (header comment).
@@ -114,7 +147,8 @@ Result<MonoImageViews> detect_in_images(const std::vector<std::string>& paths,
     any_decoded = any_decoded || !result.image_size.empty();
     const bool found = image.problem.empty();
     if (found) {
-      result.views.push_back({paths[i], std::move(image.points)});
+      result.views.push_back(
+          {paths[i], std::move(image.points), view_object_points(pattern, image.ids)});
     } else {
       result.rejected.push_back({.name = paths[i], .right_name = {}, .reason = image.problem});
     }
@@ -158,14 +192,23 @@ Result<StereoImageViews> detect_in_image_pairs(const std::vector<std::string>& l
         problem += (problem.empty() ? "" : "; ") + ("right: " + right.problem);
       }
     }
+    if (problem.empty() && pattern.kind == PatternKind::kCharuco) {
+      const std::size_t seen_left = left.ids.size(), seen_right = right.ids.size();
+      const std::size_t common = keep_common_corners(left, right);
+      if (static_cast<int>(common) < kMinCharucoCorners) {
+        problem = "the images share only " + std::to_string(common) + " ChArUco corners (left " +
+                  std::to_string(seen_left) + ", right " + std::to_string(seen_right) +
+                  "), fewer than the " + std::to_string(kMinCharucoCorners) + " a pair needs";
+      }
+    }
     const bool found = problem.empty();
     if (found) {
       if (pattern.kind == PatternKind::kChessboard &&
           align_chessboard_order(left.points, right.points)) {
         ++result.reordered_pairs;
       }
-      result.views.push_back(
-          {left_paths[i], right_paths[i], std::move(left.points), std::move(right.points)});
+      result.views.push_back({left_paths[i], right_paths[i], std::move(left.points),
+                              std::move(right.points), view_object_points(pattern, left.ids)});
     } else {
       result.rejected.push_back(
           {.name = left_paths[i], .right_name = right_paths[i], .reason = problem});

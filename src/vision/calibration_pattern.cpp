@@ -9,6 +9,8 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
+#include "telear/vision/charuco_board.hpp"
+
 namespace telear::vision {
 namespace {
 
@@ -91,22 +93,92 @@ Result<std::vector<cv::Point2f>> detect_circles(const cv::Mat& grey,
   return centres;
 }
 
+// Shortest text that reads back as the same double ("0.03", not "0.029999999999999999").
+std::string shortest(double value) {
+  char number[32];
+  const auto end = std::to_chars(number, number + sizeof number, value).ptr;
+  return std::string(number, end);
+}
+
+Result<CalibrationPattern> parse_charuco(const std::vector<std::string>& parts,
+                                         const std::string& where) {
+  const std::string form =
+      " (expected charuco:SXxSY:SQUARE_M:MARKER_M:DICT, e.g. charuco:7x5:0.04:0.03:4x4_50 for "
+      "a board of 7x5 squares of 40 mm with 30 mm markers of DICT_4X4_50)";
+  if (parts.size() != 5) {
+    return Error{where + "not five fields separated by ':'" + form};
+  }
+  const std::vector<std::string> size = split(parts[1], 'x');
+  const std::optional<int> sx = size.size() == 2 ? parse_int(size[0]) : std::nullopt;
+  const std::optional<int> sy = size.size() == 2 ? parse_int(size[1]) : std::nullopt;
+  if (!sx || !sy) return Error{where + "size '" + parts[1] + "' is not SXxSY" + form};
+  if (*sx < 3 || *sy < 3 || *sx > kMaxPatternSide + 1 || *sy > kMaxPatternSide + 1) {
+    return Error{where + "size " + parts[1] +
+                 " is out of range: a ChArUco board needs 3 to 201 squares per side (SXxSY "
+                 "counts squares, not inner corners: 7x5 squares have 6x4 corners)"};
+  }
+  CalibrationPattern pattern;
+  pattern.kind = PatternKind::kCharuco;
+  pattern.cols = *sx - 1;
+  pattern.rows = *sy - 1;
+
+  const std::optional<double> square = parse_double(parts[2]);
+  if (!square || !std::isfinite(*square) || *square <= 0.0) {
+    return Error{where + "square size '" + parts[2] +
+                 "' is not a positive number (the side of a square in metres, e.g. 0.04)"};
+  }
+  const std::optional<double> marker = parse_double(parts[3]);
+  if (!marker || !std::isfinite(*marker) || *marker <= 0.0) {
+    return Error{where + "marker size '" + parts[3] +
+                 "' is not a positive number (the side of a marker in metres, e.g. 0.03)"};
+  }
+  if (*marker >= *square) {
+    return Error{where + "marker size " + parts[3] + " m is not smaller than the square size " +
+                 parts[2] +
+                 " m (a marker sits inside a white square with a white border; "
+                 "typically 0.6-0.8 of the square)"};
+  }
+  pattern.spacing = *square;
+  pattern.marker = *marker;
+
+  const std::optional<std::string> dictionary = canonical_aruco_dictionary(parts[4]);
+  if (!dictionary) {
+    std::string names;
+    for (const std::string& name : aruco_dictionary_names()) {
+      names += (names.empty() ? "" : ", ") + name;
+    }
+    return Error{where + "unknown dictionary '" + parts[4] + "' (one of " + names + ")"};
+  }
+  pattern.dictionary = *dictionary;
+  const int markers = charuco_marker_count(*sx, *sy);
+  if (markers > aruco_dictionary_size(*dictionary)) {
+    return Error{where + "a board of " + parts[1] + " squares carries " + std::to_string(markers) +
+                 " markers but dictionary " + *dictionary + " has only " +
+                 std::to_string(aruco_dictionary_size(*dictionary)) +
+                 "; use a larger dictionary or fewer squares"};
+  }
+  return pattern;
+}
+
 }  // namespace
 
 std::string CalibrationPattern::spec() const {
-  // Shortest text that reads back as the same double ("0.03", not "0.029999999999999999").
-  char number[32];
-  const auto end = std::to_chars(number, number + sizeof number, spacing).ptr;
+  if (kind == PatternKind::kCharuco) {
+    return "charuco:" + std::to_string(squares_x()) + "x" + std::to_string(squares_y()) + ":" +
+           shortest(spacing) + ":" + shortest(marker) + ":" + dictionary;
+  }
   return std::string(kind == PatternKind::kChessboard ? "chessboard" : "circles") + ":" +
-         std::to_string(cols) + "x" + std::to_string(rows) + ":" + std::string(number, end);
+         std::to_string(cols) + "x" + std::to_string(rows) + ":" + shortest(spacing);
 }
 
 Result<CalibrationPattern> parse_calibration_pattern(const std::string& spec) {
   const std::string where = "pattern '" + spec + "': ";
   const std::string form =
       " (expected chessboard:COLSxROWS:SQUARE_M, e.g. chessboard:9x6:0.025 for a board of "
-      "10x7 squares of 25 mm, or circles:COLSxROWS:SPACING_M, e.g. circles:4x11:0.02)";
+      "10x7 squares of 25 mm, circles:COLSxROWS:SPACING_M, e.g. circles:4x11:0.02, or "
+      "charuco:SXxSY:SQUARE_M:MARKER_M:DICT, e.g. charuco:7x5:0.04:0.03:4x4_50)";
   const std::vector<std::string> parts = split(spec, ':');
+  if (parts[0] == "charuco") return parse_charuco(parts, where);
   if (parts.size() != 3) return Error{where + "not three fields separated by ':'" + form};
 
   CalibrationPattern pattern;
@@ -150,10 +222,23 @@ std::vector<cv::Point3f> pattern_object_points(const CalibrationPattern& pattern
   const double s = pattern.spacing;
   for (int r = 0; r < pattern.rows; ++r) {
     for (int c = 0; c < pattern.cols; ++c) {
+      if (pattern.kind == PatternKind::kCharuco) {
+        points.emplace_back(static_cast<float>((c + 1) * s), static_cast<float>((r + 1) * s), 0.0f);
+        continue;
+      }
       const double x = pattern.kind == PatternKind::kChessboard ? c * s : (2 * c + r % 2) * s;
       points.emplace_back(static_cast<float>(x), static_cast<float>(r * s), 0.0f);
     }
   }
+  return points;
+}
+
+std::vector<cv::Point3f> pattern_object_points(const CalibrationPattern& pattern,
+                                               const std::vector<int>& ids) {
+  const std::vector<cv::Point3f> all = pattern_object_points(pattern);
+  std::vector<cv::Point3f> points;
+  points.reserve(ids.size());
+  for (int id : ids) points.push_back(all.at(static_cast<std::size_t>(id)));
   return points;
 }
 
@@ -198,8 +283,41 @@ Result<std::vector<cv::Point2f>> detect_pattern(const cv::Mat& image,
                                                 const CalibrationPattern& pattern) {
   assert(!image.empty() && image.depth() == CV_8U);
   const cv::Mat grey = to_grey(image);
-  return pattern.kind == PatternKind::kChessboard ? detect_chessboard(grey, pattern)
-                                                  : detect_circles(grey, pattern);
+  switch (pattern.kind) {
+    case PatternKind::kChessboard:
+      return detect_chessboard(grey, pattern);
+    case PatternKind::kAsymmetricCircles:
+      return detect_circles(grey, pattern);
+    case PatternKind::kCharuco:
+      break;
+  }
+  auto found = detect_charuco(grey, pattern, kMinCharucoCorners);
+  if (!found) return found.error();
+  if (static_cast<int>(found->ids.size()) < pattern.point_count()) {
+    return Error{"only " + std::to_string(found->ids.size()) + " of the board's " +
+                 std::to_string(pattern.point_count()) + " ChArUco corners found (the whole " +
+                 pattern.spec() + " must be visible here)"};
+  }
+  std::vector<cv::Point2f> points(static_cast<std::size_t>(pattern.point_count()));
+  for (std::size_t k = 0; k < found->ids.size(); ++k) {
+    points[static_cast<std::size_t>(found->ids[k])] = found->image_points[k];
+  }
+  return points;
+}
+
+Result<DetectedPoints> detect_pattern_points(const cv::Mat& image,
+                                             const CalibrationPattern& pattern, int min_corners) {
+  assert(!image.empty() && image.depth() == CV_8U);
+  if (pattern.kind == PatternKind::kCharuco) {
+    return detect_charuco(to_grey(image), pattern, min_corners);
+  }
+  auto points = detect_pattern(image, pattern);
+  if (!points) return points.error();
+  DetectedPoints found;
+  found.image_points = std::move(*points);
+  found.ids.resize(found.image_points.size());
+  for (std::size_t k = 0; k < found.ids.size(); ++k) found.ids[k] = static_cast<int>(k);
+  return found;
 }
 
 }  // namespace telear::vision

@@ -27,30 +27,34 @@ struct Solve {
 // cv::fisheye::calibrate returns neither standard deviations nor per-view errors: both come
 // from the Gauss-Newton covariance sigma^2 (J^T J)^-1 of the problem it solved (free
 // intrinsics and every view's pose), J from cv::fisheye::projectPoints.
-void fisheye_uncertainty(const std::vector<cv::Point3f>& object,
+void fisheye_uncertainty(const std::vector<std::vector<cv::Point3f>>& object_points,
                          const std::vector<std::vector<cv::Point2f>>& image_points,
                          const std::vector<int>& free, Solve& s) {
   const auto views = static_cast<Eigen::Index>(image_points.size());
   const auto n_free = static_cast<Eigen::Index>(free.size());
-  const auto rows_per_view = static_cast<Eigen::Index>(2 * object.size());
   const Eigen::Index parameters = n_free + 6 * views;
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows_per_view * views, parameters);
+  Eigen::Index rows = 0;  // views may show different numbers of points (partial views)
+  for (const auto& object : object_points) rows += static_cast<Eigen::Index>(2 * object.size());
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, parameters);
   double sum_squares = 0.0;
   s.view_errors.clear();
+  Eigen::Index row = 0;
   for (Eigen::Index i = 0; i < views; ++i) {
     const auto k = static_cast<std::size_t>(i);
+    const std::vector<cv::Point3f>& object = object_points[k];
+    const auto rows_of_view = static_cast<Eigen::Index>(2 * object.size());
     const ViewProjection p = project_view(object, image_points[k], s.rvecs[k], s.tvecs[k], s.K,
                                           s.dist, DistortionModel::equidistant);
     for (Eigen::Index f = 0; f < n_free; ++f) {
-      J.block(i * rows_per_view, f, rows_per_view, 1) =
-          p.d_intrinsics.col(free[static_cast<std::size_t>(f)]);
+      J.block(row, f, rows_of_view, 1) = p.d_intrinsics.col(free[static_cast<std::size_t>(f)]);
     }
-    J.block(i * rows_per_view, n_free + 6 * i, rows_per_view, 6) = p.d_pose;
+    J.block(row, n_free + 6 * i, rows_of_view, 6) = p.d_pose;
+    row += rows_of_view;
     sum_squares += p.residual.squaredNorm();
     s.view_errors.push_back(
         std::sqrt(p.residual.squaredNorm() / static_cast<double>(object.size())));
   }
-  const double total_points = static_cast<double>(object.size()) * static_cast<double>(views);
+  const double total_points = static_cast<double>(rows) / 2.0;
   s.rms = std::sqrt(sum_squares / total_points);
   const double sigma2 = sum_squares / static_cast<double>(J.rows() - parameters);
   const Eigen::MatrixXd covariance =
@@ -64,10 +68,9 @@ void fisheye_uncertainty(const std::vector<cv::Point3f>& object,
   for (Eigen::Index i = 0; i < views; ++i) s.pose_std.push_back(sd.segment<6>(n_free + 6 * i));
 }
 
-Result<Solve> solve(const std::vector<cv::Point3f>& object,
+Result<Solve> solve(const std::vector<std::vector<cv::Point3f>>& object_points,
                     const std::vector<std::vector<cv::Point2f>>& image_points, cv::Size image_size,
                     const CalibrationOptions& options) {
-  std::vector<std::vector<cv::Point3f>> object_points(image_points.size(), object);
   const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
                                   options.max_iterations, DBL_EPSILON);
   Solve s;
@@ -106,7 +109,7 @@ Result<Solve> solve(const std::vector<cv::Point3f>& object,
   for (cv::Mat& m : s.rvecs) m.convertTo(m, CV_64F);
   for (cv::Mat& m : s.tvecs) m.convertTo(m, CV_64F);
   if (std::isfinite(s.rms) && cv::checkRange(s.K) && cv::checkRange(s.dist)) {
-    fisheye_uncertainty(object, image_points, free_intrinsic_parameters(options), s);
+    fisheye_uncertainty(object_points, image_points, free_intrinsic_parameters(options), s);
   }
   return s;
 }
@@ -186,7 +189,18 @@ Status check_views(const std::vector<PatternView>& views, const CalibrationPatte
                  std::to_string(image_size.height) + " is not positive"};
   }
   for (const PatternView& view : views) {
-    if (static_cast<int>(view.image_points.size()) != pattern.point_count()) {
+    if (!view.object_points.empty()) {
+      // Part of the pattern (a ChArUco board partly out of frame): its own object points.
+      if (view.object_points.size() != view.image_points.size()) {
+        return Error{"view '" + view.name + "' has " + std::to_string(view.image_points.size()) +
+                     " image points but " + std::to_string(view.object_points.size()) +
+                     " object points"};
+      }
+      if (view.image_points.size() < 4) {
+        return Error{"view '" + view.name + "' has " + std::to_string(view.image_points.size()) +
+                     " points; a view needs at least 4"};
+      }
+    } else if (static_cast<int>(view.image_points.size()) != pattern.point_count()) {
       return Error{"view '" + view.name + "' has " + std::to_string(view.image_points.size()) +
                    " points but pattern " + pattern.spec() + " has " +
                    std::to_string(pattern.point_count())};
@@ -216,9 +230,13 @@ Result<MonoCalibration> calibrate_mono(const CalibrationPattern& pattern,
   MonoCalibration result;
   while (true) {
     std::vector<std::vector<cv::Point2f>> image_points;
-    for (std::size_t i : active) image_points.push_back(views[i].image_points);
+    std::vector<std::vector<cv::Point3f>> object_points;
+    for (std::size_t i : active) {
+      image_points.push_back(views[i].image_points);
+      object_points.push_back(views[i].object_points.empty() ? object : views[i].object_points);
+    }
 
-    auto solved = solve(object, image_points, image_size, options);
+    auto solved = solve(object_points, image_points, image_size, options);
     if (!solved) return solved.error();
     const Solve& sol = *solved;
     if (!std::isfinite(sol.rms) || !cv::checkRange(sol.K) || !cv::checkRange(sol.dist)) {

@@ -83,10 +83,18 @@ struct JointSolution {
 // The left pose of each view that minimises both images' reprojection error for the given
 // intrinsics, R and T (stereoCalibrate does not return its poses): solvePnP on the left
 // image, then Gauss-Newton over the 6 pose parameters with both images.
-void solve_left_poses(const std::vector<cv::Point3f>& object,
+// The object points of a view: its own (part of the pattern, e.g. a ChArUco board partly out
+// of frame) or, when it has none, the whole pattern's.
+const std::vector<cv::Point3f>& object_of(const StereoPatternView& view,
+                                          const std::vector<cv::Point3f>& pattern_points) {
+  return view.object_points.empty() ? pattern_points : view.object_points;
+}
+
+void solve_left_poses(const std::vector<cv::Point3f>& pattern_points,
                       const std::vector<StereoPatternView>& views, JointSolution& s) {
   s.poses.clear();
   for (const StereoPatternView& view : views) {
+    const std::vector<cv::Point3f>& object = object_of(view, pattern_points);
     ViewPose pose;
     solve_view_pose(object, view.left_points, s.K[0], s.dist[0], s.model, pose.rvec, pose.tvec);
     for (int iteration = 0; iteration < 20; ++iteration) {
@@ -118,19 +126,22 @@ struct Covariance {
   std::size_t points = 0;              // per camera
 };
 
-Covariance joint_covariance(const std::vector<cv::Point3f>& object,
+Covariance joint_covariance(const std::vector<cv::Point3f>& pattern_points,
                             const std::vector<StereoPatternView>& views, const JointSolution& s,
                             const std::vector<int>& free) {
   const auto n_free = static_cast<Eigen::Index>(free.size());
   const Eigen::Index stereo_col = 2 * n_free;
   const Eigen::Index parameters = stereo_col + 6 + 6 * static_cast<Eigen::Index>(views.size());
-  const auto points = static_cast<Eigen::Index>(object.size());
-  const Eigen::Index rows = 4 * points * static_cast<Eigen::Index>(views.size());
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, parameters);
   Covariance result;
-  result.points = object.size() * views.size();
+  for (const StereoPatternView& view : views) {
+    result.points += object_of(view, pattern_points).size();
+  }
+  const auto rows = static_cast<Eigen::Index>(4 * result.points);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, parameters);
   Eigen::Index row = 0;
   for (std::size_t i = 0; i < views.size(); ++i) {
+    const std::vector<cv::Point3f>& object = object_of(views[i], pattern_points);
+    const auto points = static_cast<Eigen::Index>(object.size());
     const Eigen::Index pose_col = stereo_col + 6 + 6 * static_cast<Eigen::Index>(i);
     const ViewPose& pose = s.poses[i];
     const ViewProjection left = project_view(object, views[i].left_points, pose.rvec, pose.tvec,
@@ -189,8 +200,8 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
   {
     std::vector<PatternView> left, right;
     for (const StereoPatternView& v : views) {
-      left.push_back({v.left_name, v.left_points});
-      right.push_back({v.right_name, v.right_points});
+      left.push_back({v.left_name, v.left_points, v.object_points});
+      right.push_back({v.right_name, v.right_points, v.object_points});
     }
     if (Status s = check_views(left, pattern, image_size); !s) return s.error();
     if (Status s = check_views(right, pattern, image_size); !s) return s.error();
@@ -210,8 +221,8 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
     // Step 1: each camera alone.
     std::vector<PatternView> left_views, right_views;
     for (const StereoPatternView& v : active) {
-      left_views.push_back({v.left_name, v.left_points});
-      right_views.push_back({v.right_name, v.right_points});
+      left_views.push_back({v.left_name, v.left_points, v.object_points});
+      right_views.push_back({v.right_name, v.right_points, v.object_points});
     }
     auto mono_left = calibrate_mono(pattern, left_views, image_size, mono_options);
     if (!mono_left) return Error{"left camera: " + mono_left.error().message};
@@ -227,9 +238,10 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
     s.K[1] = camera_matrix(mono_right->camera);
     s.dist[0] = distortion_vector(mono_left->camera);
     s.dist[1] = distortion_vector(mono_right->camera);
-    std::vector<std::vector<cv::Point3f>> object_points(active.size(), object);
+    std::vector<std::vector<cv::Point3f>> object_points;
     std::vector<std::vector<cv::Point2f>> left_points, right_points;
     for (const StereoPatternView& v : active) {
+      object_points.push_back(object_of(v, object));
       left_points.push_back(v.left_points);
       right_points.push_back(v.right_points);
     }
@@ -282,20 +294,22 @@ Result<StereoCalibration> calibrate_stereo(const CalibrationPattern& pattern,
       // E = [T]x R and F = K_R^-T E K_L^-1 as cv::stereoCalibrate forms them.
       solve_left_poses(object, active, s);
       per_view.create(static_cast<int>(active.size()), 2, CV_64F);
-      double sum_squares = 0.0;
+      double sum_squares = 0.0, total_points = 0.0;
       for (std::size_t k = 0; k < active.size(); ++k) {
         const ViewPose& pose = s.poses[k];
-        const ViewProjection left = project_view(object, active[k].left_points, pose.rvec,
+        const std::vector<cv::Point3f>& view_object = object_points[k];
+        const ViewProjection left = project_view(view_object, active[k].left_points, pose.rvec,
                                                  pose.tvec, s.K[0], s.dist[0], model);
         const RightPose rp = compose_right(pose, s.om, s.T);
-        const ViewProjection right = project_view(object, active[k].right_points, rp.rvec, rp.tvec,
-                                                  s.K[1], s.dist[1], model);
-        const double n = static_cast<double>(object.size());
+        const ViewProjection right = project_view(view_object, active[k].right_points, rp.rvec,
+                                                  rp.tvec, s.K[1], s.dist[1], model);
+        const double n = static_cast<double>(view_object.size());
+        total_points += n;
         per_view.at<double>(static_cast<int>(k), 0) = std::sqrt(left.residual.squaredNorm() / n);
         per_view.at<double>(static_cast<int>(k), 1) = std::sqrt(right.residual.squaredNorm() / n);
         sum_squares += left.residual.squaredNorm() + right.residual.squaredNorm();
       }
-      rms = std::sqrt(sum_squares / (2.0 * static_cast<double>(object.size() * active.size())));
+      rms = std::sqrt(sum_squares / (2.0 * total_points));
       const cv::Matx33d Tx(0.0, -T.at<double>(2), T.at<double>(1), T.at<double>(2), 0.0,
                            -T.at<double>(0), -T.at<double>(1), T.at<double>(0), 0.0);
       E = cv::Mat(Tx * cv::Matx33d(R));

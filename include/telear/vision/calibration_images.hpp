@@ -9,6 +9,12 @@
 // chessboard larger than the pattern says: checked on the first two images where it is
 // found, see larger_chessboard()).
 //
+// ChArUco boards may be seen in part (detect_pattern_points()): a view counts with the
+// corners it shows, at least kMinCharucoCorners, and carries their object points
+// (PatternView::object_points); a stereo pair keeps the corners both images show (matched by
+// id) and is skipped, saying how many each image had, when fewer than kMinCharucoCorners
+// remain. A view with too few corners is skipped with the count in its reason.
+//
 // Stereo chessboards: OpenCV numbers the corners from either end of the board, so the two
 // images of a pair can come back in opposite orders. The right list is reversed when the
 // direction from the first to the last corner opposes the left's (a 180-degree turn, the
@@ -46,7 +52,7 @@ using DetectionCallback = std::function<void(const DetectionProgress&)>;
 
 struct MonoImageViews {
   cv::Size image_size;
-  std::vector<PatternView> views;      // images with the whole pattern
+  std::vector<PatternView> views;      // images with the pattern (ChArUco: enough of it)
   std::vector<RejectedView> rejected;  // images skipped, with the reason
 };
 

@@ -47,10 +47,13 @@
 
 namespace telear::vision {
 
-// One view of the pattern: its image points in pattern_object_points() order (pixels).
+// One view of the pattern: its image points in pattern_object_points() order (pixels), or,
+// for a view of part of the pattern (a ChArUco board partly out of frame), the points seen
+// and their positions on the target in object_points.
 struct PatternView {
   std::string name;  // e.g. the image file; used in reports
   std::vector<cv::Point2f> image_points;
+  std::vector<cv::Point3f> object_points = {};  // empty: pattern_object_points(), every point
 };
 
 struct CalibrationOptions {

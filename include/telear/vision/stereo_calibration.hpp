@@ -46,6 +46,9 @@ struct StereoPatternView {
   std::string right_name;
   std::vector<cv::Point2f> left_points;
   std::vector<cv::Point2f> right_points;
+  // Part of the pattern (ChArUco: the corners both images show): the points' positions on
+  // the target, one per left / right point. Empty: pattern_object_points(), every point.
+  std::vector<cv::Point3f> object_points = {};
 };
 
 struct StereoCalibrationOptions {
