@@ -1,6 +1,7 @@
 #include "telear/sim/calibration_targets.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <opencv2/aruco.hpp>
 #include <random>
@@ -52,6 +53,33 @@ Eigen::Vector3d CalibrationTarget::pattern_centre() const {
   return sum / static_cast<double>(points_target.size());
 }
 
+double CalibrationTarget::reflectance(double x, double y) const {
+  if (x < outline_min.x() || y < outline_min.y() || x > outline_max.x() || y > outline_max.y()) {
+    return -1.0;
+  }
+  const double s = pattern.spacing;
+  switch (pattern.kind) {
+    case vision::PatternKind::kChessboard: {
+      if (x < -s || y < -s || x >= pattern.cols * s || y >= pattern.rows * s) return 1.0;
+      const auto i = static_cast<long>(std::floor(x / s));
+      const auto j = static_cast<long>(std::floor(y / s));
+      return ((i + j) % 2 + 2) % 2 == 0 ? 0.0 : 1.0;
+    }
+    case vision::PatternKind::kAsymmetricCircles: {
+      const auto r = std::lround(y / s);
+      if (r < 0 || r >= pattern.rows) return 1.0;
+      const auto c = std::lround((x / s - static_cast<double>(r % 2)) / 2.0);
+      if (c < 0 || c >= pattern.cols) return 1.0;
+      const double dx = x - static_cast<double>(2 * c + r % 2) * s,
+                   dy = y - static_cast<double>(r) * s;
+      return dx * dx + dy * dy <= 0.09 * s * s ? 0.0 : 1.0;
+    }
+    case vision::PatternKind::kCharuco:
+      return charuco.reflectance(x, y);
+  }
+  return 1.0;
+}
+
 CalibrationTarget make_calibration_target(const vision::CalibrationPattern& pattern,
                                           double margin_squares) {
   CalibrationTarget target;
@@ -77,6 +105,31 @@ CalibrationTarget make_calibration_target(const vision::CalibrationPattern& patt
     add_rect(target.mesh, x1, y0, x1 + m, y1, 0.0, kWhite);
     target.outline_min = {x0 - m, y0 - m};
     target.outline_max = {x1 + m, y1 + m};
+  } else if (pattern.kind == vision::PatternKind::kCharuco) {
+    target.charuco = vision::charuco_layout(pattern);
+    const vision::CharucoLayout& layout = target.charuco;
+    for (int j = 0; j < layout.squares_y; ++j) {
+      for (int i = 0; i < layout.squares_x; ++i) {
+        if (layout.black_square(i, j)) {
+          add_rect(target.mesh, i * s, j * s, (i + 1) * s, (j + 1) * s, 0.0, kBlack);
+        }
+      }
+    }
+    for (const vision::CharucoMarker& marker : layout.markers) {
+      const int n = marker.cells.rows;
+      const double cell = marker.side / n;
+      for (int row = 0; row < n; ++row) {
+        for (int col = 0; col < n; ++col) {
+          if (marker.cells.at<std::uint8_t>(row, col) > 127) continue;
+          const double x = marker.top_left.x + col * cell, y = marker.top_left.y + row * cell;
+          add_rect(target.mesh, x, y, x + cell, y + cell, 0.0, kBlack);
+        }
+      }
+    }
+    const double x1 = layout.squares_x * s, y1 = layout.squares_y * s;
+    add_rect(target.mesh, -m, -m, x1 + m, y1 + m, 0.0002, kWhite);
+    target.outline_min = {-m, -m};
+    target.outline_max = {x1 + m, y1 + m};
   } else {
     const double radius = 0.3 * s;
     constexpr int kSegments = 96;
@@ -99,6 +152,67 @@ CalibrationTarget make_calibration_target(const vision::CalibrationPattern& patt
     target.outline_max = {x1, y1};
   }
   return target;
+}
+
+TargetImageRenderer::TargetImageRenderer(const vision::CameraModel& camera)
+    : camera_(camera), rays_(camera.height + 1, camera.width + 1, CV_64FC2) {
+  const double max_radius = camera.max_monotonic_radius();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (int v = 0; v <= camera.height; ++v) {
+    for (int u = 0; u <= camera.width; ++u) {
+      const auto x = camera.undistort_within(
+          camera.normalized_from_pixel(Eigen::Vector2d(u - 0.5, v - 0.5)), max_radius);
+      rays_.at<cv::Vec2d>(v, u) = x ? cv::Vec2d(x->x(), x->y()) : cv::Vec2d(nan, nan);
+    }
+  }
+}
+
+cv::Mat TargetImageRenderer::render(const CalibrationTarget& target,
+                                    const Eigen::Isometry3d& T_base_target, int supersample,
+                                    double noise_grey, std::uint64_t seed) const {
+  assert(supersample >= 1 && supersample <= 8);
+  // The target plane z = 0 maps to normalized image coordinates by M = [r1 r2 t]; a ray
+  // (x, y, 1) meets it at M^-1 (x, y, 1), in front of the camera when the last entry is > 0.
+  const Eigen::Isometry3d T_cam_target = camera_.T_cam_base * T_base_target;
+  Eigen::Matrix3d M;
+  M << T_cam_target.linear().col(0), T_cam_target.linear().col(1), T_cam_target.translation();
+  const Eigen::Matrix3d M_inv = M.inverse();
+  constexpr double kBlackGrey = 10.0, kWhiteGrey = 237.0, kBackgroundGrey = 128.0;
+  const int n = supersample;
+  cv::Mat image(camera_.height, camera_.width, CV_64FC1);
+  for (int v = 0; v < camera_.height; ++v) {
+    for (int u = 0; u < camera_.width; ++u) {
+      const cv::Vec2d r00 = rays_.at<cv::Vec2d>(v, u), r01 = rays_.at<cv::Vec2d>(v, u + 1);
+      const cv::Vec2d r10 = rays_.at<cv::Vec2d>(v + 1, u), r11 = rays_.at<cv::Vec2d>(v + 1, u + 1);
+      double sum = 0.0;
+      for (int b = 0; b < n; ++b) {
+        const double fv = (b + 0.5) / n;
+        for (int a = 0; a < n; ++a) {
+          // The rays vary smoothly over a pixel: bilinear between its corners is exact to far
+          // below the detectors' precision.
+          const double fu = (a + 0.5) / n;
+          const cv::Vec2d ray =
+              (1 - fv) * ((1 - fu) * r00 + fu * r01) + fv * ((1 - fu) * r10 + fu * r11);
+          double value = -1.0;
+          if (std::isfinite(ray[0])) {
+            const Eigen::Vector3d q = M_inv * Eigen::Vector3d(ray[0], ray[1], 1.0);
+            if (q.z() > 0.0) value = target.reflectance(q.x() / q.z(), q.y() / q.z());
+          }
+          sum += value < 0.0 ? kBackgroundGrey : kBlackGrey + (kWhiteGrey - kBlackGrey) * value;
+        }
+      }
+      image.at<double>(v, u) = sum / (n * n);
+    }
+  }
+  if (noise_grey > 0.0) {
+    cv::Mat noise(image.size(), CV_64FC1);
+    cv::RNG rng(seed);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, noise_grey);
+    image += noise;
+  }
+  cv::Mat grey;
+  image.convertTo(grey, CV_8UC1);  // rounds and saturates
+  return grey;
 }
 
 Result<ArucoMarker> make_aruco_marker(const core::MarkerMount& spec) {

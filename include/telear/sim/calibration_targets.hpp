@@ -13,6 +13,14 @@
 //   circles     OpenCV's asymmetric grid: dark discs of radius 0.3 s (96-gon, whose centroid
 //               is the centre) at ((2 c + r mod 2) s, r s, 0) on a white plate 0.2 mm behind
 //               (z = +0.0002), so the discs never z-fight with it.
+//   charuco     the layout of telear/vision/charuco_board.hpp (OpenCV's board): its black
+//               squares and the black cells of its markers at z = 0, on a white plate 0.2 mm
+//               behind that covers the board and a white margin of `margin_squares` squares.
+//
+// The scene renderer draws the mesh with OpenGL (telear sim capture). render_target_image()
+// draws a target alone on a grey background on the CPU, for tests that need many views fast
+// and views partly out of frame: each pixel averages supersample^2 rays through the true
+// camera (its distortion included) to the target plane and the target's reflectance there.
 //
 // ArUco marker (DICT_4X4_50, OpenCV 4.6's cv::aruco): the 6 x 6-cell marker (4 x 4 bits and a
 // black border) inside a white quiet zone of one cell, on a thin backing plate. Marker frame
@@ -25,6 +33,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "telear/core/marker_mount.hpp"
@@ -32,6 +41,7 @@
 #include "telear/core/result.hpp"
 #include "telear/vision/calibration_pattern.hpp"
 #include "telear/vision/camera_model.hpp"
+#include "telear/vision/charuco_board.hpp"
 
 namespace telear::sim {
 
@@ -41,16 +51,39 @@ struct CalibrationTarget {
   std::vector<Eigen::Vector3d> points_target;             // pattern points, detection order
   Eigen::Vector2d outline_min = Eigen::Vector2d::Zero();  // the board's extent in x, y
   Eigen::Vector2d outline_max = Eigen::Vector2d::Zero();
+  vision::CharucoLayout charuco;  // charuco: the board's squares and markers
   // Corners of the outline (z = 0), for visibility checks.
   std::array<Eigen::Vector3d, 4> outline_corners() const;
   // Centre of the pattern's points.
   Eigen::Vector3d pattern_centre() const;
+  // What the printed face shows at (x, y) of the target frame: 0 black, 1 white, -1 off the
+  // target (beyond the outline).
+  double reflectance(double x, double y) const;
 };
 
 // `pattern` must be valid (parse_calibration_pattern). margin_squares: white border width in
 // units of the spacing (chessboard: squares; circles: s).
 CalibrationTarget make_calibration_target(const vision::CalibrationPattern& pattern,
                                           double margin_squares = 1.0);
+
+// Grey images of a target seen by one camera, drawn on the CPU (see above).
+class TargetImageRenderer {
+ public:
+  // Precomputes the camera's rays (one undistortion per pixel corner).
+  explicit TargetImageRenderer(const vision::CameraModel& camera);
+
+  // An 8-bit grey image of `target` at T_base_target (black 10, white 237 grey levels) on a
+  // background of 128; each pixel the mean of supersample x supersample samples (1..8),
+  // then Gaussian noise of sigma noise_grey (seeded). Parts outside the image are cut off.
+  cv::Mat render(const CalibrationTarget& target, const Eigen::Isometry3d& T_base_target,
+                 int supersample = 4, double noise_grey = 1.0, std::uint64_t seed = 1) const;
+
+ private:
+  vision::CameraModel camera_;
+  // Undistorted normalized coordinates of the pixel corners (u - 0.5, v - 0.5), u = 0..width,
+  // v = 0..height; NaN where undistortion fails (beyond the lens model's range).
+  cv::Mat rays_;  // CV_64FC2, (height + 1) x (width + 1)
+};
 
 // The marker of a mount (include/telear/core/marker_mount.hpp) as geometry.
 struct ArucoMarker {
