@@ -228,6 +228,57 @@ TEST(CalibrationFile, RosCameraInfoCarriesTheRectification) {
   EXPECT_THAT(text, HasSubstr("projection_matrix:\n  rows: 3\n  cols: 4\n"));
 }
 
+// calibrate_stereo() -> ros_stereo_camera_info_yaml() left and right -> the pair read back
+// keeps the calibration's R and T (from R1, R2 and P2's Tx), for each lens model; the
+// FileStorage file written as XML carries the same.
+TEST(CalibrationFile, RosStereoPairAndXmlKeepTheGeometryOfEveryModel) {
+  const std::vector<std::pair<DistortionModel, std::vector<double>>> lenses = {
+      {DistortionModel::plumb_bob, {-0.3, 0.1, 0.001, -0.0005, 0.0}},
+      {DistortionModel::rational_polynomial, {-0.28, 0.09, 0.001, -0.0005, 0.0, 0.05, 0.0, 0.0}},
+      {DistortionModel::equidistant, {-0.02, 0.004, 0.0, 0.0}}};
+  for (const auto& [model, d] : lenses) {
+    SCOPED_TRACE(distortion_model_name(model));
+    test::SyntheticRig rig = test::default_rig();
+    rig.left.kc = rig.right.kc = *Distortion::from_coefficients(model, d);
+    // Seed 3, 12 views: with seed 42's 10 views cv::fisheye::stereoCalibrate's initialisation
+    // stops on an assertion (abs_max < threshold), which is not what this test is about.
+    std::mt19937_64 rng(3);
+    const auto poses = test::random_pattern_poses(rig, board(), 12, rng);
+    StereoCalibrationOptions options;
+    options.calibration.model = model;
+    auto c = calibrate_stereo(board(), test::stereo_views(rig, board(), poses, 0.1, rng),
+                              {640, 480}, options);
+    ASSERT_TRUE(c.ok()) << c.error().message;
+    ASSERT_EQ(c->cameras.left.kc.model, model);
+
+    const std::string dir = fresh_dir(std::string("pair_") + distortion_model_name(model));
+    const std::string left = dir + "/left.yaml", right = dir + "/right.yaml";
+    const std::string xml = dir + "/stereo.xml";
+    ASSERT_TRUE(write_files_atomically({{left, ros_stereo_camera_info_yaml(*c, false, "left")},
+                                        {right, ros_stereo_camera_info_yaml(*c, true, "right")},
+                                        {xml, stereo_calibration_yaml(*c, board())}})
+                    .ok());
+    const auto pair = load_camera_file(left + "," + right);
+    ASSERT_TRUE(pair.ok()) << pair.error().message;
+    ASSERT_TRUE(pair->T_right_left.has_value());
+    const auto geometry = load_stereo_geometry(left + "," + right);
+    ASSERT_TRUE(geometry.ok()) << geometry.error().message;
+    EXPECT_LT(cv::norm(geometry->R - c->R), 1e-12);
+    EXPECT_LT(cv::norm(geometry->T - c->T), 1e-9);
+    EXPECT_NEAR(cv::norm(geometry->T), c->baseline(), 1e-9);
+    EXPECT_EQ(pair->right->kc.coefficients(), c->cameras.right.kc.coefficients());
+    EXPECT_NEAR(pair->left.fx, c->cameras.left.fx, 1e-9);
+
+    const auto from_xml = load_camera_file(xml);
+    ASSERT_TRUE(from_xml.ok()) << from_xml.error().message;
+    EXPECT_EQ(from_xml->left.kc.model, model);
+    EXPECT_EQ(from_xml->right->kc.coefficients(), c->cameras.right.kc.coefficients());
+    const auto xml_geometry = load_stereo_geometry(xml);
+    ASSERT_TRUE(xml_geometry.ok()) << xml_geometry.error().message;
+    EXPECT_EQ(xml_geometry->T, c->T);
+  }
+}
+
 TEST(CalibrationFile, UnwritablePathsFailEarlyAndLeaveNothingBehind) {
   const std::string dir = fresh_dir("unwritable");
   EXPECT_TRUE(check_output_path(dir + "/stereo.yaml", "-o").ok());
