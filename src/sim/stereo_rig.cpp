@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "telear/core/yaml_reader.hpp"
+#include "telear/vision/registration_target.hpp"
 
 namespace telear::sim {
 namespace {
@@ -57,8 +58,10 @@ Result<vision::CameraModel> read_camera(const Context& ctx, const YAML::Node& no
   if (!node || !node.IsMap()) return ctx.error(field, "missing (a map of the camera's values)");
   for (const auto& entry : node) {
     const auto key = entry.first.as<std::string>();
-    if (key != "image_size" && key != "fc" && key != "cc" && key != "alpha_c" && key != "kc") {
-      return ctx.error(field + "." + key, "unknown key (expected image_size, fc, cc, alpha_c, kc)");
+    if (key != "image_size" && key != "fc" && key != "cc" && key != "alpha_c" &&
+        key != "distortion_model" && key != "kc") {
+      return ctx.error(field + "." + key,
+                       "unknown key (expected image_size, fc, cc, alpha_c, distortion_model, kc)");
     }
   }
   vision::CameraModel camera;
@@ -84,10 +87,30 @@ Result<vision::CameraModel> read_camera(const Context& ctx, const YAML::Node& no
       return ctx.error(field + ".alpha_c", "must be a number");
     }
   }
+  // distortion_model: a ROS name (default plumb_bob); kc: that model's D vector (5, 8 or 4
+  // numbers; default all zero).
+  vision::DistortionModel model = vision::DistortionModel::plumb_bob;
+  if (node["distortion_model"]) {
+    std::string name;
+    try {
+      name = node["distortion_model"].as<std::string>();
+    } catch (const YAML::Exception&) {
+      return ctx.error(field + ".distortion_model", "must be a name");
+    }
+    auto parsed = vision::parse_distortion_model(name);
+    if (!parsed) return ctx.error(field + ".distortion_model", parsed.error().message);
+    model = *parsed;
+  }
+  camera.kc.model = model;
   if (node["kc"]) {
-    auto kc = read_numbers(ctx, node["kc"], field + ".kc", 5);
-    if (!kc) return kc.error();
-    camera.kc = vision::Distortion::plumb_bob((*kc)[0], (*kc)[1], (*kc)[2], (*kc)[3], (*kc)[4]);
+    const std::size_t count = vision::distortion_coefficient_count(model);
+    auto kc = read_numbers(ctx, node["kc"], field + ".kc", count);
+    if (!kc) {
+      return ctx.error(field + ".kc", "expected a list of " + std::to_string(count) +
+                                          " numbers (the " + vision::distortion_model_name(model) +
+                                          " D vector)");
+    }
+    camera.kc = vision::Distortion::from_coefficients(model, *kc).value();
   }
   if (auto valid = vision::validate_camera(camera); !valid) {
     return ctx.error(field, valid.error().message);
@@ -188,11 +211,11 @@ Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::stri
   for (const auto& entry : root) {
     const auto key = entry.first.as<std::string>();
     if (key != "name" && key != "robot" && key != "body" && key != "workspace" &&
-        key != "workspace_error" && key != "marker" && key != "baseline_m" && key != "pose" &&
-        key != "cameras") {
+        key != "workspace_error" && key != "marker" && key != "target" && key != "baseline_m" &&
+        key != "pose" && key != "cameras") {
       return ctx.error(key,
                        "unknown key (expected name, robot, body, workspace, workspace_error, "
-                       "marker, baseline_m, pose, cameras)");
+                       "marker, target, baseline_m, pose, cameras)");
     }
   }
   const auto resolve = [&](const std::string& path) {
@@ -235,6 +258,16 @@ Result<StereoRig> parse_stereo_rig_yaml(const std::string& text, const std::stri
     auto marker = core::load_marker_mount_file(rig.marker_file);
     if (!marker) return ctx.error("marker", marker.error().message);
     rig.marker = *marker;
+  }
+  if (const YAML::Node node = root["target"]) {
+    try {
+      rig.target = node.as<std::string>();
+    } catch (const YAML::Exception&) {
+      return ctx.error("target", "must be a target spec string");
+    }
+    if (auto target = vision::parse_registration_target(rig.target); !target) {
+      return ctx.error("target", target.error().message);
+    }
   }
   if (root["baseline_m"]) {
     try {

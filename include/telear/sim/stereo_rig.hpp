@@ -24,11 +24,15 @@
 //     rpy: [0, 0, 0.02]                  #   rad (default 0)
 //     objects:                           #   optional, per object, after the common error
 //       box: {xyz: [0.02, 0, 0], rpy: [0, 0, 0]}
+//   target: "charuco:5x5:0.06:0.045:4x4_50"  # optional: what the flange carries where its
+//                                        #   marker mount sits (default: the mount's marker)
 //   baseline_m: 0.06                     # optional, default 0.06 (the seed's rig)
 //   pose: {centre_m: [x, y, z], look_at_m: [x, y, z], up: [0, 0, 1]}
 //   cameras:
 //     left:  {image_size: [640, 480], fc: [fx, fy], cc: [cx, cy], alpha_c: 0, kc: [5 values]}
 //     right: {...}
+//   (per camera, optional: distortion_model: plumb_bob (default), rational_polynomial or
+//   equidistant; kc then holds that model's D vector: 5, 8 or 4 numbers)
 // Untrusted input: every error names the file and the field.
 //
 // Modelling error. The operator's views, plan validation and the robot server read the
@@ -82,6 +86,10 @@ struct StereoRig {
   // own marker file (core::marker_mount_for), looked up by the scene renderer.
   std::string marker_file;
   std::optional<core::MarkerMount> marker;
+  // The registration target drawn where the marker mount sits (`target:`, a spec of
+  // telear/vision/registration_target.hpp, e.g. "charuco:5x5:0.06:0.045:4x4_50"); empty: the
+  // mount's own ArUco marker.
+  std::string target;
   double baseline_m = 0.06;
   Eigen::Isometry3d T_base_rig = Eigen::Isometry3d::Identity();
   vision::StereoCameraModel cameras;  // true cameras, T_cam_base set from the rig pose
