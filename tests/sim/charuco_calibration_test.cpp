@@ -198,5 +198,44 @@ TEST_F(CharucoCalibrationTest, RenderedCornersLieOnTheTrueProjection) {
   EXPECT_LT(worst, 0.25);
 }
 
+// The mesh the scene renderer draws (telear sim capture) is the same board: every black
+// triangle at z = 0 lies where the layout is black, the white plate behind it covers the
+// board and its margin, and the mesh has a triangle for every black square and marker cell.
+TEST(CharucoTarget, MeshIsTheLayout) {
+  auto pattern = vision::parse_calibration_pattern("charuco:7x5:0.04:0.03:4x4_50");
+  ASSERT_TRUE(pattern.ok());
+  const CalibrationTarget target = make_calibration_target(*pattern, 1.0);
+  EXPECT_NEAR(target.outline_min.x(), -0.04, 1e-12);
+  EXPECT_NEAR(target.outline_max.x(), 0.32, 1e-12);
+  EXPECT_NEAR(target.outline_max.y(), 0.24, 1e-12);
+  ASSERT_EQ(target.points_target.size(), 24u);
+  EXPECT_NEAR(target.points_target[7].x(), 0.08, 1e-7);  // id 7: row 1, column 1
+  EXPECT_NEAR(target.points_target[7].y(), 0.08, 1e-7);
+  int black = 0, plate = 0;
+  for (std::size_t t = 0; t < target.mesh.triangles.size(); t += 3) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const float* p = target.mesh.vertices[target.mesh.triangles[t + k]].position;
+      centroid += Eigen::Vector3d(p[0], p[1], p[2]) / 3.0;
+    }
+    if (centroid.z() > 0.0001) {
+      ++plate;
+      continue;
+    }
+    ++black;
+    EXPECT_EQ(target.reflectance(centroid.x(), centroid.y()), 0.0)
+        << centroid.x() << " " << centroid.y();
+  }
+  EXPECT_EQ(plate, 2);
+  // 18 black squares and the black cells of 17 markers, two triangles each.
+  int cells = 0;
+  for (const vision::CharucoMarker& marker : target.charuco.markers) {
+    cells += marker.cells.rows * marker.cells.cols - cv::countNonZero(marker.cells);
+  }
+  EXPECT_EQ(black, 2 * (18 + cells));
+  EXPECT_EQ(target.reflectance(-0.02, 0.1), 1.0);   // the margin
+  EXPECT_EQ(target.reflectance(-0.05, 0.1), -1.0);  // beyond it
+}
+
 }  // namespace
 }  // namespace telear::sim
