@@ -188,7 +188,8 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
   auto calibrate_options = std::make_shared<CalibrateOptions>();
   CalibrateOptions& calibrate = *calibrate_options;
   CLI::App* calibrate_app = app.add_subcommand(
-      "calibrate", "camera calibration, mono or stereo, from images of a chessboard or circles");
+      "calibrate",
+      "camera calibration, mono or stereo, from images of a chessboard, circles or ChArUco");
   calibrate_app
       ->add_option("--left", calibrate.left,
                    "the (left) camera's images, a quoted glob: 'DIR/left*.png'")
@@ -199,7 +200,9 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
   calibrate_app
       ->add_option("--pattern", calibrate.pattern,
                    "chessboard:COLSxROWS:SQUARE_M (inner corners, e.g. chessboard:9x6:0.025) or "
-                   "circles:COLSxROWS:SPACING_M (asymmetric grid)")
+                   "circles:COLSxROWS:SPACING_M (asymmetric grid) or "
+                   "charuco:SXxSY:SQUARE_M:MARKER_M:DICT (squares, e.g. "
+                   "charuco:7x5:0.04:0.03:4x4_50; partial views count)")
       ->required();
   calibrate_app->add_option("-o,--output", calibrate.output, "camera file (YAML) to write")
       ->required();
@@ -301,7 +304,8 @@ void add_sim_commands(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   sim_capture_app
       ->add_option("--pattern", sim_capture.pattern,
-                   "chessboard:COLSxROWS:SQUARE_M or circles:COLSxROWS:SPACING_M")
+                   "chessboard:COLSxROWS:SQUARE_M, circles:COLSxROWS:SPACING_M or "
+                   "charuco:SXxSY:SQUARE_M:MARKER_M:DICT")
       ->capture_default_str();
   sim_capture_app->add_option("--views", sim_capture.views, "stereo pairs to write (1..100)")
       ->capture_default_str();
