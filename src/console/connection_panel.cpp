@@ -38,6 +38,8 @@ void draw_connection_panel(PanelContext& ctx, const PanelLayout& layout) {
   } else if (ImGui::Button("Take control")) {
     ctx.act({.kind = ActionKind::kTakeControl});
   }
+  ImGui::SameLine();
+  ImGui::Checkbox("Registration", &ui.show_registration);  // the panel (registration_panel.cpp)
 
   const bool robot = s.robot_connected(), vision = s.vision_connected();
   led(robot, "robot");

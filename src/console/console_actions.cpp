@@ -4,11 +4,20 @@
 #include <sstream>
 
 #include "telear/core/angles.hpp"
+#include "telear/session/capture_session.hpp"
 #include "telear/session/plan_collision.hpp"
 
 namespace telear::console {
 
 namespace {
+
+std::string fixed(double value, int decimals) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(decimals);
+  out << value;
+  return out.str();
+}
 
 Status from_outcome(const core::MotionOutcome& outcome) {
   if (!outcome.accepted) return Error{outcome.rejection.message};
@@ -171,6 +180,33 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
     case ActionKind::kViewReported:
       ui.show_reported = a.value != 0.0;
       return Status::Ok();
+    case ActionKind::kCaptureOpen: {
+      if (a.text.empty()) return Error{"give the folder to write the capture into"};
+      session::CaptureSessionOptions options;
+      options.directory = a.text;
+      if (Status st = s.open_capture(std::move(options)); !st.ok()) return st;
+      ui.show_registration = true;
+      ui.last_message = "registration: capturing into " + a.text +
+                        "; jog the real arm until both cameras see the marker, then add the pose";
+      return Status::Ok();
+    }
+    case ActionKind::kCaptureAdd: {
+      if (!s.capture()) return Error{"no capture open: open one on a folder first"};
+      auto added = s.capture()->add_current_pose();
+      if (!added) return added.error();
+      ui.last_message = "registration: " + added->summary();
+      return Status::Ok();
+    }
+    case ActionKind::kCaptureSolve: {
+      if (!s.capture()) return Error{"no capture open: open one on a folder first"};
+      auto solved = s.capture()->solve();
+      if (!solved) return solved.error();
+      ui.last_message = "registration: " + registration_summary(solved->result);
+      return Status::Ok();
+    }
+    case ActionKind::kCaptureClose:
+      s.close_capture();
+      return Status::Ok();
     case ActionKind::kScreenshot:
       ui.screenshot_request = a.text;
       return Status::Ok();
@@ -182,6 +218,16 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
 }
 
 }  // namespace
+
+std::string registration_summary(const vision::HandEyeResult& result) {
+  int dropped = 0;
+  for (const vision::ViewFit& view : result.views) dropped += view.dropped;
+  return "base +-" + fixed(result.base_sigma.position_mm, 2) + " mm +-" +
+         fixed(result.base_sigma.rotation_deg, 3) + " deg (1 sigma) from " +
+         std::to_string(result.views_used) + " poses, rms " + fixed(result.left.rms_px, 2) + " / " +
+         fixed(result.right.rms_px, 2) + " px" +
+         (dropped > 0 ? ", " + std::to_string(dropped) + " dropped as outliers" : "");
+}
 
 const char* to_string(ActionKind kind) {
   switch (kind) {
@@ -259,6 +305,14 @@ const char* to_string(ActionKind kind) {
       return "view mode";
     case ActionKind::kViewReported:
       return "view reported";
+    case ActionKind::kCaptureOpen:
+      return "registration open";
+    case ActionKind::kCaptureAdd:
+      return "registration add";
+    case ActionKind::kCaptureSolve:
+      return "registration solve";
+    case ActionKind::kCaptureClose:
+      return "registration close";
     case ActionKind::kScreenshot:
       return "screenshot";
     case ActionKind::kQuit:

@@ -33,11 +33,13 @@
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/framebuffer_readback.hpp"
+#include "telear/render/gl_objects.hpp"
 #include "telear/render/glfw_context.hpp"
 #include "telear/render/image_io.hpp"
 #include "telear/render/offscreen_target.hpp"
 #include "telear/render/scene_objects.hpp"
 #include "telear/render/stereo_composer.hpp"
+#include "telear/session/capture_session.hpp"
 #include "telear/session/view_input.hpp"
 #include "telear/vision/camera_file.hpp"
 
@@ -93,6 +95,10 @@ struct ConsoleApp::Impl {
   render::GlfwContext* window = nullptr;       // the GLFW context, when windowed
   render::OffscreenTarget headless_target;     // the "window" when headless
   std::optional<render::ArView> view;
+  // The registration capture's coverage image, uploaded when the capture changes.
+  render::Texture coverage_texture;
+  const session::CaptureSession* coverage_owner = nullptr;
+  int coverage_revision = -1;
   render::StereoLayout built_layout = render::StereoLayout::kSideBySide;
   int built_segments = -1;
   bool imgui_glfw = false, imgui_gl = false;
@@ -113,6 +119,35 @@ struct ConsoleApp::Impl {
     if (imgui_glfw) ImGui_ImplGlfw_Shutdown();
     if (ImGui::GetCurrentContext()) ImGui::DestroyContext();
     eyes.reset();
+  }
+
+  CoverageTexture coverage(const session::Session& session) {
+    const session::CaptureSession* capture = session.capture();
+    if (!capture) {
+      coverage_owner = nullptr;
+      return {};
+    }
+    if (capture != coverage_owner || capture->revision() != coverage_revision) {
+      coverage_owner = capture;
+      coverage_revision = capture->revision();
+      const cv::Mat bgr = capture->coverage();
+      if (bgr.empty() || bgr.type() != CV_8UC3) return {};
+      std::vector<std::uint8_t> rgb(bgr.total() * 3);
+      for (int y = 0; y < bgr.rows; ++y) {
+        const cv::Vec3b* row = bgr.ptr<cv::Vec3b>(y);
+        for (int x = 0; x < bgr.cols; ++x) {
+          std::uint8_t* out = &rgb[(static_cast<std::size_t>(y) * bgr.cols + x) * 3];
+          out[0] = row[x][2];
+          out[1] = row[x][1];
+          out[2] = row[x][0];
+        }
+      }
+      if (coverage_texture.width() != bgr.cols || coverage_texture.height() != bgr.rows) {
+        coverage_texture = render::Texture::create_2d(bgr.cols, bgr.rows, GL_RGB8);
+      }
+      coverage_texture.upload(GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+    }
+    return {coverage_texture.id(), coverage_texture.width(), coverage_texture.height()};
   }
 
   Status build_view(const UiState& ui) {
@@ -230,6 +265,8 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
       vision.token = *token;
     }
   }
+  if (options.lease_heartbeat_s > 0.0)
+    m.session_options.lease_heartbeat_s = options.lease_heartbeat_s;
   vision.token = robot.token;
   vision.width = width;
   vision.height = height;
@@ -467,6 +504,7 @@ bool ConsoleApp::frame() {
   draw_connection_panel(ctx, layout);
   draw_ghost_panel(ctx, layout);
   draw_real_robot_panel(ctx, layout);
+  draw_registration_panel(ctx, layout, m.coverage(*session_));
   draw_estop_panel(ctx, layout);
   draw_status_bar(ctx, layout);
   ImGui::Render();

@@ -274,6 +274,19 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
     }
     throw ParseError{"unknown preview action '" + sub + "' (play, pause, stop, seek, speed)"};
   }
+  if (verb == "registration") {
+    if (sub == "open") {
+      need(w, 3, 3, "registration open FOLDER");
+      a.text = w[2];
+      return action(ActionKind::kCaptureOpen);
+    }
+    if (sub == "add") return need(w, 2, 2, "registration add"), action(ActionKind::kCaptureAdd);
+    if (sub == "solve")
+      return need(w, 2, 2, "registration solve"), action(ActionKind::kCaptureSolve);
+    if (sub == "close")
+      return need(w, 2, 2, "registration close"), action(ActionKind::kCaptureClose);
+    throw ParseError{"unknown registration action '" + sub + "' (open, add, solve, close)"};
+  }
   if (verb == "view") {
     need(w, 3, 3, "view layout|style|segments|opacity|video|mode|reported VALUE");
     a.text = w[2];
@@ -297,10 +310,11 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
     throw ParseError{"unknown view setting '" + sub +
                      "' (layout, style, segments, opacity, video, mode, reported)"};
   }
-  throw ParseError{"unknown command '" + verb +
-                   "' (connect, disconnect, take-control, release-control, estop, reset-estop, "
-                   "ghost, real, plan, preview, validate, execute, cancel, view, wait, "
-                   "wait-until, screenshot, quit)"};
+  throw ParseError{
+      "unknown command '" + verb +
+      "' (connect, disconnect, take-control, release-control, estop, reset-estop, "
+      "ghost, real, plan, preview, validate, execute, cancel, registration, view, wait, "
+      "wait-until, screenshot, quit)"};
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "telear/console/ui_state.hpp"
 #include "telear/core/result.hpp"
 #include "telear/session/session.hpp"
+#include "telear/vision/hand_eye_registration.hpp"
 
 namespace telear::console {
 
@@ -18,6 +19,10 @@ UiAction ghost_joint(int joint, double delta);
 UiAction ghost_cartesian(core::MotionFrame frame, const Eigen::Vector3d& dX,
                          const Eigen::Vector3d& dM);
 UiAction simple(ActionKind kind);
+
+// A solved registration in one line: the base's 1-sigma uncertainty (mm, deg), the poses used,
+// the residuals per eye and the outliers dropped.
+std::string registration_summary(const vision::HandEyeResult& result);
 
 // The robot is idle: connected, state known, not executing, not moving (mode idle).
 bool robot_idle(const session::Session& session);

@@ -22,6 +22,9 @@ struct ConsoleOptions {
   // shipped workspace (core::default_workspace_file), none when it has no such file.
   std::string workspace;
   std::string resolution = "640x480";  // the video size asked of the vision server
+  // The lease's heartbeat period asked of the robot server (SessionOptions::lease_heartbeat_s);
+  // 0: the server's default (the embedded servers: 1 s).
+  double lease_heartbeat_s = 0.0;
 
   // Output.
   int width = 1600, height = 1000;  // window (or headless frame buffer) size

@@ -9,6 +9,8 @@
 //   ghost_panel.cpp       joint sliders, +/- steps, Cartesian jog, gripper, named, ghost = real
 //   plan_panel.cpp        waypoints, preview, validate, execute, cancel, progress, tracking
 //   status_panel.cpp      fps, latency per stage, round trip, bandwidth, overlay error, events
+//   registration_panel.cpp  the Session's registration capture: folder, add pose, per-eye
+//                         detection, coverage, solve and its result (docs/console.md)
 //   estop_panel.cpp       the always-visible E-STOP button and the status bar
 
 #include <functional>
@@ -33,6 +35,13 @@ struct ViewTextures {
   int composed_width = 0, composed_height = 0;
 };
 
+// The registration capture's coverage image (both eyes side by side) as a GL texture, top row
+// first; id 0: none yet.
+struct CoverageTexture {
+  unsigned id = 0;
+  int width = 0, height = 0;
+};
+
 // Window placement for a display of width x height (first use; the operator may move them).
 struct PanelLayout {
   float width = 1600, height = 1000;
@@ -48,6 +57,9 @@ void draw_real_robot_panel(PanelContext& ctx, const PanelLayout& layout);
 void draw_ghost_panel(PanelContext& ctx, const PanelLayout& layout);
 void draw_plan_panel(PanelContext& ctx, const PanelLayout& layout);
 void draw_status_panel(PanelContext& ctx, const PanelLayout& layout);
+// Drawn while ui.show_registration, over the plan and status panels.
+void draw_registration_panel(PanelContext& ctx, const PanelLayout& layout,
+                             const CoverageTexture& coverage);
 void draw_estop_panel(PanelContext& ctx, const PanelLayout& layout);
 void draw_status_bar(PanelContext& ctx, const PanelLayout& layout);
 

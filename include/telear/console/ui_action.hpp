@@ -57,6 +57,11 @@ enum class ActionKind {
   kViewVideo,     // text = raw | undistorted
   kViewMode,      // text = auto | ar | vr
   kViewReported,  // value != 0: show the reported ghost
+  // registration capture (the Registration panel)
+  kCaptureOpen,   // text = folder
+  kCaptureAdd,    // the pose the real arm is at
+  kCaptureSolve,  // register with the poses so far
+  kCaptureClose,
   // automation
   kScreenshot,  // text = path
   kQuit,

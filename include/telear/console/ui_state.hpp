@@ -54,6 +54,10 @@ struct UiState {
   int named_index = 0;
   char typed_configuration[128] = "";  // degrees, comma separated
 
+  // [SECTION] registration capture (the capture itself is the Session's)
+  bool show_registration = false;
+  char capture_folder[256] = "captures";
+
   // [SECTION] connection (editable; "Connect" rebuilds the session with them)
   char robot_address[128] = "";
   char vision_address[128] = "";
