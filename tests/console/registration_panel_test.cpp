@@ -1,0 +1,184 @@
+// The console's Registration panel (issue 15), headless (EGL) against simulated servers on
+// loopback (a robot server without a workspace, a vision server with the rig's calibration),
+// driven by a UI script as `telear console --headless --script` runs it: open a
+// capture, bring the real arm to poses (initialize, the direct jog), add them, solve; the
+// capture is the Session's, the panel draws it (poses, per-eye detection, coverage, result).
+//
+// TELEAR_TEST_OUTPUT=DIR keeps the script and the screenshot there (docs/images is made by
+// replaying that script under xvfb-run, docs/console.md).
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "telear/console/console_actions.hpp"
+#include "telear/console/console_app.hpp"
+#include "telear/core/angles.hpp"
+#include "telear/core/marker_mount.hpp"
+#include "telear/core/number_format.hpp"
+#include "telear/core/robot_loader.hpp"
+#include "telear/session/capture_session.hpp"
+#include "telear/session/embedded_servers.hpp"
+#include "telear/session/registration_capture.hpp"
+#include "telear/sim/marker_observations.hpp"
+#include "telear/sim/stereo_rig.hpp"
+#include "telear/vision/capture_folder.hpp"
+#include "test_util/test_util.hpp"
+
+namespace telear::console {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+std::string degrees(const Eigen::VectorXd& q) {
+  std::string out;
+  for (int j = 0; j < q.size(); ++j) {
+    out += (j ? "," : "") + core::format_fixed(core::degrees_from_radians(q[j]), 4);
+  }
+  return out;
+}
+
+TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
+  const char* keep = std::getenv("TELEAR_TEST_OUTPUT");
+  const fs::path dir = keep ? fs::path(keep) : fs::temp_directory_path() / "telear_console_reg";
+  fs::create_directories(dir);
+  const fs::path captures = dir / "captures";
+  fs::remove_all(captures);
+  const std::string shot = (dir / "console_registration.png").string();
+  fs::remove(shot);
+
+  // Where the operator starts (both cameras see the marker), then poses spread around it as
+  // an operator would choose them (here: the automatic chooser with the rig's true cameras).
+  auto model = core::load_robot("puma560");
+  ASSERT_TRUE(model) << model.error().message;
+  auto rig = sim::load_stereo_rig(sim::default_rig_file("puma560"));
+  ASSERT_TRUE(rig) << rig.error().message;
+  auto marker = core::marker_mount_for(**model);
+  ASSERT_TRUE(marker) << marker.error().message;
+  sim::MarkerObservationsOptions find;
+  find.rig_file = sim::default_rig_file("puma560");
+  find.configurations = 4;
+  find.seed = 2;
+  auto found = sim::simulate_marker_observations(find);
+  ASSERT_TRUE(found) << found.error().message;
+  Eigen::VectorXd start;
+  for (const auto& c : found->observations.configurations) {
+    if (!c.left_pixels.empty() && !c.right_pixels.empty()) {
+      start = c.q;
+      break;
+    }
+  }
+  ASSERT_GT(start.size(), 0);
+  const std::vector<Eigen::VectorXd> poses =
+      session::choose_capture_poses(**model, start, rig->cameras, *marker, 16, 5);
+  ASSERT_GE(poses.size(), 14u);
+
+  // The servers: the simulated PUMA where the operator left it (no workspace: the poses are
+  // the point here, not the table) and the rig serving its calibration, as a lab runs them.
+  const std::string calibration = test::data_path("cameras/puma560_stereo.yaml");
+  session::EmbeddedServersOptions server_options;
+  server_options.calibration_file = calibration;
+  server_options.initial_q = start;
+  server_options.fps = 10.0;
+  auto servers = session::EmbeddedServers::create(*model, server_options);
+  ASSERT_TRUE(servers) << servers.error().message;
+  const std::string token_file = (dir / "token").string();
+  std::ofstream(token_file) << (*servers)->token() << "\n";
+
+  std::ostringstream script;
+  script << "wait-until connected 30\n"
+            "take-control\n"
+            "registration add   # fails: no capture open (counted, the script goes on)\n"
+            "registration open "
+         << captures.string()
+         << "\n"
+            "real initialize "
+         << degrees(start)
+         << "\n"
+            "wait-until idle 30\n"
+            "registration add\n"
+            "real jog joint 6 +10deg   # the direct jog, as the panel's buttons send it\n"
+            "wait-until idle 10\n"
+            "registration add\n"
+            "registration solve   # fails: two poses (counted; the panel shows why)\n";
+  for (const Eigen::VectorXd& q : poses) {
+    script << "real initialize " << degrees(q) << "\nwait-until idle 30\nregistration add\n";
+  }
+  script << "registration solve\n"
+            "screenshot "
+         << shot << "\n";
+  const std::string script_file = (dir / "registration.txt").string();
+  std::ofstream(script_file) << script.str();
+
+  ConsoleOptions options;
+  options.headless = true;
+  options.width = 1600;
+  options.height = 1000;
+  options.resolution = "320x240";  // the live view reduced; the capture asks for the full size
+  options.robot = (*servers)->robot_address();
+  options.vision = (*servers)->vision_address();
+  options.token_file = token_file;
+  options.calibration = calibration;
+  options.lease_heartbeat_s = 1.0;  // the servers, renderer and solver share a loaded machine
+  options.script = script_file;
+  options.frames = 1000000;
+  std::ostringstream log;
+  auto created = ConsoleApp::create(options, log);
+  ASSERT_TRUE(created) << created.error().message;
+  ConsoleApp& app = **created;
+  const auto begin = Clock::now();
+  while (!app.script().finished()) {
+    ASSERT_TRUE(app.frame()) << log.str();
+    ASSERT_LT(std::chrono::duration<double>(Clock::now() - begin).count(), 300) << log.str();
+  }
+  EXPECT_EQ(app.script().failures(), 2) << log.str();
+  EXPECT_THAT(log.str(), HasSubstr("line 3: registration add: no capture open: open one on a "
+                                   "folder first"));
+  EXPECT_THAT(log.str(), HasSubstr("line 11: registration solve: capture '"));
+
+  // The capture is the Session's; the console only shows it.
+  const session::CaptureSession* capture = app.session().capture();
+  ASSERT_NE(capture, nullptr);
+  EXPECT_TRUE(app.ui().show_registration);
+  const int count = static_cast<int>(poses.size()) + 2;
+  ASSERT_EQ(static_cast<int>(capture->poses().size()), count);
+  // Some poses hide the marker (this chooser is not told the arm's body): shown, kept.
+  EXPECT_GE(capture->detected().left_found, count / 2);
+  EXPECT_GE(capture->detected().right_found, count / 2);
+  ASSERT_TRUE(capture->solution()) << capture->last_solve_error();
+  EXPECT_LT(capture->solution()->result.base_sigma.position_mm, 2.0);
+  EXPECT_THAT(registration_summary(capture->solution()->result),
+              HasSubstr(std::to_string(capture->solution()->result.views_used) + " poses"));
+
+  // The folder is a capture `telear register --captures` reads, at the cameras' own size.
+  auto folder = vision::load_capture_folder(captures.string());
+  ASSERT_TRUE(folder) << folder.error().message;
+  EXPECT_EQ(static_cast<int>(folder->poses.size()), count);
+  auto images = vision::read_captured_images(captures.string(), folder->poses[0].frames[0]);
+  ASSERT_TRUE(images) << images.error().message;
+  EXPECT_EQ(images->left.cols, 640);
+
+  // The screenshot: the panel with its coverage thumbnails (green where the marker was found).
+  ASSERT_TRUE(fs::exists(shot));
+  const core::Image& image = app.last_image();
+  ASSERT_EQ(image.width, 1600);
+  int green = 0;
+  for (int y = 580; y < 970; ++y) {
+    for (int x = 300; x < 1100; ++x) {
+      const int r = image.at(x, y, 0), g = image.at(x, y, 1), b = image.at(x, y, 2);
+      green += g > r + 40 && g > b + 40;
+    }
+  }
+  EXPECT_GT(green, 500) << "no coverage drawn in the Registration panel";
+  app.session().disconnect();
+}
+
+}  // namespace
+}  // namespace telear::console
