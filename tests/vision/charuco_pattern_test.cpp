@@ -4,9 +4,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <opencv2/aruco/charuco.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "telear/vision/calibration_images.hpp"
 #include "telear/vision/calibration_pattern.hpp"
 #include "telear/vision/charuco_board.hpp"
 
@@ -203,6 +206,63 @@ TEST(CharucoPattern, TooFewCornersOrNoneSayWhy) {
   // Another dictionary's board shows no marker of this one.
   const CalibrationPattern other = charuco("charuco:7x5:0.04:0.03:6x6_50");
   EXPECT_FALSE(detect_pattern_points(board_image(other, per_square, margin), pattern).ok());
+}
+
+// The board with everything left of x0 and right of x1 (pixels) painted white.
+cv::Mat board_part(const cv::Mat& board, int x0, int x1) {
+  cv::Mat part = board.clone();
+  part(cv::Rect(0, 0, x0, part.rows)).setTo(255);
+  part(cv::Rect(x1, 0, part.cols - x1, part.rows)).setTo(255);
+  return part;
+}
+
+// A stereo pair keeps the corners both images show, by id, with their object points; a pair
+// that shares fewer than 6 is skipped, saying how many each image had.
+TEST(CharucoPattern, StereoPairsKeepTheCornersBothImagesShow) {
+  const CalibrationPattern pattern = charuco("charuco:7x5:0.04:0.03:4x4_50");
+  const int per_square = 50, margin = 30;
+  const cv::Mat board = board_image(pattern, per_square, margin);
+  const auto x = [&](int squares) { return margin + squares * per_square; };
+  const std::string dir = ::testing::TempDir() + "/telear_charuco_pairs";
+  std::filesystem::create_directories(dir);
+  // Pair 0: left shows squares 0..4 (corner columns 0..3), right squares 2..6 (columns 2..5):
+  // columns 2 and 3 in common. Pair 1: left squares 0..3 (columns 0..2): column 2 alone.
+  const std::vector<std::string> left = {dir + "/left0.png", dir + "/left1.png"};
+  const std::vector<std::string> right = {dir + "/right0.png", dir + "/right1.png"};
+  ASSERT_TRUE(cv::imwrite(left[0], board_part(board, 0, x(5))));
+  ASSERT_TRUE(cv::imwrite(right[0], board_part(board, x(2), board.cols)));
+  ASSERT_TRUE(cv::imwrite(left[1], board_part(board, 0, x(4))));
+  ASSERT_TRUE(cv::imwrite(right[1], board_part(board, x(2), board.cols)));
+
+  const auto pairs = detect_in_image_pairs(left, right, pattern);
+  ASSERT_TRUE(pairs.ok()) << pairs.error().message;
+  ASSERT_EQ(pairs->views.size(), 1u);
+  const StereoPatternView& view = pairs->views[0];
+  ASSERT_EQ(view.object_points.size(), 8u);
+  ASSERT_EQ(view.left_points.size(), 8u);
+  ASSERT_EQ(view.right_points.size(), 8u);
+  const std::vector<cv::Point3f> all = pattern_object_points(pattern);
+  for (std::size_t k = 0; k < view.object_points.size(); ++k) {
+    // Columns 2 and 3 (x = 3 s, 4 s); the same corner in both images (the same pixels here).
+    const float column = view.object_points[k].x / 0.04f - 1.0f;
+    EXPECT_TRUE(std::abs(column - 2.0f) < 1e-4f || std::abs(column - 3.0f) < 1e-4f) << column;
+    EXPECT_LT(cv::norm(view.left_points[k] - view.right_points[k]), 0.05) << k;
+    const float u = margin + (column + 1.0f) * per_square - 0.5f;
+    EXPECT_NEAR(view.left_points[k].x, u, 0.05) << k;
+  }
+  ASSERT_EQ(pairs->rejected.size(), 1u);
+  EXPECT_EQ(pairs->rejected[0].name, left[1]);
+  EXPECT_EQ(pairs->rejected[0].reason,
+            "the images share only 4 ChArUco corners (left 12, right 16), fewer than the 6 a "
+            "pair needs");
+
+  // Each image alone is a view with the corners it shows.
+  const auto mono = detect_in_images(left, pattern);
+  ASSERT_TRUE(mono.ok()) << mono.error().message;
+  ASSERT_EQ(mono->views.size(), 2u);
+  EXPECT_EQ(mono->views[0].object_points.size(), 16u);
+  EXPECT_EQ(mono->views[1].object_points.size(), 12u);
+  EXPECT_EQ(mono->views[1].object_points[0], all[0]);
 }
 
 }  // namespace
