@@ -9,9 +9,10 @@
 namespace telear::session {
 namespace {
 
-// Sight lines start this far out of the marker's plane, towards the camera, so that the
-// plate the marker is printed on (not part of the body) and rounding never count as a hit.
-constexpr double kStartOffsetM = 1e-3;
+// Sight lines start this far out of the marker's plane, towards the camera: the plate the
+// marker is printed on is not part of the body, and a nominal body that reaches around the
+// plate (the wrist's cylinder drawn wider than the real one) must not count as a hit.
+constexpr double kStartOffsetM = 0.02;
 
 std::vector<Eigen::Vector3d> triangles_of(const core::Mesh& mesh) {
   std::vector<Eigen::Vector3d> out;

@@ -26,8 +26,8 @@
 namespace telear::session {
 namespace {
 
-constexpr double kArmRangeRad = 0.6;     // the first three joints' spread around the start
-constexpr double kWristRangeRad = 0.8;   // the others'
+constexpr double kArmRangeRad = 0.6;    // the first three joints' spread around the start
+constexpr double kWristRangeRad = 0.8;  // the others'
 
 using Clock = std::chrono::steady_clock;
 
@@ -307,6 +307,12 @@ Result<RegistrationCaptureResult> capture_for_registration(
     report.message =
         label + ": " + std::to_string(out.capture.poses.back().frames.size()) + " frames";
     if (progress) progress(report);
+  }
+  if (options.finish_pose) {
+    const std::string plan_id = "capture-" + std::to_string(core::monotonic_ns()) + "-finish";
+    if (auto rest = move_to(model, robot, *options.finish_pose, plan_id, options); !rest) {
+      return Error{"capture: the move to the finishing pose failed: " + rest.error().message};
+    }
   }
   if (out.capture.poses.empty()) {
     return Error{"capture: no pose was captured (" +

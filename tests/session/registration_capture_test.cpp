@@ -7,11 +7,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
+#include "telear/core/arm_body.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/core/workspace.hpp"
 #include "telear/session/embedded_servers.hpp"
+#include "telear/session/marker_visibility.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/sim/rig_robot.hpp"
 #include "telear/sim/stereo_rig.hpp"
@@ -72,7 +76,9 @@ class RegistrationCaptureTest : public ::testing::Test {
     options.calibration_file = calibration;
     options.initial_q = start;
     options.fps = 10.0;
-    options.supersample = 2;
+    // 4 x 4 samples per pixel: edges integrated over the pixel's area as a real sensor does
+    // (at 2 x 2 the corners' residual doubles, docs/registration.md).
+    options.supersample = 4;
     auto s = EmbeddedServers::create(model, options);
     ASSERT_TRUE(s) << s.error().message;
     servers = std::move(*s);
@@ -110,11 +116,22 @@ class RegistrationCaptureTest : public ::testing::Test {
 TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheTruth) {
   RegistrationCaptureOptions options;
   options.directory = (dir / "capture").string();
-  options.auto_poses = 18;
+  options.auto_poses = 24;
   options.frames_per_pose = 2;
+  // Another seed (other automatic poses): TELEAR_CAPTURE_TEST_SEED=N (docs/registration.md).
+  if (const char* seed = std::getenv("TELEAR_CAPTURE_TEST_SEED")) options.seed = std::stoull(seed);
+  // The operator's copy of the table and box: the poses keep the marker's sight lines clear
+  // of them as of the arm's own body.
+  auto workspace = core::load_workspace_file(core::default_workspace_file("puma560"));
+  ASSERT_TRUE(workspace) << workspace.error().message;
+  options.workspace = *workspace;
   options.velocity_scale = 1.0;
   options.settle_s = 0.1;
   options.marker = marker;
+  // The lease taken here with a 1 s heartbeat (capture_for_registration keeps a lease it finds
+  // held): the 2-core test machine also renders both cameras and may starve the heartbeat
+  // thread for longer than the server's default 250 ms (the Session asks for the same).
+  ASSERT_TRUE(robot->acquire_lease(1.0));
   std::vector<std::string> progress;
   auto captured =
       capture_for_registration(*model, *robot, *vision, options, [&](const CaptureProgress& p) {
@@ -132,7 +149,7 @@ TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheT
   ASSERT_TRUE(folder) << folder.error().message;
   EXPECT_EQ(folder->poses.size(), captured->capture.poses.size());
   EXPECT_EQ(folder->camera_file, "cameras.yaml");
-  EXPECT_EQ(folder->poses.front().frames.size(), 2u);
+  EXPECT_EQ(folder->poses.front().frames.size(), static_cast<std::size_t>(options.frames_per_pose));
 
   auto detected = vision::detect_capture_targets(options.directory, *folder, marker);
   ASSERT_TRUE(detected) << detected.error().message;
@@ -147,9 +164,15 @@ TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheT
     if (view.right.size() != 4) continue;
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
     for (const vision::TargetPixel& p : view.right) centre += p.pixel / 4.0;
-    const cv::Vec3b inside = coverage.at<cv::Vec3b>(
-        static_cast<int>(centre.y()), rig.cameras.left.width + static_cast<int>(centre.x()));
-    EXPECT_GT(inside[1], inside[0] + 40) << view.name << ": no green where the marker was";
+    // Around the centre (another marker's white outline or number may cross the centre).
+    bool green = false;
+    for (const auto& [dx, dy] : {std::pair{0, 0}, {3, 0}, {-3, 0}, {0, 3}, {0, -3}}) {
+      const cv::Vec3b inside =
+          coverage.at<cv::Vec3b>(static_cast<int>(centre.y()) + dy,
+                                 rig.cameras.left.width + static_cast<int>(centre.x()) + dx);
+      green = green || inside[1] > inside[0] + 40;
+    }
+    EXPECT_TRUE(green) << view.name << ": no green where the marker was";
   }
   EXPECT_EQ(coverage.at<cv::Vec3b>(coverage.rows - 1, 5), cv::Vec3b(40, 40, 40));
   auto result = vision::register_hand_eye(
@@ -162,18 +185,49 @@ TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheT
   const double target_mm =
       1000.0 *
       (result->T_flange_target.translation() - marker.T_flange_marker.translation()).norm();
+  // OpenCV's closed form (Shah and Li) on the same captures, per eye.
+  ASSERT_TRUE(result->baseline_left.solved);
+  ASSERT_TRUE(result->baseline_right.solved);
+  const auto shah_li_left =
+      vision::registration_error(rig.cameras.left.T_cam_base, result->baseline_left.T_cam_base);
+  const auto shah_li_right =
+      vision::registration_error(rig.cameras.right.T_cam_base, result->baseline_right.T_cam_base);
+  // The overlay: the arm's body drawn through the registered cameras against the true ones.
+  auto body = core::body_description_for(*model);
+  ASSERT_TRUE(body) << body.error().message;
+  vision::StereoCameraModel registered = rig.cameras;
+  registered.left.T_cam_base = result->T_left_base;
+  registered.right.T_cam_base = result->T_right_base;
+  vision::AccuracyOptions accuracy_options;
+  accuracy_options.configurations = 20;
+  const vision::AccuracyReport accuracy = vision::evaluate_accuracy(
+      *model, core::build_arm_body(*body), rig.cameras, registered, accuracy_options);
   std::printf(
-      "captured %zu poses; registration left %.3f mm %.4f deg, right %.3f mm %.4f deg, marker "
-      "on the flange %.3f mm; sigma %.3f mm %.4f deg; rms %.3f / %.3f px\n",
-      folder->poses.size(), left.position_mm, left.rotation_deg, right.position_mm,
-      right.rotation_deg, target_mm, result->base_sigma.position_mm,
-      result->base_sigma.rotation_deg, result->left.rms_px, result->right.rms_px);
-  // Bounds with room for the rendered images' noise at this small number of poses; the
-  // measured figures are in docs/registration.md.
-  EXPECT_LT(left.position_mm, 2.0);
-  EXPECT_LT(right.position_mm, 2.0);
-  EXPECT_LT(left.rotation_deg, 0.2);
-  EXPECT_LT(target_mm, 2.0);
+      "seed %llu: %zu poses captured, %d used; registration left %.3f mm %.4f deg, right %.3f mm "
+      "%.4f deg (sigma %.3f mm %.4f deg); marker on the flange %.3f mm; residual RMS %.3f / %.3f "
+      "px; overlay RMS %.4f / %.4f px; Shah-Li left %.3f mm %.4f deg, right %.3f mm %.4f deg "
+      "(%.1fx / %.1fx the bundle adjustment's error)\n",
+      static_cast<unsigned long long>(options.seed), folder->poses.size(), result->views_used,
+      left.position_mm, left.rotation_deg, right.position_mm, right.rotation_deg,
+      result->base_sigma.position_mm, result->base_sigma.rotation_deg, target_mm,
+      result->left.rms_px, result->right.rms_px, accuracy.left.overlay.rms_px,
+      accuracy.right.overlay.rms_px, shah_li_left.position_mm, shah_li_left.rotation_deg,
+      shah_li_right.position_mm, shah_li_right.rotation_deg,
+      shah_li_left.position_mm / left.position_mm, shah_li_right.position_mm / right.position_mm);
+  // Issue 15's targets per eye (measured: 0.20-0.39 mm over seeds 1-5, docs/registration.md).
+  EXPECT_GE(result->views_used, 21);  // the marker kept in sight: at most 3 poses lost
+  EXPECT_LE(left.position_mm, 0.5);
+  EXPECT_LE(right.position_mm, 0.5);
+  EXPECT_LE(left.rotation_deg, 0.05);
+  EXPECT_LE(right.rotation_deg, 0.05);
+  EXPECT_LE(accuracy.left.overlay.rms_px, 0.1);
+  EXPECT_LE(accuracy.right.overlay.rms_px, 0.1);
+  EXPECT_LT(target_mm, 1.0);
+  // The bundle adjustment beats the closed form it starts from, in both eyes.
+  EXPECT_LT(left.position_mm, shah_li_left.position_mm);
+  EXPECT_LT(right.position_mm, shah_li_right.position_mm);
+  EXPECT_LT(left.rotation_deg, shah_li_left.rotation_deg);
+  EXPECT_LT(right.rotation_deg, shah_li_right.rotation_deg);
 }
 
 TEST_F(RegistrationCaptureTest, RefusesAFolderThatAlreadyHoldsACapture) {
@@ -191,6 +245,52 @@ TEST_F(RegistrationCaptureTest, RefusesAFolderThatAlreadyHoldsACapture) {
   captured = capture_for_registration(*model, *robot, *vision, options);
   ASSERT_FALSE(captured);
   EXPECT_EQ(captured.error().message, "capture: --frames 0 must be 1..30");
+}
+
+// The automatic poses' line-of-sight test: a marker facing the camera is seen until an object
+// stands between them (named) or the wrist turns it away.
+TEST(MarkerVisibilityTest, NamesWhatHidesTheMarker) {
+  auto model = core::load_robot("puma560");
+  ASSERT_TRUE(model) << model.error().message;
+  auto rig = sim::load_stereo_rig(sim::default_rig_file("puma560"));
+  ASSERT_TRUE(rig) << rig.error().message;
+  auto marker = core::marker_mount_for(**model);
+  ASSERT_TRUE(marker) << marker.error().message;
+  sim::MarkerObservationsOptions find;
+  find.rig_file = sim::default_rig_file("puma560");
+  find.configurations = 4;
+  find.seed = 2;
+  auto found = sim::simulate_marker_observations(find);
+  ASSERT_TRUE(found) << found.error().message;
+  const vision::CameraModel& camera = rig->cameras.left;
+  auto body = core::body_description_for(**model);
+  ASSERT_TRUE(body) << body.error().message;
+  const core::ArmBody arm = core::build_arm_body(*body);
+  MarkerVisibility clear(**model, *marker, &arm, nullptr);
+  // A configuration where the rendered image showed the marker, and the test agrees.
+  Eigen::VectorXd q;
+  for (const auto& c : found->observations.configurations) {
+    if (!c.left_pixels.empty() && clear.hidden_reason(camera, c.q).empty()) {
+      q = c.q;
+      break;
+    }
+  }
+  ASSERT_GT(q.size(), 0) << "no detected configuration is predicted visible";
+  // A 20 cm box halfway between the marker and the camera.
+  core::Workspace workspace;
+  core::WorkspaceObject blocker;
+  blocker.name = "blocker";
+  blocker.size_m = Eigen::Vector3d::Constant(0.2);
+  const Eigen::Vector3d camera_centre = camera.T_cam_base.inverse().translation();
+  blocker.T_base_object.translation() = 0.5 * (clear.marker_pose(q).translation() + camera_centre);
+  workspace.objects.push_back(blocker);
+  MarkerVisibility blocked(**model, *marker, &arm, &workspace);
+  EXPECT_GE(blocked.occluder_count(), clear.occluder_count() + 1);
+  EXPECT_EQ(blocked.hidden_reason(camera, q), "hidden by blocker");
+  // The last joint turned half a turn: the marker's back faces the camera.
+  Eigen::VectorXd turned = q;
+  turned[5] += M_PI;
+  EXPECT_THAT(clear.hidden_reason(camera, turned), ::testing::StartsWith("faces away ("));
 }
 
 }  // namespace

@@ -10,9 +10,10 @@
 //   3. nothing is in the way: the sight lines from the marker to the camera centre miss every
 //      triangle of the arm's own body at that configuration (its links, gripper fingers and
 //      moving parts, core::ArmBody) and of the workspace's objects (the table, the box).
-//      The sight lines start at a 3 x 3 grid over the marker's quiet zone (sight_scale times
-//      the marker's half side from its centre, the white border the detector needs), which
-//      also leaves room for a real arm a little larger than its nominal body.
+//      The sight lines start 2 cm in front of a 3 x 3 grid over the marker and the inner part
+//      of its quiet zone (sight_scale times the marker's half side from its centre: the white
+//      border the detector needs), which also leaves room for a real arm a little larger
+//      than its nominal body.
 //
 // The body is the robot's nominal one (the robot's body file or URDF visuals), not the
 // simulator's "real" body: this is what a lab knows about its own arm.
@@ -33,7 +34,7 @@ namespace telear::session {
 struct MarkerVisibilityOptions {
   double margin_px = 30.0;           // corners this far inside the image
   double max_view_angle_deg = 50.0;  // the marker faces the camera within this
-  double sight_scale = 1.4;          // sight lines from this many half sides out (quiet zone)
+  double sight_scale = 1.2;          // sight lines from this many half sides out (quiet zone)
 };
 
 class MarkerVisibility {

@@ -62,6 +62,8 @@ struct RegistrationCaptureOptions {
   // robot, unset: none known.
   std::optional<core::ArmBody> body;
   std::optional<core::Workspace> workspace;
+  // Moved there after the last pose (e.g. where the task starts); unset: the arm stays.
+  std::optional<Eigen::VectorXd> finish_pose;
 
   Status validate() const;  // names the field and the range
 };
