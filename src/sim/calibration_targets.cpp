@@ -1,5 +1,6 @@
 #include "telear/sim/calibration_targets.hpp"
 
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <numbers>
