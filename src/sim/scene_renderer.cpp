@@ -172,10 +172,18 @@ Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const core::Ro
                                       : rig.marker   ? Result<core::MarkerMount>(*rig.marker)
                                                      : core::marker_mount_for(model);
     if (!mount) return mount.error();
-    auto marker = make_aruco_marker(*mount);
-    if (!marker) return marker.error();
-    scene.marker_ = std::move(*marker);
-    auto parts = render::MeshSetRenderer::create({&scene.marker_->mesh});
+    const std::string spec = options.target.empty() ? rig.target : options.target;
+    if (spec.empty()) {
+      auto marker = make_aruco_marker(*mount);
+      if (!marker) return marker.error();
+      scene.marker_ = std::move(*marker);
+    } else {
+      auto target = vision::parse_registration_target(spec);
+      if (!target) return target.error();
+      scene.flange_target_ = make_flange_target(*target, mount->T_flange_marker);
+    }
+    auto parts = render::MeshSetRenderer::create(
+        {scene.marker_ ? &scene.marker_->mesh : &scene.flange_target_->mesh});
     if (!parts) return parts.error();
     scene.marker_parts_ = std::move(*parts);
   }
@@ -241,7 +249,7 @@ Status SceneRenderer::set_target(const CalibrationTarget& target,
 core::Image SceneRenderer::render_clean(Eye eye) {
   const int index = eye == Eye::kLeft ? 0 : 1;
   arm_.update(*pose_);
-  if (marker_) {
+  if (marker_ || flange_target_) {
     marker_parts_.set_matrix(0, T_base_flange().matrix().cast<float>());
   }
   render::DrawOptions solid;
@@ -253,7 +261,7 @@ core::Image SceneRenderer::render_clean(Eye eye) {
         if (options_.show_environment) environment_.draw(projection, T_view_base, flat);
         if (options_.show_robot) {
           arm_.draw(projection, T_view_base, solid);
-          if (marker_) marker_parts_.draw(projection, T_view_base, flat);
+          if (marker_ || flange_target_) marker_parts_.draw(projection, T_view_base, flat);
         }
         if (has_target_) target_.draw(projection, T_view_base, flat);
       });

@@ -129,7 +129,7 @@ Result<CaptureObservations> detect_capture_targets(const std::string& directory,
       out.notes.push_back(name + ": the board was seen in the " + (seen[0] ? "left" : "right") +
                           " eye only");
     } else if (board && !seen[0] && !seen[1]) {
-      out.notes.push_back(name + ": the board was not found in either eye");
+      out.notes.push_back(name + ": the board gave no usable corners in either eye");
     }
     out.observations.views.push_back(std::move(view));
   }

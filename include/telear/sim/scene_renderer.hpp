@@ -25,6 +25,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "telear/core/arm_body.hpp"
 #include "telear/core/arm_body_pose.hpp"
@@ -37,6 +38,7 @@
 #include "telear/render/offscreen_target.hpp"
 #include "telear/render/overlay.hpp"
 #include "telear/sim/calibration_targets.hpp"
+#include "telear/sim/flange_target.hpp"
 #include "telear/sim/stereo_rig.hpp"
 
 namespace telear::sim {
@@ -55,6 +57,9 @@ struct SceneOptions {
   bool show_marker = true;       // the registration marker on the flange
   // The marker to draw; nullopt: the rig's marker file, else the robot's (marker_mount_for).
   std::optional<core::MarkerMount> marker;
+  // A registration target to draw instead, where that marker mount sits (a spec of
+  // telear/vision/registration_target.hpp); empty: the rig's `target:`, else the marker.
+  std::string target;
   render::Lighting lighting;
   Eigen::Vector3f background{0.55f, 0.58f, 0.62f};  // walls (where nothing is drawn)
 };
@@ -80,7 +85,10 @@ class SceneRenderer {
   Eigen::Isometry3d T_base_grip() const;
   // Finger gap (m) of a gripper opening 0..1 (0 without a gripper).
   double gripper_opening_m(double opening) const;
+  // The mount's ArUco marker, when it is what the flange carries.
   const std::optional<ArucoMarker>& marker() const { return marker_; }
+  // The target the flange carries instead (SceneOptions::target or the rig's), if any.
+  const std::optional<FlangeTarget>& flange_target() const { return flange_target_; }
   // Where the box is (base frame, its centre): on the table at first; a grasp moves it
   // (telear/sim/grasp_model.hpp).
   void set_object_pose(const Eigen::Isometry3d& T_base_object);
@@ -108,6 +116,7 @@ class SceneRenderer {
   render::MeshSetRenderer target_;
   render::MeshSetRenderer marker_parts_;
   std::optional<ArucoMarker> marker_;
+  std::optional<FlangeTarget> flange_target_;
   Eigen::Isometry3d T_base_target_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_base_object_ = Eigen::Isometry3d::Identity();
   int object_part_ = -1;  // the graspable object's part in environment_, -1: none

@@ -1,0 +1,257 @@
+// Registration with a ChArUco board on the flange (issue 15, "Targets"): the simulated PUMA
+// 560 rig draws the board where the marker mount sits (the rig file's `target:`), the capture
+// goes through the embedded robot and vision servers at the poses a capture of the ArUco
+// marker chose, and both captures are registered and compared with the rig's true cameras
+// (both figures printed; docs/registration.md, "Targets").
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <thread>
+
+#include "telear/core/robot_loader.hpp"
+#include "telear/session/embedded_servers.hpp"
+#include "telear/session/registration_capture.hpp"
+#include "telear/sim/marker_observations.hpp"
+#include "telear/sim/stereo_rig.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/capture_registration.hpp"
+#include "telear/vision/overlay_accuracy.hpp"
+#include "telear/vision/registered_camera_file.hpp"
+#include "telear/vision/registration_target.hpp"
+
+namespace telear::session {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+constexpr const char* kBoard = "charuco:4x4:0.08:0.05:4x4_50";
+
+struct Errors {
+  double left_mm, left_deg, right_mm, right_deg, target_mm;
+};
+
+class RegistrationTargetCaptureTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto m = core::load_robot("puma560");
+    ASSERT_TRUE(m) << m.error().message;
+    model = *m;
+    auto r = sim::load_stereo_rig(sim::default_rig_file("puma560"));
+    ASSERT_TRUE(r) << r.error().message;
+    rig = std::move(*r);
+    auto mount = core::marker_mount_for(*model);
+    ASSERT_TRUE(mount) << mount.error().message;
+    marker = *mount;
+    dir = fs::temp_directory_path() / ("telear_target_capture_" + std::to_string(std::rand()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    calibration = (dir / "calibration.yaml").string();
+    ASSERT_TRUE(vision::write_files_atomically(
+        {{calibration, vision::registered_camera_yaml(
+                           rig.cameras, vision::right_from_left(rig.cameras.left.T_cam_base,
+                                                                rig.cameras.right.T_cam_base))}}));
+    // The PUMA rig file with the board on the flange: paths made absolute, `target:` added.
+    const fs::path rig_file = sim::default_rig_file("puma560");
+    std::ifstream in(rig_file);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string yaml = text.str();
+    const std::string relative = ": ../";
+    const std::string absolute = ": " + (rig_file.parent_path() / "..").string() + "/";
+    for (std::size_t at = yaml.find(relative); at != std::string::npos;
+         at = yaml.find(relative, at + absolute.size())) {
+      yaml.replace(at, relative.size(), absolute);
+    }
+    board_rig = (dir / "board_rig.yaml").string();
+    std::ofstream(board_rig) << yaml << "target: \"" << kBoard << "\"\n";
+  }
+
+  void TearDown() override { fs::remove_all(dir); }
+
+  // Captures through freshly started servers on `rig_file`; auto_poses > 0 or `poses`.
+  RegistrationCaptureResult capture(const std::string& rig_file, const std::string& name,
+                                    const Eigen::VectorXd& start, int auto_poses,
+                                    const std::vector<Eigen::VectorXd>& poses) {
+    EmbeddedServersOptions options;
+    options.rig = rig_file;
+    options.calibration_file = calibration;
+    options.initial_q = start;
+    options.fps = 10.0;
+    options.supersample = 2;
+    auto servers = EmbeddedServers::create(model, options);
+    EXPECT_TRUE(servers) << servers.error().message;
+    if (!servers) return {};
+    net::RobotClientOptions robot_options;
+    robot_options.address = (*servers)->robot_address();
+    robot_options.token = (*servers)->token();
+    net::RobotClient robot(robot_options);
+    robot.start();
+    // A long heartbeat: the test renders two eyes per frame on a shared machine.
+    for (int attempt = 0; attempt < 50 && !robot.acquire_lease(2.0); ++attempt) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    net::VisionClientOptions vision_options;
+    vision_options.address = (*servers)->vision_address();
+    vision_options.token = (*servers)->token();
+    vision_options.jpeg_quality = 100;
+    net::VisionClient vision(vision_options);
+    vision.start();
+    RegistrationCaptureOptions capture;
+    capture.directory = (dir / name).string();
+    capture.auto_poses = auto_poses;
+    capture.poses = poses;
+    capture.frames_per_pose = 2;
+    capture.velocity_scale = 1.0;
+    capture.settle_s = 0.1;
+    capture.marker = marker;
+    auto captured = capture_for_registration(*model, robot, vision, capture);
+    EXPECT_TRUE(captured) << captured.error().message;
+    return captured ? *captured : RegistrationCaptureResult{};
+  }
+
+  Errors errors_of(const vision::CaptureRegistration& r) const {
+    const auto left = vision::registration_error(rig.cameras.left.T_cam_base, r.result.T_left_base);
+    const auto right =
+        vision::registration_error(rig.cameras.right.T_cam_base, r.result.T_right_base);
+    const double target_mm =
+        1000.0 *
+        (r.result.T_flange_target.translation() - marker.T_flange_marker.translation()).norm();
+    return {left.position_mm, left.rotation_deg, right.position_mm, right.rotation_deg, target_mm};
+  }
+
+  core::RobotModelPtr model;
+  sim::StereoRig rig;
+  core::MarkerMount marker;
+  fs::path dir;
+  std::string calibration;
+  std::string board_rig;
+};
+
+TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTheTruth) {
+  // Start where both cameras see the marker (the operator's jog before an automatic capture).
+  sim::MarkerObservationsOptions find;
+  find.rig_file = sim::default_rig_file("puma560");
+  find.configurations = 4;
+  find.seed = 2;
+  auto found = sim::simulate_marker_observations(find);
+  ASSERT_TRUE(found) << found.error().message;
+  Eigen::VectorXd start;
+  for (const auto& c : found->observations.configurations) {
+    if (!c.left_pixels.empty() && !c.right_pixels.empty()) {
+      start = c.q;
+      break;
+    }
+  }
+  ASSERT_GT(start.size(), 0);
+
+  // The marker, at automatic poses; then the board at the same poses.
+  const RegistrationCaptureResult with_marker =
+      capture(sim::default_rig_file(), "marker", start, 14, {});
+  ASSERT_GE(with_marker.capture.poses.size(), 10u);
+  std::vector<Eigen::VectorXd> poses;
+  for (const auto& pose : with_marker.capture.poses) poses.push_back(pose.q_commanded);
+  RegistrationCaptureResult with_board = capture(board_rig, "board", start, 0, poses);
+  ASSERT_EQ(with_board.capture.poses.size(), poses.size());
+  // As `telear capture --target` does: the folder names the board for register.
+  auto board_target = vision::parse_registration_target(kBoard);
+  ASSERT_TRUE(board_target) << board_target.error().message;
+  with_board.capture.target = board_target->spec();
+  ASSERT_TRUE(vision::write_capture_manifest(with_board.capture, (dir / "board").string()));
+
+  auto marker_registration =
+      vision::register_captures(*model, (dir / "marker").string(), "", marker);
+  ASSERT_TRUE(marker_registration) << marker_registration.error().message;
+  auto board_registration = vision::register_captures(*model, (dir / "board").string(), "", marker);
+  ASSERT_TRUE(board_registration) << board_registration.error().message;
+  EXPECT_EQ(marker_registration->detected.target.kind, vision::TargetKind::kAruco);
+  ASSERT_EQ(board_registration->detected.target.kind, vision::TargetKind::kCharuco);
+  for (const auto& note : board_registration->detected.notes)
+    std::printf("board: %s\n", note.c_str());
+  // Partial views count: the board found at most poses, in both eyes.
+  EXPECT_GE(board_registration->detected.left_found, 6);
+  EXPECT_GE(board_registration->detected.right_found, 6);
+  // The coverage image is green under a board's seen corners.
+  const cv::Mat coverage = vision::coverage_image(board_registration->detected,
+                                                  rig.cameras.left.width, rig.cameras.left.height);
+  cv::imwrite((fs::temp_directory_path() / "telear_board_coverage.png").string(), coverage);
+  for (const vision::HandEyeView& view : board_registration->detected.observations.views) {
+    if (view.left.size() < 4) continue;
+    // A quarter of the way along the seen corners' diagonal: inside the hull, off the dots.
+    const Eigen::Vector2d centre = 0.75 * view.left.front().pixel + 0.25 * view.left.back().pixel;
+    const cv::Vec3b inside =
+        coverage.at<cv::Vec3b>(static_cast<int>(centre.y()), static_cast<int>(centre.x()));
+    EXPECT_NE(inside, cv::Vec3b(40, 40, 40)) << view.name << ": dark where the board was";
+    EXPECT_GT(inside[1], inside[0]) << view.name << ": no green where the board was";
+  }
+
+  const Errors m = errors_of(*marker_registration);
+  const Errors b = errors_of(*board_registration);
+  std::printf(
+      "%zu poses, seed %u\n"
+      "  marker %-32s left %.3f mm %.4f deg, right %.3f mm %.4f deg, on the flange %.3f mm; rms "
+      "%.3f px\n"
+      "  board  %-32s left %.3f mm %.4f deg, right %.3f mm %.4f deg, on the flange %.3f mm; rms "
+      "%.3f px\n",
+      poses.size(), 14u, marker_registration->detected.target.spec().c_str(), m.left_mm, m.left_deg,
+      m.right_mm, m.right_deg, m.target_mm, marker_registration->result.left.rms_px,
+      board_registration->detected.target.spec().c_str(), b.left_mm, b.left_deg, b.right_mm,
+      b.right_deg, b.target_mm, board_registration->result.left.rms_px);
+  EXPECT_LT(b.left_mm, 2.0);
+  EXPECT_LT(b.right_mm, 2.0);
+  EXPECT_LT(b.left_deg, 0.2);
+  EXPECT_LT(b.right_deg, 0.2);
+  EXPECT_LT(b.target_mm, 2.0);
+  // Not asserted: that the board beats the marker. On this rig (640 x 480 at ~2.3 m) its 19 px
+  // squares and 12 px markers (1.9 px a cell) are found at half the poses and its corners
+  // fit to ~0.2 px against the marker's edge-fitted 0.1 px (docs/registration.md, Targets).
+  EXPECT_LT(b.left_mm, 2.0 * std::max(m.left_mm, 1.0));
+
+  // A board seen in one eye only at a pose is named, and so is one with too few corners.
+  std::size_t both = 0;  // a pose where both eyes found the board
+  const auto& views = board_registration->detected.observations.views;
+  while (both < views.size() && (views[both].left.empty() || views[both].right.empty())) ++both;
+  ASSERT_LT(both, views.size());
+  vision::CaptureSet one_eye = board_registration->capture;
+  one_eye.poses = {one_eye.poses[both]};
+  one_eye.poses[0].frames.resize(1);
+  const std::string blank = "blank.png";
+  cv::imwrite(
+      (dir / "board" / blank).string(),
+      cv::Mat(rig.cameras.left.height, rig.cameras.left.width, CV_8UC3, cv::Scalar(128, 128, 128)));
+  one_eye.poses[0].frames[0].right_image = blank;
+  auto detected = vision::detect_capture_targets((dir / "board").string(), one_eye, *board_target);
+  ASSERT_TRUE(detected) << detected.error().message;
+  EXPECT_THAT(detected->notes,
+              ::testing::Contains("pose 0: the board was seen in the left eye only"));
+  vision::CaptureDetectionOptions strict;
+  strict.min_corners = 10;  // a 4x4 board has 9
+  detected =
+      vision::detect_capture_targets((dir / "board").string(), one_eye, *board_target, strict);
+  ASSERT_TRUE(detected) << detected.error().message;
+  ASSERT_FALSE(detected->notes.empty());
+  EXPECT_THAT(detected->notes.front(), HasSubstr("corners of the board (fewer than 10): not used"));
+  EXPECT_THAT(detected->notes.front(), HasSubstr("pose 0: the left eye saw "));
+}
+
+TEST_F(RegistrationTargetCaptureTest, TheRigFileRefusesABadTarget) {
+  std::ifstream in(board_rig);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  yaml.replace(yaml.find(kBoard), std::string(kBoard).size(), "charuco:4x4:0.05:0.06:4x4_50");
+  const std::string bad = (dir / "bad_rig.yaml").string();
+  std::ofstream(bad) << yaml;
+  auto loaded = sim::load_stereo_rig(bad);
+  ASSERT_FALSE(loaded);
+  EXPECT_THAT(loaded.error().message,
+              HasSubstr("target: target 'charuco:4x4:0.05:0.06:4x4_50': marker side 0.06 m must be "
+                        "smaller than the square side 0.05 m"));
+}
+
+}  // namespace
+}  // namespace telear::session
