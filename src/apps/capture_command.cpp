@@ -16,6 +16,7 @@
 #include "telear/session/capture_session.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/vision/capture_observations.hpp"
+#include "telear/vision/registration_target.hpp"
 
 namespace telear::cli {
 namespace {
@@ -203,6 +204,8 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
 }
 
 int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& err) {
+  if (options.manual && !options.target.empty())
+    return fail(err, "--target: a manual capture detects the robot's marker; leave --target out");
   if (options.manual) return run_manual_capture(options, std::cin, out, err);
   if (options.robot_server.empty()) return fail(err, "--robot: give the robot server HOST:PORT");
   if (options.vision_server.empty()) return fail(err, "--vision: give the vision server HOST:PORT");
@@ -211,6 +214,14 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
   if (!model) return fail(err, "--arm: " + model.error().message);
   auto marker = core::marker_mount_for(**model);
   if (!marker) return fail(err, "marker: " + marker.error().message);
+  // The target recorded in the folder for `telear register` (default: the mount's marker).
+  vision::RegistrationTarget target = vision::registration_target_from_mount(*marker);
+  if (!options.target.empty()) {
+    auto parsed = vision::parse_registration_target(options.target);
+    if (!parsed) return fail(err, "--target: " + parsed.error().message);
+    target = *parsed;
+  }
+  const bool other_target = target.spec() != vision::registration_target_from_mount(*marker).spec();
 
   session::RegistrationCaptureOptions capture;
   capture.directory = options.output;
@@ -234,6 +245,12 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
     capture.poses = std::move(*poses);
   }
   if (Status s = capture.validate(); !s) return fail(err, s.error().message);
+  if (other_target && capture.auto_poses > 0) {
+    return fail(err, "--target " + target.spec() +
+                         ": automatic poses start from the robot's marker (" +
+                         vision::registration_target_from_mount(*marker).description() +
+                         "); with another target give the poses with --poses FILE");
+  }
 
   std::string token;
   if (!options.token_file.empty()) {
@@ -261,15 +278,21 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
                                                   });
   if (!result) return fail(err, result.error().message, 1);
   for (const std::string& note : result->notes) out << "note: " << note << "\n";
-  // Where the marker was seen in each eye, for the operator to judge the spread.
-  auto detected = vision::detect_capture_targets(options.output, result->capture, *marker);
+  if (other_target) {
+    // The folder names the target the flange carried, so that register finds it by default.
+    result->capture.target = target.spec();
+    if (Status s = vision::write_capture_manifest(result->capture, options.output); !s)
+      return fail(err, s.error().message, 1);
+  }
+  // Where the target was seen in each eye, for the operator to judge the spread.
+  auto detected = vision::detect_capture_targets(options.output, result->capture, target);
   if (detected) {
     const std::string coverage = options.output + "/coverage.png";
     const auto& camera = result->cameras.left;
     if (cv::imwrite(coverage, vision::coverage_image(*detected, camera.width, camera.height))) {
-      out << "coverage: the marker found at " << detected->left_found << " (left) and "
-          << detected->right_found << " (right) of " << result->capture.poses.size() << " poses; "
-          << coverage << "\n";
+      out << "coverage: the " << (target.is_board() ? "board" : "marker") << " found at "
+          << detected->left_found << " (left) and " << detected->right_found << " (right) of "
+          << result->capture.poses.size() << " poses; " << coverage << "\n";
     }
   }
   out << "wrote " << options.output << "/capture.yaml (" << result->capture.poses.size()

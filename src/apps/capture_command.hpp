@@ -35,6 +35,7 @@ struct CaptureOptions : RobotArguments {
   double settle_s = 0.3;
   unsigned seed = 1;
   bool manual = false;  // the operator's poses, commands from stdin
+  std::string target;   // --target SPEC (vision/registration_target.hpp); empty: the marker
 };
 
 int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& err);

@@ -1,6 +1,7 @@
 #include "apps/register_command.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <ostream>
 
 #include "telear/core/marker_mount.hpp"
@@ -11,6 +12,7 @@
 #include "telear/vision/observations_file.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration.hpp"
+#include "telear/vision/registration_target.hpp"
 
 namespace telear::cli {
 namespace {
@@ -28,10 +30,16 @@ int run_register_captures(const RegisterOptions& options, std::ostream& out, std
   if (!model) return fail(err, "--robot: " + model.error().message);
   auto marker = core::marker_mount_for(**model);
   if (!marker) return fail(err, "--robot: " + marker.error().message);
+  std::optional<vision::RegistrationTarget> target;
+  if (!options.target.empty()) {
+    auto parsed = vision::parse_registration_target(options.target);
+    if (!parsed) return fail(err, "--target: " + parsed.error().message);
+    target = *parsed;
+  }
   vision::HandEyeOptions hand_eye;
   hand_eye.max_iterations = std::max(options.max_iterations, 1);
   auto registration =
-      vision::register_captures(**model, options.captures, options.rig, *marker, hand_eye);
+      vision::register_captures(**model, options.captures, options.rig, *marker, hand_eye, target);
   if (!registration) return fail(err, registration.error().message);
   const std::string text =
       vision::registered_camera_yaml(registration->registered, registration->T_right_left);
@@ -48,6 +56,9 @@ int run_register_captures(const RegisterOptions& options, std::ostream& out, std
 int run_register(const RegisterOptions& options, std::ostream& out, std::ostream& err) {
   if (!options.captures.empty() && !options.observations.empty())
     return fail(err, "--captures and --observations: give one of them");
+  if (!options.target.empty() && options.captures.empty())
+    return fail(err,
+                "--target: only with --captures (an observations file holds points, not images)");
   if (options.output.empty())
     return fail(err, "-o: give the camera file to write, e.g. -o stereo_registered.yaml");
   if (!options.captures.empty()) {

@@ -32,6 +32,7 @@ struct RegisterOptions : RobotArguments {
   std::string rig;           // stereo camera file (calibration output)
   std::string observations;  // observations YAML (telear/vision/observations_file.hpp)
   std::string captures;      // a capture folder (telear capture); --rig optional then
+  std::string target;        // --target SPEC; empty: the capture's recorded one, else the marker
   std::string output;        // camera file to write (may equal --rig)
   int max_iterations = 100;  // Levenberg-Marquardt
 };
