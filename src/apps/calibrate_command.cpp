@@ -48,7 +48,19 @@ int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostre
   // Everything that can be checked cheaply, before detection.
   auto pattern = vision::parse_calibration_pattern(options.pattern);
   if (!pattern) return fail(err, "--pattern: " + pattern.error().message);
+  auto model = vision::parse_distortion_model(options.model);
+  if (!model) return fail(err, "--model: " + model.error().message);
   vision::StereoCalibrationOptions calibration;
+  calibration.calibration.model = *model;
+  if (*model == vision::DistortionModel::equidistant && options.zero_tangential) {
+    return fail(err,
+                "--zero-tangential: the equidistant (fisheye) model has no tangential terms; "
+                "leave it out with --model equidistant");
+  }
+  if (*model != vision::DistortionModel::plumb_bob && options.estimate_k3) {
+    return fail(err, std::string("--estimate-k3: applies to plumb_bob only; --model ") +
+                         vision::distortion_model_name(*model) + " estimates all its terms");
+  }
   calibration.calibration.outlier_factor = options.outlier_factor;
   calibration.calibration.fix_k3 = !options.estimate_k3;
   calibration.calibration.zero_tangential = options.zero_tangential;

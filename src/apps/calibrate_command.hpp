@@ -3,6 +3,7 @@
 //
 //   telear calibrate --left 'DIR/left*.png' [--right 'DIR/right*.png']
 //                    --pattern chessboard:COLSxROWS:SQUARE_M -o stereo.yaml
+//                    [--model plumb_bob|rational_polynomial|equidistant]
 //                    [--report report.json] [--camera-info PREFIX]
 //
 // The globs are expanded by telear (quote them). One progress line per image or pair goes
@@ -24,6 +25,7 @@ struct CalibrateOptions {
   std::string report;                 // JSON report to write; empty: none
   std::string camera_info;            // ROS camera_info prefix: PREFIX_left.yaml, PREFIX_right.yaml
                                       // (stereo) or PREFIX.yaml (mono); empty: none
+  std::string model = "plumb_bob";    // lens model, a ROS name (parse_distortion_model)
   double outlier_factor = 3.0;        // reject views with error > factor x median; 0 keeps all
   bool estimate_k3 = false;           // free k3 (held at 0 by default)
   bool zero_tangential = false;       // hold p1, p2 at 0
