@@ -18,6 +18,7 @@
 
 #include "telear/console/console_actions.hpp"
 #include "telear/console/console_app.hpp"
+#include "telear/console/ui_script.hpp"
 #include "telear/core/angles.hpp"
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/number_format.hpp"
@@ -178,6 +179,28 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
   }
   EXPECT_GT(green, 500) << "no coverage drawn in the Registration panel";
   app.session().disconnect();
+}
+
+TEST(RegistrationPanel, ScriptLinesParseAndExplainMistakes) {
+  auto lines = parse_ui_script(
+      "registration open caps\nregistration add\nregistration solve\n"
+      "registration close\n",
+      6, "s.txt");
+  ASSERT_TRUE(lines) << lines.error().message;
+  ASSERT_EQ(lines->size(), 4u);
+  const auto& open = std::get<UiAction>((*lines)[0].step);
+  EXPECT_EQ(open.kind, ActionKind::kCaptureOpen);
+  EXPECT_EQ(open.text, "caps");
+  EXPECT_EQ(std::get<UiAction>((*lines)[3].step).kind, ActionKind::kCaptureClose);
+  auto bad = parse_ui_script("registration open\n", 6, "s.txt");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message,
+            "s.txt, line 1: registration open: usage: registration open FOLDER");
+  bad = parse_ui_script("wait 1\nregistration undo\n", 6, "s.txt");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message,
+            "s.txt, line 2: registration undo: unknown registration action 'undo' (open, add, "
+            "solve, close)");
 }
 
 }  // namespace
