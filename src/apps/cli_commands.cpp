@@ -238,6 +238,10 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
                            "observations YAML (telear sim observations)");
   register_app->add_option("--captures", register_options.captures,
                            "capture folder (telear capture): detect the marker, hand-eye");
+  register_app->add_option("--target", register_options.target,
+                           "with --captures: the target on the flange, e.g. "
+                           "charuco:5x5:0.06:0.045:4x4_50 (default: the capture's, else the "
+                           "robot's marker; docs/registration.md, Targets)");
   register_app->add_option("-o,--output", register_options.output, "camera file to write")
       ->required();
   register_app
@@ -282,6 +286,9 @@ void add_calibration_commands(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   capture_app->add_flag("--manual", capture.manual,
                         "the operator jogs the arm and adds each pose (commands on stdin)");
+  capture_app->add_option("--target", capture.target,
+                          "the target on the flange, recorded for register, e.g. "
+                          "charuco:5x5:0.06:0.045:4x4_50 (default: the robot's marker)");
   capture_app->add_option("-o,--output", capture.output, "folder to write")->required();
   commands.push_back({capture_app, [capture_shared] {
                         return run_capture(*capture_shared, std::cout, std::cerr);
