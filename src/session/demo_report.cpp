@@ -69,6 +69,9 @@ std::string demo_report_json(const DemoFacts& facts) {
   report["robot"] = {{"name", facts.robot}, {"dof", facts.dof}, {"tip_link", facts.tip_link}};
   report["calibration"] = nlohmann::json::parse(facts.calibration_json, nullptr, false);
   report["calibration_cached"] = facts.calibration_cached;
+  if (!facts.registration_json.empty()) {
+    report["registration"] = nlohmann::json::parse(facts.registration_json, nullptr, false);
+  }
   nlohmann::json overlay;
   const char* eye_names[2] = {"left", "right"};
   for (int i = 0; i < 2; ++i) {
@@ -156,6 +159,14 @@ std::string demo_report_markdown(const DemoFacts& facts) {
       md += std::string("| calibration ") + key + " | " + fixed(eval["left"].value(key, 0.0), 3) +
             " | " + fixed(eval["right"].value(key, 0.0), 3) + " |\n";
     }
+  }
+  const nlohmann::json registration =
+      nlohmann::json::parse(facts.registration_json, nullptr, false);
+  if (registration.is_object() && registration.contains("left")) {
+    md += "| registration through the servers (" +
+          std::to_string(registration.value("poses_used", 0)) + " poses), Shah-Li mm | " +
+          fixed(registration["left"].value("shah_li_mm", 0.0), 3) + " | " +
+          fixed(registration["right"].value("shah_li_mm", 0.0), 3) + " |\n";
   }
   md += "| live overlay error (marker), mean RMS px | " + fixed(mean(r.residuals.rms_px[0]), 3) +
         " | " + fixed(mean(r.residuals.rms_px[1]), 3) + " |\n\n";

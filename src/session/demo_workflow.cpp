@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <system_error>
 
 #include "telear/core/angles.hpp"
@@ -17,9 +18,17 @@
 #include "telear/session/calibration_pipeline.hpp"
 #include "telear/session/demo_report.hpp"
 #include "telear/session/embedded_servers.hpp"
+#include "telear/session/registration_capture.hpp"
 #include "telear/session/session.hpp"
 #include "telear/session/session_recorder.hpp"
+#include "telear/sim/stereo_rig.hpp"
+#include "telear/vision/accuracy_check.hpp"
+#include "telear/vision/calibration_file.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "telear/vision/capture_registration.hpp"
+#include "telear/vision/observations_file.hpp"
+#include "telear/vision/overlay_accuracy.hpp"
+#include "telear/vision/registered_camera_file.hpp"
 
 namespace telear::session {
 namespace {
@@ -28,6 +37,138 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The operator's jog before capturing, simulated: the first configuration at which the
+// calibration pipeline's rendered images showed the marker to both cameras.
+Result<Eigen::VectorXd> capture_start_pose(const std::string& observations_file) {
+  auto observations = vision::load_observations_file(observations_file);
+  if (!observations) return observations.error();
+  for (const auto& c : observations->configurations) {
+    if (!c.left_pixels.empty() && !c.right_pixels.empty()) return c.q;
+  }
+  return Error{"no configuration in '" + observations_file +
+               "' shows the marker to both cameras: nowhere to start the capture"};
+}
+
+struct ServerRegistration {
+  vision::StereoCameraModel cameras;  // the intrinsics served, T_cam_base registered
+  std::string eval_json;              // against the simulator's truth (telear eval's JSON)
+  std::string json;                   // the report's "registration" object
+};
+
+// Registration through the servers (docs/registration.md, "Register your real cameras"):
+// capture at automatic poses around the start, detect the marker in the saved images, solve
+// the hand-eye registration, and measure it against the rig's true cameras.
+Result<ServerRegistration> register_through_servers(
+    const core::RobotModel& model, const core::ArmBody& body, const core::MarkerMount& marker,
+    const core::Workspace& workspace, const EmbeddedServers& servers,
+    const vision::StereoCameraModel& truth, const std::string& truth_file,
+    const Eigen::VectorXd& finish, const std::string& directory, const DemoOptions& options,
+    const std::function<void(const std::string&)>& note) {
+  const auto start = Clock::now();
+  std::error_code ec;
+  std::filesystem::remove_all(directory, ec);  // a fresh capture every run
+  net::RobotClientOptions robot_options;
+  robot_options.address = servers.robot_address();
+  robot_options.token = servers.token();
+  robot_options.client_name = "telear-demo-capture";
+  net::RobotClient robot(robot_options);
+  robot.start();
+  net::VisionClientOptions vision_options;
+  vision_options.address = servers.vision_address();
+  vision_options.token = servers.token();
+  vision_options.client_name = "telear-demo-capture";
+  vision_options.jpeg_quality = 100;  // the least loss the stream offers
+  net::VisionClient vision(vision_options);
+  vision.start();
+  // A 1 s heartbeat as the Session asks for: this machine also renders both cameras.
+  if (Status s = robot.acquire_lease(1.0); !s) return Error{"capture: lease: " + s.error().message};
+  RegistrationCaptureOptions capture;
+  capture.directory = directory;
+  capture.auto_poses = options.registration_poses;
+  capture.frames_per_pose = options.registration_frames;
+  capture.seed = options.seed;
+  capture.velocity_scale = 1.0;
+  capture.settle_s = 0.1;
+  capture.marker = marker;
+  capture.body = body;
+  capture.workspace = workspace;
+  capture.finish_pose = finish;
+  auto captured = capture_for_registration(model, robot, vision, capture);
+  (void)robot.release_lease();
+  if (!captured) return captured.error();
+  const double capture_s = seconds_since(start);
+  auto registration = vision::register_captures(model, directory, "", marker);
+  if (!registration) return Error{"register: " + registration.error().message};
+  const vision::HandEyeResult& r = registration->result;
+  ServerRegistration out;
+  out.cameras = registration->registered;
+  const vision::AccuracyReport accuracy =
+      vision::evaluate_accuracy(model, body, truth, out.cameras);
+  out.eval_json = vision::accuracy_report_json(accuracy, vision::accuracy_checks(accuracy));
+  nlohmann::json json;
+  json["path"] = "capture through the servers";
+  json["capture_dir"] = directory;
+  json["poses_requested"] = options.registration_poses;
+  json["poses_captured"] = static_cast<int>(captured->capture.poses.size());
+  json["poses_used"] = r.views_used;
+  json["frames_per_pose"] = options.registration_frames;
+  json["capture_s"] = capture_s;
+  json["seconds"] = seconds_since(start);
+  for (auto [eye, e, baseline, t] :
+       {std::tuple{"left", &accuracy.left, &r.baseline_left, &truth.left},
+        std::tuple{"right", &accuracy.right, &r.baseline_right, &truth.right}}) {
+    nlohmann::json j;
+    j["registration_mm"] = e->registration.position_mm;
+    j["registration_deg"] = e->registration.rotation_deg;
+    j["overlay_rms_px"] = e->overlay.rms_px;
+    if (baseline->solved) {
+      const vision::PoseError shah_li =
+          vision::registration_error(t->T_cam_base, baseline->T_cam_base);
+      j["shah_li_mm"] = shah_li.position_mm;
+      j["shah_li_deg"] = shah_li.rotation_deg;
+    }
+    json[eye] = j;
+  }
+  // The same captures solved with the rig's true intrinsics and stereo geometry: the
+  // registration's own error, apart from the chessboard calibration's (its focal length error
+  // moves the camera centre along the optical axis).
+  if (auto exact = vision::register_captures(model, directory, truth_file, marker)) {
+    for (auto [eye, t, estimate] :
+         {std::tuple{"left", &truth.left, &exact->result.T_left_base},
+          std::tuple{"right", &truth.right, &exact->result.T_right_base}}) {
+      const vision::PoseError e = vision::registration_error(t->T_cam_base, *estimate);
+      json["true_intrinsics"][eye] = {{"registration_mm", e.position_mm},
+                                      {"registration_deg", e.rotation_deg}};
+    }
+  }
+  json["sigma_mm"] = r.base_sigma.position_mm;
+  json["sigma_deg"] = r.base_sigma.rotation_deg;
+  out.json = json.dump();
+  note("registered from " + std::to_string(r.views_used) + " of " +
+       std::to_string(captured->capture.poses.size()) + " poses captured through the servers (" +
+       core::format_number(capture_s, "%.1f") + " s): left " +
+       core::format_number(accuracy.left.registration.position_mm, "%.3f") + " mm " +
+       core::format_number(accuracy.left.registration.rotation_deg, "%.4f") + " deg, right " +
+       core::format_number(accuracy.right.registration.position_mm, "%.3f") + " mm " +
+       core::format_number(accuracy.right.registration.rotation_deg, "%.4f") +
+       " deg against the simulator's truth");
+  if (json.contains("true_intrinsics")) {
+    const nlohmann::json& t = json["true_intrinsics"];
+    note("the same captures with the rig's true intrinsics: left " +
+         core::format_number(t["left"]["registration_mm"].get<double>(), "%.3f") + " mm, right " +
+         core::format_number(t["right"]["registration_mm"].get<double>(), "%.3f") +
+         " mm (the rest is the chessboard calibration's focal length error)");
+  }
+  // The registered pair beside the capture, as `telear register --captures` writes it.
+  if (Status s = vision::write_files_atomically(
+          {{directory + "/registered.yaml",
+            vision::registered_camera_yaml(out.cameras, registration->T_right_left)}});
+      !s) {
+    return s.error();
+  }
+  return out;
 }
 
 }  // namespace
@@ -43,6 +184,17 @@ Status DemoOptions::validate() const {
                  " is outside 64x48 .. 1920x1080"};
   }
   if (out_dir.empty()) return Error{"--out: give the folder to write the report to"};
+  if (registration_poses < 4 || registration_poses > 200) {
+    return Error{"the registration poses " + std::to_string(registration_poses) +
+                 " are outside 4..200"};
+  }
+  if (registration_frames < 1 || registration_frames > 30) {
+    return Error{"the registration frames " + std::to_string(registration_frames) +
+                 " are outside 1..30"};
+  }
+  if (supersample < 1 || supersample > 8) {
+    return Error{"the supersampling " + std::to_string(supersample) + " is outside 1..8"};
+  }
   return Status::Ok();
 }
 
@@ -61,7 +213,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   const std::string resolution =
       std::to_string(options.width) + "x" + std::to_string(options.height);
 
-  step(1, "calibrating the simulated stereo rig and registering the robot");
+  step(1, "calibrating the simulated stereo rig");
   CalibrationPipelineOptions pipeline;
   auto robot = geometry::load_robot_assets(
       {options.robot, options.tip, options.geometry.package_paths}, options.geometry);
@@ -80,18 +232,27 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   if (!calibration) return calibration.error();
   note(std::string(calibration->cached ? "cached in " : "written to ") + pipeline.cache_dir + " (" +
        core::format_number(calibration->seconds, "%.1f") + " s)");
-  auto camera_file = vision::load_camera_file(calibration->registered_file);
-  if (!camera_file || !camera_file->right) {
-    return Error{"cannot load the registered calibration: " +
-                 (camera_file ? std::string("not a stereo file") : camera_file.error().message)};
-  }
+  // The pipeline's stereo calibration (intrinsics and the pair's geometry) is what the vision
+  // server serves; the robot is registered below from images captured through the servers.
+  const std::string stereo_file = pipeline.cache_dir + "/stereo.yaml";
+  auto truth = sim::load_stereo_rig(server_options.rig);
+  if (!truth) return truth.error();
+  auto marker = robot->marker();
+  if (!marker) return marker.error();
+  auto workspace = geometry::load_workspace(core::default_workspace_file(robot->description.name));
+  if (!workspace) return workspace.error();
+  auto capture_start = capture_start_pose(pipeline.cache_dir + "/observations.yaml");
+  if (!capture_start) return capture_start.error();
+  const core::ArmBody arm_body = core::build_arm_body(robot->body);
 
-  step(2, "starting the simulated robot server and vision server on loopback");
-  server_options.calibration_file = calibration->registered_file;
+  step(2, "starting the simulated robot and vision servers on loopback, registering through them");
+  server_options.calibration_file = stereo_file;
   server_options.seed = options.seed;
   server_options.fps = options.camera_fps;
+  server_options.supersample = options.supersample;
+  Eigen::VectorXd ready_q;
   if (auto ready = model->named_configuration("ready")) {
-    server_options.initial_q = *ready;
+    ready_q = *ready;
   } else {
     // The PUMA: a ready pose away from the wrist singularity of qr (q5 = 0), parked beside
     // the table, turned 90 deg away from it, clear of the workspace. The plan is then the
@@ -100,12 +261,32 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
     // issue 14's 100x: docs/demo.md).
     Eigen::VectorXd ready_deg(6);
     ready_deg << -90.0, 30.0, -120.0, 0.0, -45.0, 0.0;
-    server_options.initial_q =
-        ready_deg.unaryExpr([](double d) { return core::radians_from_degrees(d); });
+    ready_q = ready_deg.unaryExpr([](double d) { return core::radians_from_degrees(d); });
   }
+  // The arm starts where both cameras see its marker (the operator's jog before capturing);
+  // the capture ends at the ready pose the task starts from. The capture's cameras render
+  // with options.supersample (finer corners).
+  server_options.initial_q = *capture_start;
   auto servers = EmbeddedServers::create(model, server_options);
   if (!servers) return servers.error();
   note("robot server " + (*servers)->robot_address() + ", vision server " +
+       (*servers)->vision_address());
+  auto registration =
+      register_through_servers(*model, arm_body, *marker, *workspace, **servers, truth->cameras,
+                               pipeline.cache_dir + "/capture/truth.yaml", ready_q,
+                               options.out_dir + "/registration_capture", options, note);
+  if (!registration)
+    return Error{"registration through the servers: " + registration.error().message};
+  // The task's servers: the same simulated robot and rig, restarted at the ready pose where
+  // the capture left the arm, their cameras rendered at the live view's cost (anti-aliasing 1:
+  // the video's frames must stay fresh on a 2-core machine, or the view stays in VR).
+  (*servers)->stop();
+  servers->reset();
+  server_options.initial_q = ready_q;
+  server_options.supersample = 1;
+  servers = EmbeddedServers::create(model, server_options);
+  if (!servers) return servers.error();
+  note("restarted for the task: robot server " + (*servers)->robot_address() + ", vision server " +
        (*servers)->vision_address());
 
   step(3, "connecting the session and taking the lease");
@@ -118,17 +299,15 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   session_options.vision.address = (*servers)->vision_address();
   session_options.vision.width = options.width;
   session_options.vision.height = options.height;
+  // The cameras registered through the servers, at the operator's view size.
   vision::StereoCameraModel cameras;
-  cameras.left = vision::resized_camera(camera_file->left, options.width, options.height);
-  cameras.right = vision::resized_camera(*camera_file->right, options.width, options.height);
+  cameras.left = vision::resized_camera(registration->cameras.left, options.width, options.height);
+  cameras.right =
+      vision::resized_camera(registration->cameras.right, options.width, options.height);
   session_options.cameras = cameras;
   // The marker from the robot's marker file, the box from the operator's workspace file (the
   // same scene the simulated rig renders).
-  auto marker = robot->marker();
-  if (!marker) return marker.error();
   session_options.marker = GripperMarker{marker->id, marker->corners_flange()};
-  auto workspace = geometry::load_workspace(core::default_workspace_file(robot->description.name));
-  if (!workspace) return workspace.error();
   const core::WorkspaceObject* graspable = workspace->first_graspable();
   if (!graspable) return Error{"the workspace " + workspace->source + " has nothing to pick"};
   const Eigen::Vector3d box = graspable->T_base_object.translation();
@@ -144,7 +323,6 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   auto context = render::create_headless_context();
   if (!context) return Error{"no OpenGL context: " + context.error().message};
-  const core::ArmBody arm_body = core::build_arm_body(robot->body);
   std::vector<render::SceneObject> objects = {render::make_floor(3.0f, 12)};
   for (render::SceneObject& o : render::workspace_scene_objects(*workspace)) {
     objects.push_back(std::move(o));
@@ -174,7 +352,8 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   facts.robot = robot->description.name;
   facts.dof = model->dof();
   facts.tip_link = robot->description.tip_link;
-  facts.calibration_json = calibration->evaluation.json;
+  facts.calibration_json = registration->eval_json;
+  facts.registration_json = registration->json;
   facts.calibration_cached = calibration->cached;
   facts.recording = recorder.recording();
   facts.resolution = resolution;

@@ -40,6 +40,30 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
   for (const char* eye : {"left", "right"}) {
     EXPECT_LT(report["calibration"][eye]["overlay_rms_px"].get<double>(), 0.5) << eye;
   }
+  // Registered through the servers (issue 15): automatic poses captured through the robot and
+  // vision servers, the marker found in nearly all of them; the cameras the AR view draws with
+  // are these. Against the truth the chessboard calibration's focal length error (-0.03 %)
+  // adds ~0.7 mm along the optical axis; with the rig's true intrinsics the registration's
+  // own error is left (16 poses at 2 x 2 anti-aliasing: 0.2-0.6 mm, docs/demo.md; issue 15's
+  // 0.5 mm is asserted at 24 poses by session_registration_capture_test). The bundle
+  // adjustment beats OpenCV's closed form on the same images.
+  const auto& registration = report["registration"];
+  ASSERT_TRUE(registration.is_object()) << report.dump(1);
+  EXPECT_EQ(registration["poses_requested"], 16);
+  EXPECT_GE(registration["poses_used"].get<int>(), 13) << registration;
+  EXPECT_GT(registration["capture_s"].get<double>(), 0.0);
+  for (const char* eye : {"left", "right"}) {
+    EXPECT_LT(registration[eye]["registration_mm"].get<double>(), 1.2) << eye;
+    EXPECT_LT(registration[eye]["overlay_rms_px"].get<double>(), 0.1) << eye;
+    EXPECT_LT(registration[eye]["registration_mm"].get<double>(),
+              registration[eye]["shah_li_mm"].get<double>())
+        << eye;
+    EXPECT_LT(registration["true_intrinsics"][eye]["registration_mm"].get<double>(), 0.8) << eye;
+    EXPECT_LT(registration["true_intrinsics"][eye]["registration_deg"].get<double>(), 0.05) << eye;
+    EXPECT_DOUBLE_EQ(registration[eye]["registration_mm"].get<double>(),
+                     report["calibration"][eye]["registration_mm"].get<double>());
+  }
+  EXPECT_NE(r.out.find("poses captured through the servers"), std::string::npos) << r.out;
   // The injected delay: at least one switch to VR and back.
   EXPECT_GE(report["display"]["ar_to_vr"].get<int>(), 1);
   EXPECT_GE(report["display"]["vr_to_ar"].get<int>(), 2);  // the start, and after the delay

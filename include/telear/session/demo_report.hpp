@@ -3,7 +3,10 @@
 // (the same figures as tables), from what the demo measured.
 //
 // report.json's keys: robot.{name, dof, tip_link}, calibration (eval.json,
-// include/telear/vision/accuracy_check.hpp), calibration_cached,
+// include/telear/vision/accuracy_check.hpp), calibration_cached, registration.{path,
+// capture_dir, poses_requested, poses_captured, poses_used, frames_per_pose, capture_s, seconds,
+// sigma_mm, sigma_deg, left/right.{registration_mm, registration_deg, overlay_rms_px,
+// shah_li_mm, shah_li_deg}} (absent without one),
 // overlay_error_live.{left,right}.{rms_px_mean, max_px, checks, marker_not_found, last_miss},
 // video.{resolution, camera_fps, frames_shown, display_ticks, fps_shown, latency.<stage>.{p50_ms,
 // p99_ms, samples}, bytes_per_s}, bytes.{plan_message_measured, plan_message, samples_100hz,
@@ -37,6 +40,9 @@ struct DemoFacts {
   std::string tip_link;          // empty for a DH robot
   std::string calibration_json;  // eval.json's text
   bool calibration_cached = false;
+  // The registration through the servers (a JSON object: poses, mm / deg against the truth,
+  // Shah-Li's beside it, seconds); empty: none.
+  std::string registration_json;
   Recording recording;
   std::string resolution;  // "WxH" as given
   double camera_fps = 0.0;

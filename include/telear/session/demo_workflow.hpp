@@ -2,8 +2,11 @@
 // `telear demo` as a library call (docs/demo.md): the operator's whole workflow on the
 // embedded simulated robot and stereo rig, headless, in seven numbered steps:
 //
-//   1. calibrate and register (include/telear/session/calibration_pipeline.hpp, cached)
-//   2. start the simulated robot and vision servers on loopback (embedded_servers.hpp)
+//   1. calibrate the stereo rig (include/telear/session/calibration_pipeline.hpp, cached)
+//   2. start the simulated robot and vision servers on loopback (embedded_servers.hpp), and
+//      register the robot from images captured through them (registration_capture.hpp,
+//      vision/capture_registration.hpp), measured against the simulator's truth; then
+//      restart them at the ready pose for the task (the live view's cheaper rendering)
 //   3. connect a Session, open the AR view and the recorder (session_recorder.hpp)
 //   4-6. the task (include/telear/session/demo_task.hpp)
 //   7. the report (include/telear/session/demo_report.hpp)
@@ -35,6 +38,12 @@ struct DemoOptions {
   double fps = 15.0;         // the recorded video's (and the display loop's) rate, 1..60
   double camera_fps = 20.0;  // the simulated cameras' rate
   bool video = true;         // false: no MP4 (key frames and report still written)
+  // Registration through the servers (step 2): automatic capture poses and frames per pose,
+  // and the simulated cameras' anti-aliasing while capturing (the marker's corners are found
+  // to ~0.1 px; the task's servers render at 1).
+  int registration_poses = 16;  // 4..200
+  int registration_frames = 2;  // 1..30
+  int supersample = 2;          // 1..8
 
   // Errors name the option as the CLI spells it and its range.
   Status validate() const;
