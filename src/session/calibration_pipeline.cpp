@@ -11,6 +11,7 @@
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/sim/calibration_capture.hpp"
 #include "telear/sim/marker_observations.hpp"
+#include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/accuracy_check.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/calibration_images.hpp"
@@ -37,13 +38,18 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-// Step 2: stereo calibration of the captured pairs -> stereo.yaml (+ calibration_report.json).
+// Step 2: stereo calibration of the captured pairs -> stereo.yaml (+ calibration_report.json),
+// with the lens model of the rig's cameras (`telear calibrate --model`): an operator knows
+// which kind of lens is mounted, not its coefficients.
 Status calibrate(const sim::CalibrationCapture& capture, const std::string& pattern_spec,
-                 const std::string& output, const std::string& report_file) {
+                 vision::DistortionModel model, const std::string& output,
+                 const std::string& report_file) {
   auto pattern = vision::parse_calibration_pattern(pattern_spec);
   if (!pattern) return pattern.error();
-  auto report =
-      vision::calibrate_image_files(capture.left_images, capture.right_images, *pattern, {});
+  vision::StereoCalibrationOptions calibration;
+  calibration.calibration.model = model;
+  auto report = vision::calibrate_image_files(capture.left_images, capture.right_images, *pattern,
+                                              calibration);
   if (!report) return report.error();
   return vision::write_files_atomically(
       {{output, vision::stereo_calibration_yaml(*report->stereo, *pattern)},
@@ -176,8 +182,10 @@ Result<CalibrationPipelineResult> run_calibration_pipeline(
     auto capture = sim::capture_calibration_views(capture_options);
     if (!capture) return step_error("capture", capture.error().message);
 
+    auto rig = sim::load_stereo_rig(options.rig_file);
+    if (!rig) return step_error("calibrate", rig.error().message);
     const std::string stereo_file = (cache / "stereo.yaml").string();
-    if (Status s = calibrate(*capture, options.pattern, stereo_file,
+    if (Status s = calibrate(*capture, options.pattern, rig->cameras.left.kc.model, stereo_file,
                              (cache / "calibration_report.json").string());
         !s) {
       return step_error("calibrate", s.error().message);

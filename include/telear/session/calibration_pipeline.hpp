@@ -4,7 +4,8 @@
 //
 //   1. capture   render `views` chessboard views per eye and the truth
 //                (include/telear/sim/calibration_capture.hpp)          -> CACHE/capture/
-//   2. calibrate detect the board in each pair, calibrate the stereo pair
+//   2. calibrate detect the board in each pair, calibrate the stereo pair with the lens
+//                model of the rig's cameras (plumb_bob, rational_polynomial, equidistant)
 //                (include/telear/vision/stereo_calibration.hpp)        -> CACHE/stereo.yaml
 //   3. observe   render the gripper's marker at `configurations` random joint
 //                configurations and detect it
