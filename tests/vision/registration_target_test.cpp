@@ -140,7 +140,9 @@ TEST(RegistrationTargetTest, DetectsEachKindToSubPixelPrecision) {
        {"aruco:4x4_50:7:0.1", "apriltag:36h11:3:0.1", "charuco:5x5:0.05:0.038:4x4_50"}) {
     SCOPED_TRACE(spec);
     const RegistrationTarget target = parse(spec);
-    const View v = view_of(target, 1500.0, kTilted);
+    // A binary print puts each edge on a pixel boundary: 1500 px/m for the 0.1 m markers
+    // (25 px cells), 1600 for the board (its half-square margin 40 px, squares 80 px).
+    const View v = view_of(target, target.is_board() ? 1600.0 : 1500.0, kTilted);
     const TargetDetection d = detect_registration_target(v.image, target);
     ASSERT_TRUE(d.found());
     EXPECT_EQ(d.ids.size(), target.points().size());
@@ -154,7 +156,7 @@ TEST(RegistrationTargetTest, DetectsEachKindToSubPixelPrecision) {
 
 TEST(RegistrationTargetTest, APartialBoardGivesTheCornersNearItsMarkersAndTooFewGiveNone) {
   const RegistrationTarget target = parse("charuco:5x5:0.05:0.038:4x4_50");
-  View v = view_of(target, 1500.0, kTilted);
+  View v = view_of(target, 1600.0, kTilted);
   // Cover the right half of the board's image.
   const Eigen::Vector2d centre = apply(v.H_total, Eigen::Vector3d::Zero());
   v.image(cv::Rect(static_cast<int>(centre.x()), 0, 900 - static_cast<int>(centre.x()), 700)) =

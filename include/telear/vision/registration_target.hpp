@@ -58,8 +58,8 @@ struct RegistrationTarget {
   std::string description() const;
   // The points above in the target frame, indexed by point id.
   std::vector<Eigen::Vector3d> points() const;
-  // The printed extent (m) in x and y, quiet zone / board margin of one cell or square
-  // included: what must fit on the flange.
+  // The printed extent (m) in x and y, a marker's one-cell quiet zone or a board's white
+  // margin of half a square included: what must fit on the flange.
   Eigen::Vector2d printed_size_m() const;
   // Cells per side of one marker, border included (4x4: 6; AprilTag 36h11: 8).
   int marker_cells() const;
