@@ -130,6 +130,8 @@ Status RegistrationCaptureOptions::validate() const {
     return bad("--settle " + core::format_number(settle_s) + " must be 0..10 s");
   if (!(rest_tolerance_rad > 0.0)) return bad("the rest tolerance must be positive");
   if (!(pose_timeout_s > 0.0)) return bad("the pose timeout must be positive");
+  if (!(lease_heartbeat_s >= 0.0 && lease_heartbeat_s <= 10.0))
+    return bad("the lease heartbeat must be 0..10 s");
   return {};
 }
 
@@ -222,17 +224,6 @@ Result<RegistrationCaptureResult> capture_for_registration(
   if (Status s = options.validate(); !s) return s.error();
   auto info = open_capture_folder(vision, options.directory);
   if (!info) return info.error();
-  const bool lease_was_held = robot.lease_held();
-  if (!lease_was_held) {
-    if (Status s = robot.acquire_lease(); !s) return Error{"capture: lease: " + s.error().message};
-  }
-  struct ReleaseLease {
-    net::RobotClient& robot;
-    bool release;
-    ~ReleaseLease() {
-      if (release) (void)robot.release_lease();
-    }
-  } release{robot, !lease_was_held};
 
   RegistrationCaptureResult out;
   out.cameras = info->cameras;
@@ -269,6 +260,20 @@ Result<RegistrationCaptureResult> capture_for_registration(
     }
   }
 
+  // The lease only now: choosing the automatic poses (thousands of sight-line tests) keeps a
+  // 2-core machine busy long enough to starve a 250 ms heartbeat that is not needed yet.
+  const bool lease_was_held = robot.lease_held();
+  if (!lease_was_held) {
+    if (Status s = robot.acquire_lease(options.lease_heartbeat_s); !s)
+      return Error{"capture: lease: " + s.error().message};
+  }
+  struct ReleaseLease {
+    net::RobotClient& robot;
+    bool release;
+    ~ReleaseLease() {
+      if (release) (void)robot.release_lease();
+    }
+  } release{robot, !lease_was_held};
   const int count = static_cast<int>(poses.size());
   std::uint64_t last_frame_id = 0;
   for (int p = 0; p < count; ++p) {

@@ -56,6 +56,11 @@ struct RegistrationCaptureOptions {
   double rest_tolerance_rad = 2e-3;
   double pose_timeout_s = 60.0;  // per pose: move, settle and frames
   std::int64_t max_sync_skew_ns = 5'000'000;
+  // The lease's heartbeat asked of the server when the capture takes the lease (0: its
+  // default, 250 ms). A machine that also simulates the robot and renders its cameras can
+  // starve the heartbeat thread for longer than 250 ms (the lease lapsed mid-capture on the
+  // shared 2-core test machine); the Session asks the embedded servers for 1 s as well.
+  double lease_heartbeat_s = 1.0;
   core::MarkerMount marker;  // detected for auto poses; its spec goes into the manifest
   // Auto poses: what may hide the marker from a camera (marker_visibility.hpp). The arm's
   // body, unset: the robot's body file (core::body_description_for); the objects around the
