@@ -31,6 +31,10 @@ int fail(std::ostream& err, const std::string& message, int code = 2) {
 // [SECTION] --manual
 
 constexpr double kJogValidityS = 2.0;  // one typed step is a whole jog: long enough to finish it
+// The lease's heartbeat: the arm moves only for a typed step, each a 2 s jog at most, so a
+// 1 s period (the dead-man acting within ~1.2 s, as the console's embedded default) costs no
+// safety and keeps a loaded machine from stopping a step short.
+constexpr double kLeaseHeartbeatS = 1.0;
 
 const char* kManualHelp =
     "  j N D      jog joint N (from 1) by D degrees (mm for a prismatic joint), e.g. j 2 +5\n"
@@ -63,7 +67,7 @@ void jog(net::RobotClient& robot, const core::MotionCommand& command, std::ostre
   auto ack = robot.jog(command, kJogValidityS);
   if (!ack && ack.error().message.find("lease lapsed") != std::string::npos) {
     out << "the lease had lapsed: taking it again\n";
-    if (Status s = robot.acquire_lease(); !s) {
+    if (Status s = robot.acquire_lease(kLeaseHeartbeatS); !s) {
       out << "lease: " << s.error().message << "\n";
       return;
     }
@@ -130,7 +134,8 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
   auto opened = session::CaptureSession::open(arm, robot, vision, capture_options);
   if (!opened) return fail(err, opened.error().message, 1);
   session::CaptureSession& capture = **opened;
-  if (Status s = robot.acquire_lease(); !s) return fail(err, "lease: " + s.error().message, 1);
+  if (Status s = robot.acquire_lease(kLeaseHeartbeatS); !s)
+    return fail(err, "lease: " + s.error().message, 1);
   out << "manual capture into " << options.output << " (" << arm.name() << ", marker id "
       << marker->id << "): jog the arm until both cameras see the marker, add the pose, and "
       << "repeat over the images, turning the wrist\n"
