@@ -48,7 +48,13 @@ Result<net::CameraInfoReply> open_capture_folder(net::VisionClient& vision,
     return Error{"capture: '" + directory +
                  "' already holds a capture (capture.yaml): give a new folder"};
   }
+  // The client connects lazily: a first call may meet a server still starting or a loaded
+  // machine, so it is tried three times before giving up.
   auto info = vision.get_camera_info();
+  for (int attempt = 1; !info && attempt < 3; ++attempt) {
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    info = vision.get_camera_info();
+  }
   if (!info) return Error{"capture: camera info: " + info.error().message};
   if (!info->found) {
     return Error{
