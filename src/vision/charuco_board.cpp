@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <opencv2/aruco.hpp>
@@ -13,42 +12,11 @@
 namespace telear::vision {
 namespace {
 
-struct DictionaryEntry {
-  const char* name;
-  cv::aruco::PREDEFINED_DICTIONARY_NAME id;
-  int size;
-};
-
-constexpr DictionaryEntry kDictionaries[] = {
-    {"4x4_50", cv::aruco::DICT_4X4_50, 50},
-    {"4x4_100", cv::aruco::DICT_4X4_100, 100},
-    {"4x4_250", cv::aruco::DICT_4X4_250, 250},
-    {"4x4_1000", cv::aruco::DICT_4X4_1000, 1000},
-    {"5x5_50", cv::aruco::DICT_5X5_50, 50},
-    {"5x5_100", cv::aruco::DICT_5X5_100, 100},
-    {"5x5_250", cv::aruco::DICT_5X5_250, 250},
-    {"5x5_1000", cv::aruco::DICT_5X5_1000, 1000},
-    {"6x6_50", cv::aruco::DICT_6X6_50, 50},
-    {"6x6_100", cv::aruco::DICT_6X6_100, 100},
-    {"6x6_250", cv::aruco::DICT_6X6_250, 250},
-    {"6x6_1000", cv::aruco::DICT_6X6_1000, 1000},
-    {"apriltag_36h11", cv::aruco::DICT_APRILTAG_36h11, 587},
-};
-
-const DictionaryEntry& entry_of(const std::string& name) {
-  for (const DictionaryEntry& entry : kDictionaries) {
-    if (name == entry.name) return entry;
-  }
-  assert(false && "not a canonical dictionary name");
-  return kDictionaries[0];
-}
-
 cv::Ptr<cv::aruco::CharucoBoard> make_board(const CalibrationPattern& pattern) {
   assert(pattern.kind == PatternKind::kCharuco);
   return cv::aruco::CharucoBoard::create(
       pattern.squares_x(), pattern.squares_y(), static_cast<float>(pattern.spacing),
-      static_cast<float>(pattern.marker),
-      cv::aruco::getPredefinedDictionary(entry_of(pattern.dictionary).id));
+      static_cast<float>(pattern.marker), predefined_aruco_dictionary(pattern.dictionary));
 }
 
 // The cornerSubPix half-window for ChArUco corners: the window must stay inside the white
@@ -77,29 +45,6 @@ std::string count_text(std::size_t n, const char* what) {
 }
 
 }  // namespace
-
-const std::vector<std::string>& aruco_dictionary_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> list;
-    for (const DictionaryEntry& entry : kDictionaries) list.emplace_back(entry.name);
-    return list;
-  }();
-  return names;
-}
-
-std::optional<std::string> canonical_aruco_dictionary(const std::string& name) {
-  std::string lower;
-  for (char c : name) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (lower.rfind("dict_", 0) == 0) lower.erase(0, 5);
-  for (const DictionaryEntry& entry : kDictionaries) {
-    if (lower == entry.name) return std::string(entry.name);
-  }
-  return std::nullopt;
-}
-
-int aruco_dictionary_size(const std::string& name) {
-  return entry_of(name).size;
-}
 
 int charuco_marker_count(int squares_x, int squares_y) {
   return squares_x * squares_y / 2;

@@ -11,79 +11,16 @@
 #include <sstream>
 
 #include "telear/core/number_format.hpp"
+#include "telear/vision/aruco_dictionary.hpp"
+#include "telear/vision/charuco_board.hpp"
 #include "telear/vision/marker_detection.hpp"
 
 namespace telear::vision {
 namespace {
 
-struct DictionaryName {
-  const char* name;  // OpenCV's enum name
-  cv::aruco::PREDEFINED_DICTIONARY_NAME id;
-};
-
-constexpr DictionaryName kDictionaries[] = {
-    {"DICT_4X4_50", cv::aruco::DICT_4X4_50},
-    {"DICT_4X4_100", cv::aruco::DICT_4X4_100},
-    {"DICT_4X4_250", cv::aruco::DICT_4X4_250},
-    {"DICT_4X4_1000", cv::aruco::DICT_4X4_1000},
-    {"DICT_5X5_50", cv::aruco::DICT_5X5_50},
-    {"DICT_5X5_100", cv::aruco::DICT_5X5_100},
-    {"DICT_5X5_250", cv::aruco::DICT_5X5_250},
-    {"DICT_5X5_1000", cv::aruco::DICT_5X5_1000},
-    {"DICT_6X6_50", cv::aruco::DICT_6X6_50},
-    {"DICT_6X6_100", cv::aruco::DICT_6X6_100},
-    {"DICT_6X6_250", cv::aruco::DICT_6X6_250},
-    {"DICT_6X6_1000", cv::aruco::DICT_6X6_1000},
-    {"DICT_7X7_50", cv::aruco::DICT_7X7_50},
-    {"DICT_7X7_100", cv::aruco::DICT_7X7_100},
-    {"DICT_7X7_250", cv::aruco::DICT_7X7_250},
-    {"DICT_7X7_1000", cv::aruco::DICT_7X7_1000},
-    {"DICT_ARUCO_ORIGINAL", cv::aruco::DICT_ARUCO_ORIGINAL},
-};
-
-constexpr DictionaryName kAprilTagFamilies[] = {
-    {"DICT_APRILTAG_16h5", cv::aruco::DICT_APRILTAG_16h5},
-    {"DICT_APRILTAG_25h9", cv::aruco::DICT_APRILTAG_25h9},
-    {"DICT_APRILTAG_36h10", cv::aruco::DICT_APRILTAG_36h10},
-    {"DICT_APRILTAG_36h11", cv::aruco::DICT_APRILTAG_36h11},
-};
-
 std::string upper(std::string text) {
   for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return text;
-}
-
-// "4x4_50", "dict_4x4_50" -> "DICT_4X4_50"; "" when unknown.
-std::string aruco_dictionary(const std::string& text) {
-  std::string name = upper(text);
-  if (name.rfind("DICT_", 0) != 0) name = "DICT_" + name;
-  for (const auto& d : kDictionaries) {
-    if (name == d.name) return d.name;
-  }
-  return {};
-}
-
-// "36h11", "DICT_APRILTAG_36h11", "tag36h11" -> "DICT_APRILTAG_36h11"; "" when unknown.
-std::string apriltag_family(const std::string& text) {
-  std::string name = upper(text);
-  for (const char* prefix : {"DICT_APRILTAG_", "TAG"}) {
-    if (name.rfind(prefix, 0) == 0) name = name.substr(std::string(prefix).size());
-  }
-  for (const auto& d : kAprilTagFamilies) {
-    if (name == upper(std::string(d.name).substr(14))) return d.name;
-  }
-  return {};
-}
-
-cv::Ptr<cv::aruco::Dictionary> dictionary_of(const std::string& name) {
-  for (const auto& d : kDictionaries) {
-    if (name == d.name) return cv::aruco::getPredefinedDictionary(d.id);
-  }
-  for (const auto& d : kAprilTagFamilies) {
-    if (name == d.name) return cv::aruco::getPredefinedDictionary(d.id);
-  }
-  assert(false && "dictionary_of(): a dictionary that parse_registration_target accepted");
-  return cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50);
 }
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -115,19 +52,10 @@ bool parse_positive(const std::string& text, double& value) {
   }
 }
 
-std::string list_names(const DictionaryName* begin, const DictionaryName* end, std::size_t skip) {
-  std::string out;
-  for (const DictionaryName* d = begin; d != end; ++d) {
-    if (!out.empty()) out += ", ";
-    out += std::string(d->name).substr(skip);
-  }
-  return out;
-}
-
 cv::Ptr<cv::aruco::CharucoBoard> charuco_board(const RegistrationTarget& t) {
   return cv::aruco::CharucoBoard::create(t.squares_x, t.squares_y, static_cast<float>(t.square_m),
                                          static_cast<float>(t.marker_m),
-                                         dictionary_of(t.dictionary));
+                                         predefined_aruco_dictionary(t.dictionary));
 }
 
 // OpenCV's board frame (origin at the printed top-left corner, x right, y down, z into the
@@ -270,7 +198,7 @@ std::string RegistrationTarget::description() const {
 }
 
 int RegistrationTarget::marker_cells() const {
-  return dictionary_of(dictionary)->markerSize + 2;
+  return predefined_aruco_dictionary(dictionary)->markerSize + 2;
 }
 
 std::vector<Eigen::Vector3d> RegistrationTarget::points() const {
@@ -312,16 +240,14 @@ Result<RegistrationTarget> parse_registration_target(const std::string& spec) {
       return Error{quoted + "expected 4 fields " + f[0] + (april ? ":FAMILY" : ":DICT") +
                    ":ID:SIDE_M, got " + std::to_string(f.size())};
     }
-    t.dictionary = april ? apriltag_family(f[1]) : aruco_dictionary(f[1]);
+    t.dictionary = april ? opencv_apriltag_family(f[1]) : opencv_aruco_dictionary(f[1]);
     if (t.dictionary.empty()) {
       return april ? Error{quoted + "unknown AprilTag family '" + f[1] + "' (expected one of " +
-                           list_names(std::begin(kAprilTagFamilies), std::end(kAprilTagFamilies),
-                                      14) +
-                           ")"}
+                           opencv_apriltag_family_list() + ")"}
                    : Error{quoted + "unknown ArUco dictionary '" + f[1] + "' (expected one of " +
-                           list_names(std::begin(kDictionaries), std::end(kDictionaries), 5) + ")"};
+                           opencv_aruco_dictionary_list() + ")"};
     }
-    const int size = dictionary_of(t.dictionary)->bytesList.rows;
+    const int size = aruco_dictionary_size(t.dictionary);
     if (!parse_int(f[2], t.id) || t.id < 0 || t.id >= size) {
       return Error{quoted + "id '" + f[2] + "' must be an integer in 0.." +
                    std::to_string(size - 1) + " (" + t.dictionary + ")"};
@@ -353,13 +279,13 @@ Result<RegistrationTarget> parse_registration_target(const std::string& spec) {
                  " m must be smaller than the square side " + core::format_number(t.square_m) +
                  " m (the marker sits inside a white square)"};
   }
-  t.dictionary = aruco_dictionary(f[4]);
+  t.dictionary = opencv_aruco_dictionary(f[4]);
   if (t.dictionary.empty()) {
     return Error{quoted + "unknown ArUco dictionary '" + f[4] + "' (expected one of " +
-                 list_names(std::begin(kDictionaries), std::end(kDictionaries), 5) + ")"};
+                 opencv_aruco_dictionary_list() + ")"};
   }
-  const int markers = t.squares_x * t.squares_y / 2;
-  const int size = dictionary_of(t.dictionary)->bytesList.rows;
+  const int markers = charuco_marker_count(t.squares_x, t.squares_y);
+  const int size = aruco_dictionary_size(t.dictionary);
   if (markers > size) {
     return Error{quoted + "a " + f[1] + " board has " + std::to_string(markers) + " markers but " +
                  t.dictionary + " holds " + std::to_string(size) + ": choose a larger dictionary"};
@@ -370,7 +296,7 @@ Result<RegistrationTarget> parse_registration_target(const std::string& spec) {
 RegistrationTarget registration_target_from_mount(const core::MarkerMount& mount) {
   RegistrationTarget t;
   t.kind = TargetKind::kAruco;
-  t.dictionary = aruco_dictionary(mount.dictionary);
+  t.dictionary = opencv_aruco_dictionary(mount.dictionary);
   if (t.dictionary.empty()) t.dictionary = "DICT_4X4_50";  // the mount file's only one
   t.id = mount.id;
   t.side_m = mount.side_m;
@@ -396,7 +322,7 @@ TargetDetection detect_registration_target(const cv::Mat& image, const Registrat
     return out;
   }
   const cv::Mat grey = grey_of(image);
-  const cv::Ptr<cv::aruco::Dictionary> dictionary = dictionary_of(target.dictionary);
+  const cv::Ptr<cv::aruco::Dictionary> dictionary = predefined_aruco_dictionary(target.dictionary);
   const DetectedMarkers markers = detected_markers(grey, dictionary);
   const auto& corners = markers.corners;
   const auto& ids = markers.ids;
@@ -447,7 +373,7 @@ TargetDetection detect_registration_target(const cv::Mat& image, const Registrat
 std::vector<std::array<Eigen::Vector3d, 4>> registration_target_dark_quads(
     const RegistrationTarget& target) {
   std::vector<std::array<Eigen::Vector3d, 4>> quads;
-  const cv::Ptr<cv::aruco::Dictionary> dictionary = dictionary_of(target.dictionary);
+  const cv::Ptr<cv::aruco::Dictionary> dictionary = predefined_aruco_dictionary(target.dictionary);
   const int cells = dictionary->markerSize + 2;
   // One marker's black cells, bilinear between its corners c (printed order).
   const auto add_marker = [&](int id, const std::array<Eigen::Vector3d, 4>& c) {

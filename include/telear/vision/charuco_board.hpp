@@ -18,25 +18,14 @@
 // A board partly hidden or out of frame yields the corners it shows.
 
 #include <opencv2/core.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "telear/core/result.hpp"
+#include "telear/vision/aruco_dictionary.hpp"
 #include "telear/vision/calibration_pattern.hpp"
 
 namespace telear::vision {
-
-// The dictionary names a ChArUco pattern accepts: OpenCV's predefined dictionaries without
-// the "DICT_" prefix, in lower case ("4x4_50" .. "6x6_1000", "apriltag_36h11").
-const std::vector<std::string>& aruco_dictionary_names();
-
-// The canonical name of `name` (one of the above; case and a "DICT_" prefix are ignored),
-// or nullopt for an unknown one.
-std::optional<std::string> canonical_aruco_dictionary(const std::string& name);
-
-// The number of markers in a dictionary (a canonical name).
-int aruco_dictionary_size(const std::string& name);
 
 // The number of markers a board of sx x sy squares carries (its white squares).
 int charuco_marker_count(int squares_x, int squares_y);
