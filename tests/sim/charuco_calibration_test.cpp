@@ -5,6 +5,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -81,7 +82,9 @@ class CharucoCalibrationTest : public ::testing::Test {
         slid_out(left, target, poses->back(), 1.0, [](int n) { return n > 0 && n <= 6; });
     sliver_ = kWholeViews + kPartialViews;
 
-    dir_ = ::testing::TempDir() + "/telear_charuco_calibration";
+    // One folder per process: CTest runs each test of this suite as its own process, in
+    // parallel, and a shared folder let one process read images another was rewriting.
+    dir_ = ::testing::TempDir() + "/telear_charuco_calibration_" + std::to_string(::getpid());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     const TargetImageRenderer left_renderer(rig_->cameras.left);
@@ -97,6 +100,7 @@ class CharucoCalibrationTest : public ::testing::Test {
     }
   }
   static void TearDownTestSuite() {
+    fs::remove_all(dir_);
     delete rig_;
     rig_ = nullptr;
   }

@@ -66,6 +66,39 @@ TEST(DistortionMaps, UndistortMapsPointAtTheRawPositionOfEachRay) {
   }
 }
 
+// The undistorted mode for the wide-angle models: a rational_polynomial lens goes through
+// OpenCV's map, an equidistant (fisheye) one through telear's own loop; both must show a point
+// where the pinhole with the same K puts it, and the raw-to-pinhole table must invert them.
+TEST(DistortionMaps, RationalAndEquidistantLensesUndistortToThePinhole) {
+  CameraModel rational = camera();
+  rational.kc =
+      *Distortion::from_coefficients(DistortionModel::rational_polynomial,
+                                     {0.42, -0.08, 0.0009, -0.0006, 0.01, 0.75, 0.02, 0.003});
+  CameraModel fisheye = camera();
+  fisheye.fx = fisheye.fy = 150.0;
+  fisheye.kc =
+      *Distortion::from_coefficients(DistortionModel::equidistant, {-0.012, 0.031, -0.018, 0.004});
+  for (const CameraModel& c : {rational, fisheye}) {
+    SCOPED_TRACE(distortion_model_name(c.kc.model));
+    const Eigen::Vector3d p_cam(0.3, -0.2, 1.0);
+    const Eigen::Vector2d raw_uv = *c.project(p_cam);
+    const Eigen::Vector2d pinhole_uv = *c.project_pinhole(p_cam);
+    ASSERT_GT((raw_uv - pinhole_uv).norm(), 2.0);  // the lens moves the point visibly
+    const UndistortMaps maps = compute_undistort_maps(c);
+    const cv::Mat raw = blob_image(c.width, c.height, raw_uv, 2.0);
+    const cv::Mat undistorted = undistort_image(raw, maps);
+    EXPECT_LT((centroid(undistorted, pinhole_uv, 10) - pinhole_uv).norm(), 0.1);
+    const RawToPinholeLut lut = compute_raw_to_pinhole_lut(c);
+    // The table's pinhole position of a raw pixel, distorted again, is that raw pixel.
+    const Eigen::Vector2d q(std::lround(raw_uv.x()), std::lround(raw_uv.y()));
+    const cv::Vec2f p =
+        lut.pinhole_uv.at<cv::Vec2f>(static_cast<int>(q.y()), static_cast<int>(q.x()));
+    const Eigen::Vector2d again =
+        c.pixel_from_normalized(c.distort(c.normalized_from_pixel({p[0], p[1]})));
+    EXPECT_LT((again - q).norm(), 1e-3);
+  }
+}
+
 TEST(DistortionMaps, UndistortedImageShowsAPointWhereThePinholePutsIt) {
   const CameraModel c = camera();
   const Eigen::Vector3d p_cam(0.35, -0.25, 1.0);
