@@ -16,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "capture_test_rig.hpp"
 #include "telear/console/console_actions.hpp"
 #include "telear/console/console_app.hpp"
 #include "telear/console/ui_script.hpp"
@@ -63,20 +64,9 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
   ASSERT_TRUE(rig) << rig.error().message;
   auto marker = core::marker_mount_for(**model);
   ASSERT_TRUE(marker) << marker.error().message;
-  sim::MarkerObservationsOptions find;
-  find.rig_file = sim::default_rig_file("puma560");
-  find.configurations = 4;
-  find.seed = 2;
-  auto found = sim::simulate_marker_observations(find);
-  ASSERT_TRUE(found) << found.error().message;
-  Eigen::VectorXd start;
-  for (const auto& c : found->observations.configurations) {
-    if (!c.left_pixels.empty() && !c.right_pixels.empty()) {
-      start = c.q;
-      break;
-    }
-  }
-  ASSERT_GT(start.size(), 0);
+  auto visible = test::marker_visible_start();
+  ASSERT_TRUE(visible) << visible.error().message;
+  Eigen::VectorXd start = *visible;
   const std::vector<Eigen::VectorXd> poses =
       session::choose_capture_poses(**model, start, rig->cameras, *marker, 16, 5);
   ASSERT_GE(poses.size(), 14u);

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "capture_test_rig.hpp"
 #include "telear/core/arm_body.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/workspace.hpp"
@@ -51,27 +52,14 @@ class RegistrationCaptureTest : public ::testing::Test {
     fs::create_directories(dir);
     // The vision server serves the rig's true intrinsics as its calibration (registration is
     // what is tested here, not calibration).
-    const std::string calibration = (dir / "calibration.yaml").string();
-    ASSERT_TRUE(vision::write_files_atomically(
-        {{calibration, vision::registered_camera_yaml(
-                           rig.cameras, vision::right_from_left(rig.cameras.left.T_cam_base,
-                                                                rig.cameras.right.T_cam_base))}}));
+    auto written = test::write_true_calibration(rig, dir);
+    ASSERT_TRUE(written) << written.error().message;
+    const std::string calibration = *written;
     // Start where both cameras detect the marker (the operator's jog before capturing): the
     // first configuration the simulated rig's own observations found it at in both eyes.
-    sim::MarkerObservationsOptions find;
-    find.rig_file = sim::default_rig_file("puma560");
-    find.configurations = 4;
-    find.seed = 2;
-    auto found = sim::simulate_marker_observations(find);
-    ASSERT_TRUE(found) << found.error().message;
-    Eigen::VectorXd start;
-    for (const auto& c : found->observations.configurations) {
-      if (!c.left_pixels.empty() && !c.right_pixels.empty()) {
-        start = c.q;
-        break;
-      }
-    }
-    ASSERT_GT(start.size(), 0) << "the marker was not detected in both eyes anywhere";
+    auto visible = test::marker_visible_start();
+    ASSERT_TRUE(visible) << visible.error().message;
+    Eigen::VectorXd start = *visible;
     EmbeddedServersOptions options;
     options.calibration_file = calibration;
     options.initial_q = start;

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "capture_test_rig.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/session/embedded_servers.hpp"
 #include "telear/session/registration_capture.hpp"
@@ -50,11 +51,9 @@ class RegistrationTargetCaptureTest : public ::testing::Test {
     dir = fs::temp_directory_path() / ("telear_target_capture_" + std::to_string(std::rand()));
     fs::remove_all(dir);
     fs::create_directories(dir);
-    calibration = (dir / "calibration.yaml").string();
-    ASSERT_TRUE(vision::write_files_atomically(
-        {{calibration, vision::registered_camera_yaml(
-                           rig.cameras, vision::right_from_left(rig.cameras.left.T_cam_base,
-                                                                rig.cameras.right.T_cam_base))}}));
+    auto written = test::write_true_calibration(rig, dir);
+    ASSERT_TRUE(written) << written.error().message;
+    calibration = *written;
     // The PUMA rig file with the board on the flange: paths made absolute, `target:` added.
     const fs::path rig_file = sim::default_rig_file("puma560");
     std::ifstream in(rig_file);
@@ -134,20 +133,9 @@ class RegistrationTargetCaptureTest : public ::testing::Test {
 
 TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTheTruth) {
   // Start where both cameras see the marker (the operator's jog before an automatic capture).
-  sim::MarkerObservationsOptions find;
-  find.rig_file = sim::default_rig_file("puma560");
-  find.configurations = 4;
-  find.seed = 2;
-  auto found = sim::simulate_marker_observations(find);
-  ASSERT_TRUE(found) << found.error().message;
-  Eigen::VectorXd start;
-  for (const auto& c : found->observations.configurations) {
-    if (!c.left_pixels.empty() && !c.right_pixels.empty()) {
-      start = c.q;
-      break;
-    }
-  }
-  ASSERT_GT(start.size(), 0);
+  auto visible = test::marker_visible_start();
+  ASSERT_TRUE(visible) << visible.error().message;
+  Eigen::VectorXd start = *visible;
 
   // The marker, at automatic poses; then the board at the same poses.
   const RegistrationCaptureResult with_marker =

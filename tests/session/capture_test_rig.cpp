@@ -1,0 +1,34 @@
+#include "capture_test_rig.hpp"
+
+#include "telear/sim/marker_observations.hpp"
+#include "telear/vision/calibration_file.hpp"
+#include "telear/vision/registered_camera_file.hpp"
+#include "telear/vision/registration.hpp"
+
+namespace telear::test {
+
+Result<Eigen::VectorXd> marker_visible_start() {
+  sim::MarkerObservationsOptions find;
+  find.rig_file = sim::default_rig_file("puma560");
+  find.configurations = 4;
+  find.seed = 2;
+  auto found = sim::simulate_marker_observations(find);
+  if (!found) return found.error();
+  for (const auto& c : found->observations.configurations) {
+    if (!c.left_pixels.empty() && !c.right_pixels.empty()) return c.q;
+  }
+  return Error{"the marker was not detected in both eyes anywhere"};
+}
+
+Result<std::string> write_true_calibration(const sim::StereoRig& rig,
+                                           const std::filesystem::path& dir) {
+  const std::string calibration = (dir / "calibration.yaml").string();
+  const Status written = vision::write_files_atomically(
+      {{calibration, vision::registered_camera_yaml(
+                         rig.cameras, vision::right_from_left(rig.cameras.left.T_cam_base,
+                                                              rig.cameras.right.T_cam_base))}});
+  if (!written) return written.error();
+  return calibration;
+}
+
+}  // namespace telear::test
