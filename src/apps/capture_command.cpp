@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <ostream>
@@ -93,6 +94,36 @@ void print_pose(const session::CaptureSession& capture, const session::CapturedP
   for (const std::string& note : pose.notes) out << "  " << note << "\n";
 }
 
+// The robot and vision clients both captures use, started, with the token file's token.
+struct Clients {
+  std::unique_ptr<net::RobotClient> robot;
+  std::unique_ptr<net::VisionClient> vision;
+};
+
+Result<Clients> connect(const CaptureOptions& options) {
+  std::string token;
+  if (!options.token_file.empty()) {
+    auto t = net::load_token_file(options.token_file);
+    if (!t) return Error{"--token-file: " + t.error().message};
+    token = *t;
+  }
+  net::RobotClientOptions robot_options;
+  robot_options.address = options.robot_server;
+  robot_options.token = token;
+  robot_options.client_name = "telear-capture";
+  Clients clients;
+  clients.robot = std::make_unique<net::RobotClient>(robot_options);
+  clients.robot->start();
+  net::VisionClientOptions vision_options;
+  vision_options.address = options.vision_server;
+  vision_options.token = token;
+  vision_options.client_name = "telear-capture";
+  vision_options.jpeg_quality = 100;  // the least loss the stream offers, at the source's size
+  clients.vision = std::make_unique<net::VisionClient>(vision_options);
+  clients.vision->start();
+  return clients;
+}
+
 }  // namespace
 
 int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ostream& out,
@@ -110,25 +141,10 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
   capture_options.settle_s = options.settle_s;
   capture_options.marker = *marker;
   if (Status s = capture_options.validate(); !s) return fail(err, s.error().message);
-  std::string token;
-  if (!options.token_file.empty()) {
-    auto t = net::load_token_file(options.token_file);
-    if (!t) return fail(err, "--token-file: " + t.error().message);
-    token = *t;
-  }
-  net::RobotClientOptions robot_options;
-  robot_options.address = options.robot_server;
-  robot_options.token = token;
-  robot_options.client_name = "telear-capture";
-  net::RobotClient robot(robot_options);
-  robot.start();
-  net::VisionClientOptions vision_options;
-  vision_options.address = options.vision_server;
-  vision_options.token = token;
-  vision_options.client_name = "telear-capture";
-  vision_options.jpeg_quality = 100;  // the least loss the stream offers, at the source's size
-  net::VisionClient vision(vision_options);
-  vision.start();
+  auto clients = connect(options);
+  if (!clients) return fail(err, clients.error().message);
+  net::RobotClient& robot = *clients->robot;
+  net::VisionClient& vision = *clients->vision;
 
   const core::RobotModel& arm = **model;
   auto opened = session::CaptureSession::open(arm, robot, vision, capture_options);
@@ -257,25 +273,10 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
                          "); with another target give the poses with --poses FILE");
   }
 
-  std::string token;
-  if (!options.token_file.empty()) {
-    auto t = net::load_token_file(options.token_file);
-    if (!t) return fail(err, "--token-file: " + t.error().message);
-    token = *t;
-  }
-  net::RobotClientOptions robot_options;
-  robot_options.address = options.robot_server;
-  robot_options.token = token;
-  robot_options.client_name = "telear-capture";
-  net::RobotClient robot(robot_options);
-  robot.start();
-  net::VisionClientOptions vision_options;
-  vision_options.address = options.vision_server;
-  vision_options.token = token;
-  vision_options.client_name = "telear-capture";
-  vision_options.jpeg_quality = 100;  // the least loss the stream offers
-  net::VisionClient vision(vision_options);
-  vision.start();
+  auto clients = connect(options);
+  if (!clients) return fail(err, clients.error().message);
+  net::RobotClient& robot = *clients->robot;
+  net::VisionClient& vision = *clients->vision;
 
   auto result = session::capture_for_registration(**model, robot, vision, capture,
                                                   [&](const session::CaptureProgress& p) {
