@@ -42,12 +42,13 @@ Result<vision::CameraModel> model_from_intrinsics(const telear::v1::CameraIntrin
     camera.cy = in.cc(1);
   }
   camera.alpha_c = in.alpha_c();
-  auto model = vision::parse_distortion_model(
-      in.distortion_model().empty() ? "plumb_bob" : in.distortion_model());
-  if (!model)
-    return Error{std::string("vision server camera info, ") + eye + ": " + model.error().message};
-  auto distortion = vision::Distortion::from_coefficients(
-      *model, std::vector<double>(in.kc().begin(), in.kc().end()));
+  auto distortion = [&in]() -> Result<vision::Distortion> {
+    auto model = vision::parse_distortion_model(
+        in.distortion_model().empty() ? "plumb_bob" : in.distortion_model());
+    if (!model) return model.error();
+    return vision::Distortion::from_coefficients(
+        *model, std::vector<double>(in.kc().begin(), in.kc().end()));
+  }();
   if (!distortion) {
     return Error{std::string("vision server camera info, ") + eye + ": " +
                  distortion.error().message};
