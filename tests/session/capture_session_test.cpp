@@ -23,6 +23,7 @@
 #include "telear/vision/overlay_accuracy.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration.hpp"
+#include "test_util/mesh_test_files.hpp"
 
 namespace telear::session {
 namespace {
@@ -42,10 +43,8 @@ class CaptureSessionTest : public ::testing::Test {
     auto marker_mount = core::marker_mount_for(*model);
     ASSERT_TRUE(marker_mount) << marker_mount.error().message;
     marker = *marker_mount;
-    dir = fs::temp_directory_path() / ("telear_capture_session_test_" + std::to_string(::getpid()) +
-                                       "_" + std::to_string(std::rand()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    // A folder per test process: CTest runs the cases of this fixture in parallel.
+    dir = temp_dir.path();
     // The vision server serves the rig's true intrinsics (registration is tested here).
     auto written = test::write_true_calibration(rig, dir);
     ASSERT_TRUE(written) << written.error().message;
@@ -90,7 +89,6 @@ class CaptureSessionTest : public ::testing::Test {
     vision.reset();
     robot.reset();
     servers.reset();
-    fs::remove_all(dir);
   }
 
   // What the operator's "move there" does: a plan of two waypoints (the capture does not care
@@ -121,6 +119,7 @@ class CaptureSessionTest : public ::testing::Test {
   core::RobotModelPtr model;
   sim::StereoRig rig;
   core::MarkerMount marker;
+  test_files::TempDir temp_dir;
   fs::path dir;
   Eigen::VectorXd start;
   std::unique_ptr<EmbeddedServers> servers;

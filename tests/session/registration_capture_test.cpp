@@ -25,6 +25,7 @@
 #include "telear/vision/hand_eye_registration.hpp"
 #include "telear/vision/overlay_accuracy.hpp"
 #include "telear/vision/registered_camera_file.hpp"
+#include "test_util/mesh_test_files.hpp"
 
 namespace telear::session {
 namespace {
@@ -44,12 +45,8 @@ class RegistrationCaptureTest : public ::testing::Test {
     auto marker_mount = core::marker_mount_for(*model);
     ASSERT_TRUE(marker_mount) << marker_mount.error().message;
     marker = *marker_mount;
-    dir = fs::temp_directory_path() /
-          ("telear_capture_test_" +
-           std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-           std::to_string(std::rand()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    // A folder per test process: CTest runs the cases of this fixture in parallel.
+    dir = temp_dir.path();
     // The vision server serves the rig's true intrinsics as its calibration (registration is
     // what is tested here, not calibration).
     auto written = test::write_true_calibration(rig, dir);
@@ -89,12 +86,12 @@ class RegistrationCaptureTest : public ::testing::Test {
     vision.reset();
     robot.reset();
     servers.reset();
-    fs::remove_all(dir);
   }
 
   core::RobotModelPtr model;
   sim::StereoRig rig;
   core::MarkerMount marker;
+  test_files::TempDir temp_dir;
   fs::path dir;
   std::unique_ptr<EmbeddedServers> servers;
   std::unique_ptr<net::RobotClient> robot;

@@ -23,6 +23,7 @@
 #include "telear/vision/overlay_accuracy.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration_target.hpp"
+#include "test_util/mesh_test_files.hpp"
 
 namespace telear::session {
 namespace {
@@ -48,9 +49,8 @@ class RegistrationTargetCaptureTest : public ::testing::Test {
     auto mount = core::marker_mount_for(*model);
     ASSERT_TRUE(mount) << mount.error().message;
     marker = *mount;
-    dir = fs::temp_directory_path() / ("telear_target_capture_" + std::to_string(std::rand()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    // A folder per test process: CTest runs the cases of this fixture in parallel.
+    dir = temp_dir.path();
     auto written = test::write_true_calibration(rig, dir);
     ASSERT_TRUE(written) << written.error().message;
     calibration = *written;
@@ -69,8 +69,6 @@ class RegistrationTargetCaptureTest : public ::testing::Test {
     board_rig = (dir / "board_rig.yaml").string();
     std::ofstream(board_rig) << yaml << "target: \"" << kBoard << "\"\n";
   }
-
-  void TearDown() override { fs::remove_all(dir); }
 
   // Captures through freshly started servers on `rig_file`; auto_poses > 0 or `poses`.
   RegistrationCaptureResult capture(const std::string& rig_file, const std::string& name,
@@ -126,6 +124,7 @@ class RegistrationTargetCaptureTest : public ::testing::Test {
   core::RobotModelPtr model;
   sim::StereoRig rig;
   core::MarkerMount marker;
+  test_files::TempDir temp_dir;
   fs::path dir;
   std::string calibration;
   std::string board_rig;

@@ -15,7 +15,7 @@ TempDir::TempDir() {
   static std::atomic<int> counter{0};
   std::random_device rd;
   path_ = fs::temp_directory_path() /
-          ("telear_geometry_" + std::to_string(rd()) + "_" + std::to_string(counter++));
+          ("telear_test_" + std::to_string(rd()) + "_" + std::to_string(counter++));
   fs::create_directories(path_);
 }
 
