@@ -89,9 +89,18 @@ void jog(net::RobotClient& robot, const core::MotionCommand& command, std::ostre
 void print_pose(const session::CaptureSession& capture, const session::CapturedPoseReport& pose,
                 std::ostream& out) {
   const vision::CaptureObservations& detected = capture.detected();
-  out << pose.summary() << " (" << capture.poses().size() << " poses, marker in "
+  out << pose.summary() << " (" << capture.poses().size() << " poses, " << pose.target << " in "
       << detected.left_found << " left / " << detected.right_found << " right)\n";
   for (const std::string& note : pose.notes) out << "  " << note << "\n";
+}
+
+// The target on the flange: --target, else the robot's marker (its mount says where either sits).
+Result<vision::RegistrationTarget> target_of(const CaptureOptions& options,
+                                             const core::MarkerMount& marker) {
+  if (options.target.empty()) return vision::registration_target_from_mount(marker);
+  auto parsed = vision::parse_registration_target(options.target);
+  if (!parsed) return Error{"--target: " + parsed.error().message};
+  return *parsed;
 }
 
 // The robot and vision clients both captures use, started, with the token file's token.
@@ -135,11 +144,14 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
   if (!model) return fail(err, "--arm: " + model.error().message);
   auto marker = core::marker_mount_for(**model);
   if (!marker) return fail(err, "marker: " + marker.error().message);
+  auto target = target_of(options, *marker);
+  if (!target) return fail(err, target.error().message);
   session::CaptureSessionOptions capture_options;
   capture_options.directory = options.output;
   capture_options.frames_per_pose = options.frames;
   capture_options.settle_s = options.settle_s;
   capture_options.marker = *marker;
+  capture_options.target = *target;
   if (Status s = capture_options.validate(); !s) return fail(err, s.error().message);
   auto clients = connect(options);
   if (!clients) return fail(err, clients.error().message);
@@ -152,9 +164,10 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
   session::CaptureSession& capture = **opened;
   if (Status s = robot.acquire_lease(kLeaseHeartbeatS); !s)
     return fail(err, "lease: " + s.error().message, 1);
-  out << "manual capture into " << options.output << " (" << arm.name() << ", marker id "
-      << marker->id << "): jog the arm until both cameras see the marker, add the pose, and "
-      << "repeat over the images, turning the wrist\n"
+  const std::string noun = target->is_board() ? "board" : "marker";
+  out << "manual capture into " << options.output << " (" << arm.name() << ", "
+      << target->description() << "): jog the arm until both cameras see the " << noun
+      << ", add the pose, and repeat over the images, turning the wrist\n"
       << kManualHelp << std::flush;
 
   for (std::string line; std::getline(in, line);) {
@@ -214,9 +227,9 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
   }
   const std::string coverage = options.output + "/coverage.png";
   if (cv::imwrite(coverage, capture.coverage())) {
-    out << "coverage: the marker found at " << capture.detected().left_found << " (left) and "
-        << capture.detected().right_found << " (right) of " << capture.poses().size() << " poses; "
-        << coverage << "\n";
+    out << "coverage: the " << noun << " found at " << capture.detected().left_found
+        << " (left) and " << capture.detected().right_found << " (right) of "
+        << capture.poses().size() << " poses; " << coverage << "\n";
   }
   out << "wrote " << options.output << "/capture.yaml (" << capture.poses().size()
       << " poses); register with: telear register --captures " << options.output << " --robot "
@@ -225,8 +238,6 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
 }
 
 int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& err) {
-  if (options.manual && !options.target.empty())
-    return fail(err, "--target: a manual capture detects the robot's marker; leave --target out");
   if (options.manual) return run_manual_capture(options, std::cin, out, err);
   if (options.robot_server.empty()) return fail(err, "--robot: give the robot server HOST:PORT");
   if (options.vision_server.empty()) return fail(err, "--vision: give the vision server HOST:PORT");
@@ -235,14 +246,9 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
   if (!model) return fail(err, "--arm: " + model.error().message);
   auto marker = core::marker_mount_for(**model);
   if (!marker) return fail(err, "marker: " + marker.error().message);
-  // The target recorded in the folder for `telear register` (default: the mount's marker).
-  vision::RegistrationTarget target = vision::registration_target_from_mount(*marker);
-  if (!options.target.empty()) {
-    auto parsed = vision::parse_registration_target(options.target);
-    if (!parsed) return fail(err, "--target: " + parsed.error().message);
-    target = *parsed;
-  }
-  const bool other_target = target.spec() != vision::registration_target_from_mount(*marker).spec();
+  // Detected for automatic poses and recorded in the folder for `telear register`.
+  auto target = target_of(options, *marker);
+  if (!target) return fail(err, target.error().message);
 
   session::RegistrationCaptureOptions capture;
   capture.directory = options.output;
@@ -251,6 +257,7 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
   capture.settle_s = options.settle_s;
   capture.seed = options.seed;
   capture.marker = *marker;
+  capture.target = *target;
   if (options.poses.rfind("auto:", 0) == 0) {
     const std::string count = options.poses.substr(5);
     try {
@@ -266,12 +273,6 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
     capture.poses = std::move(*poses);
   }
   if (Status s = capture.validate(); !s) return fail(err, s.error().message);
-  if (other_target && capture.auto_poses > 0) {
-    return fail(err, "--target " + target.spec() +
-                         ": automatic poses start from the robot's marker (" +
-                         vision::registration_target_from_mount(*marker).description() +
-                         "); with another target give the poses with --poses FILE");
-  }
 
   auto clients = connect(options);
   if (!clients) return fail(err, clients.error().message);
@@ -284,19 +285,13 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
                                                   });
   if (!result) return fail(err, result.error().message, 1);
   for (const std::string& note : result->notes) out << "note: " << note << "\n";
-  if (other_target) {
-    // The folder names the target the flange carried, so that register finds it by default.
-    result->capture.target = target.spec();
-    if (Status s = vision::write_capture_manifest(result->capture, options.output); !s)
-      return fail(err, s.error().message, 1);
-  }
   // Where the target was seen in each eye, for the operator to judge the spread.
-  auto detected = vision::detect_capture_targets(options.output, result->capture, target);
+  auto detected = vision::detect_capture_targets(options.output, result->capture, *target);
   if (detected) {
     const std::string coverage = options.output + "/coverage.png";
     const auto& camera = result->cameras.left;
     if (cv::imwrite(coverage, vision::coverage_image(*detected, camera.width, camera.height))) {
-      out << "coverage: the " << (target.is_board() ? "board" : "marker") << " found at "
+      out << "coverage: the " << (target->is_board() ? "board" : "marker") << " found at "
           << detected->left_found << " (left) and " << detected->right_found << " (right) of "
           << result->capture.poses.size() << " poses; " << coverage << "\n";
     }

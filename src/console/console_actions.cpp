@@ -184,10 +184,16 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
       if (a.text.empty()) return Error{"give the folder to write the capture into"};
       session::CaptureSessionOptions options;
       options.directory = a.text;
+      if (!a.spec.empty()) {
+        auto target = vision::parse_registration_target(a.spec);
+        if (!target) return Error{"registration: " + target.error().message};
+        options.target = *target;
+      }
       if (Status st = s.open_capture(std::move(options)); !st.ok()) return st;
       ui.show_registration = true;
       ui.last_message = "registration: capturing into " + a.text +
-                        "; jog the real arm until both cameras see the marker, then add the pose";
+                        "; jog the real arm until both cameras see the " +
+                        s.capture()->target().description() + ", then add the pose";
       return Status::Ok();
     }
     case ActionKind::kCaptureAdd: {

@@ -80,7 +80,7 @@ void draw_result(const session::CaptureSession& capture) {
     return;
   }
   const vision::HandEyeResult& r = capture.solution()->result;
-  ImGui::Text("base: +-%.2f mm  +-%.3f deg (1 sigma)   marker on the flange: +-%.2f mm",
+  ImGui::Text("base: +-%.2f mm  +-%.3f deg (1 sigma)   target on the flange: +-%.2f mm",
               r.base_sigma.position_mm, r.base_sigma.rotation_deg, r.target_sigma.position_mm);
   ImGui::Text("%d poses used, rms %.2f px left, %.2f px right", r.views_used, r.left.rms_px,
               r.right.rms_px);
@@ -112,11 +112,15 @@ void draw_registration_panel(PanelContext& ctx, const PanelLayout& layout,
     ImGui::InputText("##folder", ui.capture_folder, sizeof ui.capture_folder);
     ImGui::SameLine();
     if (ImGui::Button("Open capture")) {
-      ctx.act({.kind = ActionKind::kCaptureOpen, .text = ui.capture_folder});
+      ctx.act(
+          {.kind = ActionKind::kCaptureOpen, .text = ui.capture_folder, .spec = ui.capture_target});
     }
+    ImGui::SetNextItemWidth(260);
+    ImGui::InputTextWithHint("target##capture", "the robot's marker, or e.g. charuco:5x5:...",
+                             ui.capture_target, sizeof ui.capture_target);
     ImGui::TextWrapped(
         "Register the cameras to the robot: open a new folder, jog the real arm (Real robot "
-        "panel, or keys with 'real' selected) until both cameras see the flange's marker, Add "
+        "panel, or keys with 'real' selected) until both cameras see the flange's target, Add "
         "pose, and repeat over the images turning the wrist; then Solve.");
     ImGui::End();
     return;
@@ -132,8 +136,9 @@ void draw_registration_panel(PanelContext& ctx, const PanelLayout& layout,
   if (ImGui::Button("Solve", ImVec2(80, 0))) ctx.act(simple(ActionKind::kCaptureSolve));
   ImGui::SameLine();
   const vision::CaptureObservations& detected = capture->detected();
-  ImGui::Text("%zu poses, marker in %d left / %d right", capture->poses().size(),
-              detected.left_found, detected.right_found);
+  ImGui::Text("%zu poses, %s in %d left / %d right", capture->poses().size(),
+              capture->target().is_board() ? "board" : "marker", detected.left_found,
+              detected.right_found);
   if (!idle) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(0.9f, 0.7f, 0.2f, 1), "(arm moving: added at rest)");

@@ -276,8 +276,9 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
   }
   if (verb == "registration") {
     if (sub == "open") {
-      need(w, 3, 3, "registration open FOLDER");
+      need(w, 3, 4, "registration open FOLDER [TARGET]");
       a.text = w[2];
+      if (w.size() == 4) a.spec = w[3];
       return action(ActionKind::kCaptureOpen);
     }
     if (sub == "add") return need(w, 2, 2, "registration add"), action(ActionKind::kCaptureAdd);

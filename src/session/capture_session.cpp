@@ -145,11 +145,11 @@ Status CaptureSessionOptions::validate() const {
 std::string CapturedPoseReport::summary() const {
   std::string seen;
   if (left_seen && right_seen) {
-    seen = "marker seen left and right";
+    seen = target + " seen left and right";
   } else if (left_seen || right_seen) {
-    seen = std::string("marker seen ") + (left_seen ? "left only" : "right only");
+    seen = target + " seen " + (left_seen ? "left only" : "right only");
   } else {
-    seen = "marker not seen";
+    seen = target + " not seen";
   }
   return "pose " + std::to_string(index) + ": " + std::to_string(frames) + " frame" +
          (frames == 1 ? "" : "s") + ", " + seen;
@@ -174,14 +174,15 @@ Result<std::unique_ptr<CaptureSession>> CaptureSession::open(const core::RobotMo
   std::unique_ptr<CaptureSession> session(
       new CaptureSession(model, robot, vision, std::move(options)));
   session->info_ = std::move(*info);
-  const core::MarkerMount& marker = *session->options_.marker;
+  CaptureSessionOptions& opened = session->options_;
+  if (!opened.target) opened.target = vision::registration_target_from_mount(*opened.marker);
   vision::CaptureSet& capture = session->capture_;
   capture.robot = model.name();
-  capture.target = "aruco:" + marker.dictionary + ":" + std::to_string(marker.id) + ":" +
-                   core::format_number(marker.side_m);
-  if (Status s = write_capture_cameras(session->options_.directory, session->info_, capture); !s)
+  capture.target = opened.target->spec();
+  if (Status s = write_capture_cameras(opened.directory, session->info_, capture); !s)
     return s.error();
-  session->detected_.observations.target_points = vision::marker_target_points(marker);
+  session->detected_.target = *opened.target;
+  session->detected_.observations.target_points = opened.target->points();
   return session;
 }
 
@@ -253,7 +254,7 @@ Result<CapturedPoseReport> CaptureSession::add_current_pose() {
                  std::to_string(left.width) + "x" + std::to_string(left.height) +
                  ": capture at the cameras' own size"};
   }
-  auto detected = vision::detect_capture_targets(options_.directory, one, *options_.marker);
+  auto detected = vision::detect_capture_targets(options_.directory, one, *options_.target);
   if (!detected) return Error{label + ": " + detected.error().message};
 
   capture_.poses.push_back(pose);
@@ -264,6 +265,7 @@ Result<CapturedPoseReport> CaptureSession::add_current_pose() {
   }
   CapturedPoseReport report;
   report.index = index;
+  report.target = options_.target->is_board() ? "board" : "marker";
   report.frames = static_cast<int>(pose.frames.size());
   report.q = pose.q;
   vision::HandEyeView view = detected->observations.views.front();
@@ -284,7 +286,7 @@ Result<CapturedPoseReport> CaptureSession::add_current_pose() {
 
 Result<vision::CaptureRegistration> CaptureSession::solve() {
   auto registration = vision::register_captures(model_, options_.directory, "", *options_.marker,
-                                                options_.hand_eye);
+                                                options_.hand_eye, options_.target);
   ++revision_;
   if (!registration) {
     solve_error_ = registration.error().message;

@@ -54,7 +54,8 @@ bool segment_crosses(const Eigen::Vector3d& a, const Eigen::Vector3d& d, const E
 
 MarkerVisibility::MarkerVisibility(const core::RobotModel& model, const core::MarkerMount& marker,
                                    const core::ArmBody* body, const core::Workspace* workspace,
-                                   const MarkerVisibilityOptions& options)
+                                   const MarkerVisibilityOptions& options,
+                                   const std::optional<vision::RegistrationTarget>& target)
     : model_(model), marker_(marker), options_(options), data_(model) {
   if (body) {
     const float opening = body->default_gripper_opening();
@@ -81,9 +82,21 @@ MarkerVisibility::MarkerVisibility(const core::RobotModel& model, const core::Ma
       occluders_.push_back(std::move(o));
     }
   }
-  const double h = 0.5 * marker.side_m * options.sight_scale;
+  // Half the target's size: a marker's black square, a board's chessboard (its corners and
+  // the markers they are interpolated from lie inside it).
+  const vision::RegistrationTarget seen =
+      target ? *target : vision::registration_target_from_mount(marker);
+  const Eigen::Vector2d half = seen.is_board()
+                                   ? Eigen::Vector2d(0.5 * seen.squares_x * seen.square_m,
+                                                     0.5 * seen.squares_y * seen.square_m)
+                                   : Eigen::Vector2d::Constant(0.5 * seen.side_m);
+  corners_ = {Eigen::Vector3d(-half.x(), half.y(), 0.0), Eigen::Vector3d(half.x(), half.y(), 0.0),
+              Eigen::Vector3d(half.x(), -half.y(), 0.0),
+              Eigen::Vector3d(-half.x(), -half.y(), 0.0)};
+  cell_m_ = (seen.is_board() ? seen.marker_m : seen.side_m) / seen.marker_cells();
+  const Eigen::Vector2d h = half * options.sight_scale;
   for (int i = -1; i <= 1; ++i) {
-    for (int j = -1; j <= 1; ++j) sight_points_.emplace_back(i * h, j * h, 0.0);
+    for (int j = -1; j <= 1; ++j) sight_points_.emplace_back(i * h.x(), j * h.y(), 0.0);
   }
 }
 
@@ -119,14 +132,21 @@ std::string MarkerVisibility::hidden_reason(const vision::CameraModel& camera,
                core::degrees_from_radians(std::acos(std::clamp(cos_view, -1.0, 1.0))), 0) +
            " deg)";
   }
-  for (const Eigen::Vector3d& p : marker_.corners_flange()) {
-    const auto uv = camera.project(data_.T_base_link.back() * p);
+  for (const Eigen::Vector3d& p : corners_) {
+    const auto uv = camera.project(T_base_marker * p);
     if (!uv || uv->x() < options_.margin_px || uv->y() < options_.margin_px ||
         uv->x() > camera.width - options_.margin_px ||
         uv->y() > camera.height - options_.margin_px) {
       return "outside the image";
     }
   }
+  // A cell at the centre, along the target's x and y: its smaller projected extent.
+  const auto c = camera.project(centre);
+  const auto cx = camera.project(T_base_marker * Eigen::Vector3d(cell_m_, 0.0, 0.0));
+  const auto cy = camera.project(T_base_marker * Eigen::Vector3d(0.0, cell_m_, 0.0));
+  if (!c || !cx || !cy) return "outside the image";
+  const double cell_px = std::min((*cx - *c).norm(), (*cy - *c).norm());
+  if (cell_px < options_.min_cell_px) return "cells of " + core::format_fixed(cell_px, 1) + " px";
   for (const Occluder& o : occluders_) {
     const Eigen::Isometry3d T_part_base =
         (o.link < 0 ? o.T_link_part

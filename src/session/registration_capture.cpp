@@ -22,6 +22,7 @@
 #include "telear/vision/capture_observations.hpp"
 #include "telear/vision/hand_eye_registration.hpp"
 #include "telear/vision/marker_detection.hpp"
+#include "telear/vision/registration_target.hpp"
 
 namespace telear::session {
 namespace {
@@ -84,32 +85,32 @@ Result<net::RobotStateSample> move_to(const core::RobotModel& model, net::RobotC
                core::format_fixed(options.pose_timeout_s, 0) + " s"};
 }
 
-// Rough camera poses from the marker at the current pose (auto poses).
+// Rough camera poses from the target at the current pose (auto poses): its pose in each camera
+// (PnP on the points seen; a board may be seen in part) and its nominal pose on the flange.
 Result<vision::StereoCameraModel> rough_cameras(const core::RobotModel& model,
                                                 const net::RobotStateSample& state,
                                                 const net::DecodedStereoFrame& frame,
                                                 vision::StereoCameraModel cameras,
-                                                const core::MarkerMount& marker) {
+                                                const core::MarkerMount& marker,
+                                                const vision::RegistrationTarget& target) {
   core::KinematicsData data(model);
   core::forward_kinematics(model, data, state.state.q);
-  const Eigen::Isometry3d T_base_marker = data.T_base_link.back() * marker.T_flange_marker;
-  const std::vector<Eigen::Vector3d> points = vision::marker_target_points(marker);
+  const Eigen::Isometry3d T_base_target = data.T_base_link.back() * marker.T_flange_marker;
+  const std::vector<Eigen::Vector3d> points = target.points();
   for (auto [eye, camera, image] : {std::tuple{"left", &cameras.left, &frame.left},
                                     std::tuple{"right", &cameras.right, &frame.right}}) {
-    const std::vector<Eigen::Vector2d> corners =
-        vision::detect_aruco_marker(rgb_view(*image), marker.id);
+    const vision::TargetDetection seen =
+        vision::detect_registration_target(rgb_view(*image), target);
     std::vector<vision::TargetPixel> pixels;
-    for (std::size_t k = 0; k < corners.size(); ++k) {
-      pixels.push_back({static_cast<int>(k), corners[k]});
+    for (std::size_t k = 0; k < seen.ids.size(); ++k)
+      pixels.push_back({seen.ids[k], seen.pixels[k]});
+    const auto T_cam_target = vision::target_pose_in_camera(*camera, points, pixels);
+    if (!T_cam_target) {
+      return Error{"the " + target.description() + " is not seen by the " + eye +
+                   " camera at the arm's current pose: jog the arm until both cameras see "
+                   "it, then capture again"};
     }
-    const auto T_cam_marker = vision::target_pose_in_camera(*camera, points, pixels);
-    if (!T_cam_marker) {
-      return Error{std::string("the marker (ArUco id ") + std::to_string(marker.id) +
-                   ") is not seen by the " + eye +
-                   " camera at the arm's current pose: jog the arm until both cameras see the "
-                   "marker, then capture again"};
-    }
-    camera->T_cam_base = *T_cam_marker * T_base_marker.inverse();
+    camera->T_cam_base = *T_cam_target * T_base_target.inverse();
   }
   return cameras;
 }
@@ -157,19 +158,18 @@ Result<std::vector<Eigen::VectorXd>> load_capture_poses_file(const std::string& 
   return out;
 }
 
-std::vector<Eigen::VectorXd> choose_capture_poses(const core::RobotModel& model,
-                                                  const Eigen::VectorXd& q_start,
-                                                  const vision::StereoCameraModel& rough,
-                                                  const core::MarkerMount& marker, int count,
-                                                  std::uint64_t seed, const core::ArmBody* body,
-                                                  const core::Workspace* workspace) {
+std::vector<Eigen::VectorXd> choose_capture_poses(
+    const core::RobotModel& model, const Eigen::VectorXd& q_start,
+    const vision::StereoCameraModel& rough, const core::MarkerMount& marker, int count,
+    std::uint64_t seed, const core::ArmBody* body, const core::Workspace* workspace,
+    const std::optional<vision::RegistrationTarget>& target) {
   struct Candidate {
     Eigen::VectorXd q;
     Eigen::Isometry3d T_base_marker;
   };
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  MarkerVisibility visibility(model, marker, body, workspace);
+  MarkerVisibility visibility(model, marker, body, workspace, {}, target);
   const auto marker_at = [&](const Eigen::VectorXd& q) { return visibility.marker_pose(q); };
   std::vector<Candidate> candidates;
   const int tries = std::min(20000, 80 * count);
@@ -228,16 +228,16 @@ Result<RegistrationCaptureResult> capture_for_registration(
   RegistrationCaptureResult out;
   out.cameras = info->cameras;
   out.capture.robot = model.name();
-  out.capture.target = "aruco:" + options.marker.dictionary + ":" +
-                       std::to_string(options.marker.id) + ":" +
-                       core::format_number(options.marker.side_m);
+  const vision::RegistrationTarget target =
+      options.target ? *options.target : vision::registration_target_from_mount(options.marker);
+  out.capture.target = target.spec();
   std::vector<Eigen::VectorXd> poses = options.poses;
   if (options.auto_poses > 0) {
     const auto state = robot.wait_state(0, 5.0);
     if (!state) return Error{"capture: no robot state from the robot server within 5 s"};
     const auto frame = frame_after(vision, core::monotonic_ns(), 0, 5.0);
     if (!frame) return Error{"capture: no video frame from the vision server within 5 s"};
-    auto rough = rough_cameras(model, *state, *frame, info->cameras, options.marker);
+    auto rough = rough_cameras(model, *state, *frame, info->cameras, options.marker, target);
     if (!rough) return Error{"capture: " + rough.error().message};
     std::optional<core::ArmBody> body = options.body;
     if (!body) {
@@ -247,16 +247,16 @@ Result<RegistrationCaptureResult> capture_for_registration(
     }
     poses = choose_capture_poses(model, state->state.q, *rough, options.marker, options.auto_poses,
                                  options.seed, &*body,
-                                 options.workspace ? &*options.workspace : nullptr);
+                                 options.workspace ? &*options.workspace : nullptr, target);
     if (poses.empty()) {
       return Error{
-          "capture: no pose around the current one keeps the marker in both cameras' "
-          "view: move the arm so the marker faces both cameras, then capture again"};
+          "capture: no pose around the current one keeps the " + target.description() +
+          " in both cameras' view: move the arm so it faces both cameras, then capture again"};
     }
     if (static_cast<int>(poses.size()) < options.auto_poses) {
       out.notes.push_back("only " + std::to_string(poses.size()) + " of " +
-                          std::to_string(options.auto_poses) +
-                          " automatic poses keep the marker in view");
+                          std::to_string(options.auto_poses) + " automatic poses keep the " +
+                          target.description() + " in view");
     }
   }
 

@@ -38,11 +38,10 @@ def main():
               "apriltag:36h12:0:0.1", "-o", folder + "/capture"],
              "telear capture: --target: target 'apriltag:36h12:0:0.1': unknown AprilTag family "
              "'36h12'"),
-            (["capture", "--robot", "localhost:1", "--vision", "localhost:2", "--target",
-              "charuco:4x4:0.08:0.05:4x4_50", "-o", folder + "/capture"],
-             "telear capture: --target charuco:4x4:0.08:0.05:DICT_4X4_50: automatic poses start "
-             "from the robot's marker (ArUco marker 0 (DICT_4X4_50, 0.1 m)); with another "
-             "target give the poses with --poses FILE"),
+            (["capture", "--manual", "--robot", "localhost:1", "--vision", "localhost:2",
+              "--target", "charuco:4x4:0.08:0.05:4x4_99", "-o", folder + "/capture"],
+             "telear capture: --target: target 'charuco:4x4:0.08:0.05:4x4_99': unknown ArUco "
+             "dictionary '4x4_99'"),
         ]
         for arguments, expected in cases:
             code, message = run(telear, arguments)

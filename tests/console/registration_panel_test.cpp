@@ -42,7 +42,8 @@ using ::testing::HasSubstr;
 std::string degrees(const Eigen::VectorXd& q) {
   std::string out;
   for (int j = 0; j < q.size(); ++j) {
-    out += (j ? "," : "") + core::format_fixed(core::degrees_from_radians(q[j]), 4);
+    if (j > 0) out += ',';
+    out += core::format_fixed(core::degrees_from_radians(q[j]), 4);
   }
   return out;
 }
@@ -89,6 +90,9 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
             "registration add   # fails: no capture open (counted, the script goes on)\n"
             "registration open "
          << captures.string()
+         << " qr:1   # fails: an unknown target\n"
+            "registration open "
+         << captures.string()
          << "\n"
             "real initialize "
          << degrees(start)
@@ -129,10 +133,12 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
     ASSERT_TRUE(app.frame()) << log.str();
     ASSERT_LT(std::chrono::duration<double>(Clock::now() - begin).count(), 300) << log.str();
   }
-  EXPECT_EQ(app.script().failures(), 2) << log.str();
+  EXPECT_EQ(app.script().failures(), 3) << log.str();
   EXPECT_THAT(log.str(), HasSubstr("line 3: registration add: no capture open: open one on a "
                                    "folder first"));
-  EXPECT_THAT(log.str(), HasSubstr("line 11: registration solve: capture '"));
+  EXPECT_THAT(log.str(), HasSubstr("line 4: registration open " + captures.string() +
+                                   " qr:1: registration: target 'qr:1': unknown kind 'qr'"));
+  EXPECT_THAT(log.str(), HasSubstr("line 12: registration solve: capture '"));
 
   // The capture is the Session's; the console only shows it.
   const session::CaptureSession* capture = app.session().capture();
@@ -174,18 +180,22 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
 TEST(RegistrationPanel, ScriptLinesParseAndExplainMistakes) {
   auto lines = parse_ui_script(
       "registration open caps\nregistration add\nregistration solve\n"
-      "registration close\n",
+      "registration close\nregistration open board charuco:5x5:0.06:0.045:4x4_50\n",
       6, "s.txt");
   ASSERT_TRUE(lines) << lines.error().message;
-  ASSERT_EQ(lines->size(), 4u);
+  ASSERT_EQ(lines->size(), 5u);
   const auto& open = std::get<UiAction>((*lines)[0].step);
   EXPECT_EQ(open.kind, ActionKind::kCaptureOpen);
   EXPECT_EQ(open.text, "caps");
+  EXPECT_EQ(open.spec, "");  // the robot's marker
   EXPECT_EQ(std::get<UiAction>((*lines)[3].step).kind, ActionKind::kCaptureClose);
+  const auto& open_board = std::get<UiAction>((*lines)[4].step);
+  EXPECT_EQ(open_board.text, "board");
+  EXPECT_EQ(open_board.spec, "charuco:5x5:0.06:0.045:4x4_50");
   auto bad = parse_ui_script("registration open\n", 6, "s.txt");
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().message,
-            "s.txt, line 1: registration open: usage: registration open FOLDER");
+            "s.txt, line 1: registration open: usage: registration open FOLDER [TARGET]");
   bad = parse_ui_script("wait 1\nregistration undo\n", 6, "s.txt");
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().message,

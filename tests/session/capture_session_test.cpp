@@ -255,6 +255,23 @@ TEST_F(CaptureSessionTest, RefusesAUsedFolderBadOptionsAndAReducedStream) {
             "cameras' own size");
   EXPECT_TRUE((*opened)->poses().empty());
   EXPECT_FALSE(fs::exists(fs::path((*opened)->directory()) / "capture.yaml"));
+
+  // Another target than the robot's marker: detected in every pose and named in the folder.
+  // This rig's flange carries the marker, so the board is not seen, and the pose says so.
+  options = options_for("board");
+  auto board = vision::parse_registration_target("charuco:4x4:0.08:0.05:4x4_50");
+  ASSERT_TRUE(board) << board.error().message;
+  options.target = *board;
+  opened = CaptureSession::open(*model, *robot, *vision, options);
+  ASSERT_TRUE(opened) << opened.error().message;
+  EXPECT_EQ((*opened)->target().spec(), "charuco:4x4:0.08:0.05:DICT_4X4_50");
+  added = (*opened)->add_current_pose();
+  ASSERT_TRUE(added) << added.error().message;
+  EXPECT_EQ(added->summary(), "pose 0: 2 frames, board not seen");
+  EXPECT_THAT(added->notes, ::testing::Contains(HasSubstr("the board")));
+  auto folder = vision::load_capture_folder((*opened)->directory());
+  ASSERT_TRUE(folder) << folder.error().message;
+  EXPECT_EQ(folder->target, "charuco:4x4:0.08:0.05:DICT_4X4_50");
 }
 
 }  // namespace

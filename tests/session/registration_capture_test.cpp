@@ -276,6 +276,18 @@ TEST(MarkerVisibilityTest, NamesWhatHidesTheMarker) {
   Eigen::VectorXd turned = q;
   turned[5] += M_PI;
   EXPECT_THAT(clear.hidden_reason(camera, turned), ::testing::StartsWith("faces away ("));
+
+  // Another target on the same mount: a board whose chessboard is the marker's size is seen
+  // as the marker is; a 2 m board does not fit in the image.
+  auto small_board = vision::parse_registration_target("charuco:2x2:0.05:0.048:4x4_50");
+  ASSERT_TRUE(small_board) << small_board.error().message;
+  auto large_board = vision::parse_registration_target("charuco:10x10:0.2:0.15:6x6_250");
+  ASSERT_TRUE(large_board) << large_board.error().message;
+  MarkerVisibility small(**model, *marker, &arm, nullptr, {}, *small_board);
+  MarkerVisibility large(**model, *marker, &arm, nullptr, {}, *large_board);
+  EXPECT_EQ(small.hidden_reason(camera, q), "");
+  EXPECT_EQ(large.hidden_reason(camera, q), "outside the image");
+  EXPECT_TRUE(small.marker_pose(q).isApprox(clear.marker_pose(q)));
 }
 
 }  // namespace

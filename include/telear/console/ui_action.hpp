@@ -58,7 +58,7 @@ enum class ActionKind {
   kViewMode,      // text = auto | ar | vr
   kViewReported,  // value != 0: show the reported ghost
   // registration capture (the Registration panel)
-  kCaptureOpen,   // text = folder
+  kCaptureOpen,   // text = folder, spec = the target (empty: the robot's marker)
   kCaptureAdd,    // the pose the real arm is at
   kCaptureSolve,  // register with the poses so far
   kCaptureClose,
@@ -77,6 +77,7 @@ struct UiAction {
   Eigen::Vector3d dM = Eigen::Vector3d::Zero();
   Eigen::VectorXd q{};
   std::string text{};
+  std::string spec{};  // a second text argument: registration open's target
 };
 
 // "ghost joint", "plan add" ...: for messages.

@@ -57,6 +57,7 @@ struct UiState {
   // [SECTION] registration capture (the capture itself is the Session's)
   bool show_registration = false;
   char capture_folder[256] = "captures";
+  char capture_target[128] = "";  // a target spec; empty: the robot's marker
 
   // [SECTION] connection (editable; "Connect" rebuilds the session with them)
   char robot_address[128] = "";

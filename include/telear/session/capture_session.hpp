@@ -11,7 +11,7 @@
 //                      frames_per_pose stereo frames exposed after that instant whose eyes
 //                      are within max_sync_skew_ns, writes them, appends the pose and rewrites
 //                      DIR/capture.yaml -- the folder on disk is complete after every pose.
-//                      The marker is then detected in the new images (per eye: seen or not),
+//                      The target is then detected in the new images (per eye: seen or not),
 //                      and the coverage so far is updated.
 // solve():             register_captures on the folder as it stands, the report beside it.
 //
@@ -38,6 +38,7 @@
 #include "telear/vision/capture_folder.hpp"
 #include "telear/vision/capture_observations.hpp"
 #include "telear/vision/capture_registration.hpp"
+#include "telear/vision/registration_target.hpp"
 
 namespace telear::session {
 
@@ -88,6 +89,9 @@ struct CaptureSessionOptions {
   double rest_timeout_s = 30.0;  // for the arm to come to rest, and again for the frames
   std::int64_t max_sync_skew_ns = 5'000'000;
   std::optional<core::MarkerMount> marker;  // unset: the robot's own (core::marker_mount_for)
+  // The target on the flange, where the mount sits (unset: the mount's marker); detected in
+  // every pose and named in the folder for `telear register`.
+  std::optional<vision::RegistrationTarget> target;
   vision::HandEyeOptions hand_eye;
 
   Status validate() const;  // names the field and the range
@@ -97,7 +101,8 @@ struct CaptureSessionOptions {
 struct CapturedPoseReport {
   int index = 0;  // 0-based, as the folder names it (pose_007); "pose N" in messages
   int frames = 0;
-  bool left_seen = false;  // the marker found in that eye (in a frame, corners steady)
+  std::string target = "marker";  // or "board": what the summary says was seen
+  bool left_seen = false;         // the target found in that eye (in a frame, corners steady)
   bool right_seen = false;
   Eigen::VectorXd q;               // rad, measured at rest
   std::vector<std::string> notes;  // the detection's, e.g. not found, moved between frames
@@ -120,15 +125,16 @@ class CaptureSession {
   Result<CapturedPoseReport> add_current_pose();
 
   // register_captures on the folder as it stands (needs hand_eye.min_views poses with the
-  // marker seen, turning about two axes). The last success is kept in solution().
+  // target seen, turning about two axes). The last success is kept in solution().
   Result<vision::CaptureRegistration> solve();
 
   const std::string& directory() const { return options_.directory; }
   const core::MarkerMount& marker() const { return *options_.marker; }
+  const vision::RegistrationTarget& target() const { return *options_.target; }
   const vision::CaptureSet& capture() const { return capture_; }
   const std::vector<CapturedPoseReport>& poses() const { return reports_; }
   const vision::StereoCameraModel& cameras() const { return info_.cameras; }
-  // The marker's detections so far (views named "pose N"), and their coverage image (both
+  // The target's detections so far (views named "pose N"), and their coverage image (both
   // eyes side by side at the cameras' size, BGR: vision::coverage_image).
   const vision::CaptureObservations& detected() const { return detected_; }
   cv::Mat coverage() const;

@@ -6,23 +6,25 @@
 //
 // Poses:
 //   - given (a list of joint vectors, e.g. from a poses file);
-//   - automatic (auto:N): the marker must be in both cameras' view at the arm's current pose
-//     (the operator jogs it there first). There it is detected in both eyes and its pose
-//     found by PnP; with the marker's nominal mount (the robot's marker file) and forward
-//     kinematics that gives a rough pose of each camera. Candidate poses are drawn around the
-//     current one (arm joints within +-0.6 rad, wrist joints within +-0.8 rad, inside the
-//     limits) and kept when the rough cameras see all four corners at least 30 px inside both
-//     images with the marker facing each camera within 50 deg, and no sight line from the
-//     marker to either camera crosses the arm's own body or a workspace object
-//     (marker_visibility.hpp: poses where the arm hid the marker cost a move and gave
-//     nothing); N of them are chosen to spread
-//     the marker's orientation (farthest-point sampling on the rotation angle between marker
-//     orientations), then visited in nearest-neighbour order to keep the moves short.
+//   - automatic (auto:N): the target (the robot's marker, or the ArUco / AprilTag marker or
+//     ChArUco board given as `target`) must be in both cameras' view at the arm's current
+//     pose (the operator jogs it there first). There it is detected in both eyes and its pose
+//     found by PnP (a board: on the corners seen); with the target's nominal mount (the
+//     robot's marker file) and forward kinematics that gives a rough pose of each camera.
+//     Candidate poses are drawn around the current one (arm joints within +-0.6 rad, wrist
+//     joints within +-0.8 rad, inside the limits) and kept when the rough cameras see the
+//     target's corners (a board: its whole chessboard) at least 30 px inside both images
+//     with the target facing each camera within 50 deg, and no sight line from the target to
+//     either camera crosses the arm's own body or a workspace object (marker_visibility.hpp:
+//     poses where the arm hid the target cost a move and gave nothing); N of them are chosen
+//     to spread the target's orientation (farthest-point sampling on the rotation angle
+//     between target orientations), then visited in nearest-neighbour order to keep the
+//     moves short.
 //
 // Each move is a plan of two waypoints sent as the plan message (ExecutePlan): the server
 // validates it (limits, start state, collisions when it is the authority); a refused move
 // skips that pose with the server's reason in the notes. At rest (mode idle, within
-// rest_tolerance_rad of the target) the arm is left settle_s, the measured joint state is
+// rest_tolerance_rad of the pose) the arm is left settle_s, the measured joint state is
 // recorded, and frames captured after that instant are kept until frames_per_pose frames
 // whose two eyes were exposed within max_sync_skew_ns of each other are written (PNG,
 // lossless; the stream is asked for JPEG quality 100).
@@ -42,6 +44,7 @@
 #include "telear/net/robot_client.hpp"
 #include "telear/net/vision_client.hpp"
 #include "telear/vision/capture_folder.hpp"
+#include "telear/vision/registration_target.hpp"
 
 namespace telear::session {
 
@@ -61,8 +64,11 @@ struct RegistrationCaptureOptions {
   // starve the heartbeat thread for longer than 250 ms (the lease lapsed mid-capture on the
   // shared 2-core test machine); the Session asks the embedded servers for 1 s as well.
   double lease_heartbeat_s = 1.0;
-  core::MarkerMount marker;  // detected for auto poses; its spec goes into the manifest
-  // Auto poses: what may hide the marker from a camera (marker_visibility.hpp). The arm's
+  core::MarkerMount marker;  // where the target sits on the flange (its pose)
+  // The target on the flange (unset: the mount's own marker): detected for auto poses, its
+  // spec written into the manifest for `telear register`.
+  std::optional<vision::RegistrationTarget> target;
+  // Auto poses: what may hide the target from a camera (marker_visibility.hpp). The arm's
   // body, unset: the robot's body file (core::body_description_for); the objects around the
   // robot, unset: none known.
   std::optional<core::ArmBody> body;
@@ -88,7 +94,7 @@ struct RegistrationCaptureResult {
 
 // The robot client must be started; the lease is taken here (and released at the end) unless
 // already held. The vision client must be started. Errors: invalid options, no lease, no
-// camera info, the marker not seen at the start pose (auto), no pose captured, files that
+// camera info, the target not seen at the start pose (auto), no pose captured, files that
 // cannot be written -- each saying what to do.
 Result<RegistrationCaptureResult> capture_for_registration(
     const core::RobotModel& model, net::RobotClient& robot, net::VisionClient& vision,
@@ -100,13 +106,13 @@ Result<RegistrationCaptureResult> capture_for_registration(
 Result<std::vector<Eigen::VectorXd>> load_capture_poses_file(const std::string& path, int dof);
 
 // The automatic poses alone (used by capture_for_registration; public for tests): around
-// `q_start`, given rough camera models (with their T_cam_base) and the marker mount.
-std::vector<Eigen::VectorXd> choose_capture_poses(const core::RobotModel& model,
-                                                  const Eigen::VectorXd& q_start,
-                                                  const vision::StereoCameraModel& rough,
-                                                  const core::MarkerMount& marker, int count,
-                                                  std::uint64_t seed,
-                                                  const core::ArmBody* body = nullptr,
-                                                  const core::Workspace* workspace = nullptr);
+// `q_start`, given rough camera models (with their T_cam_base), the marker mount and the target
+// it carries (unset: its marker).
+std::vector<Eigen::VectorXd> choose_capture_poses(
+    const core::RobotModel& model, const Eigen::VectorXd& q_start,
+    const vision::StereoCameraModel& rough, const core::MarkerMount& marker, int count,
+    std::uint64_t seed, const core::ArmBody* body = nullptr,
+    const core::Workspace* workspace = nullptr,
+    const std::optional<vision::RegistrationTarget>& target = std::nullopt);
 
 }  // namespace telear::session
