@@ -121,7 +121,7 @@ Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInpu
     request.contact = [checker](const Eigen::VectorXd& q) -> std::optional<std::string> {
       for (const geometry::Contact& c : checker->check(q).contacts) {
         if (c.depth_m > 0.0 && c.depth_m < kMaxLift_m) continue;
-        return c.body + " – " + c.other + " (" + core::format_number(c.depth_m * 1e3, "%.1f") +
+        return c.body + " and " + c.other + " (" + core::format_number(c.depth_m * 1e3, "%.1f") +
                " mm deep)";
       }
       return std::nullopt;
@@ -183,7 +183,6 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
   };
   if (Status s = start(session, recorder, inputs); !s)
     return phase_error("start", s.error().message);
-  const core::RobotModel& model = session.model();
   DemoTaskOutcome outcome;
 
   // Rehearsal.

@@ -12,12 +12,12 @@ std::string ClearanceState::summary() const {
   if (level == Level::kUnchecked) return "not checked";
   if (!contacts.empty()) {
     const geometry::Contact& c = contacts.front();
-    return "contact: " + c.body + " \u2013 " + c.other + " (" +
+    return "contact: " + c.body + " and " + c.other + " (" +
            format_number(c.depth_m * 1e3, "%.1f") + " mm deep)";
   }
   if (!std::isfinite(workspace.distance_m)) return "no workspace to check against";
   return "clearance " + format_number(workspace.distance_m * 1e3, "%.0f") +
-         " mm: " + workspace.body + " \u2013 " + workspace.other;
+         " mm: " + workspace.body + " and " + workspace.other;
 }
 
 GhostClearance::GhostClearance(geometry::CollisionChecker& checker, double safety_margin_m)

@@ -26,7 +26,7 @@ std::string collision_summary(const geometry::TrajectoryCheckReport& report) {
   const geometry::PlanClearance& m = report.min_workspace_clearance;
   if (!std::isfinite(m.distance_m)) return "collision-free (no workspace object checked)";
   return "collision-free, clearance " + format_number(m.distance_m * 1e3, "%.0f") + " mm (" +
-         m.body + " \u2013 " + m.other + ") at t = " + format_number(m.time_s, "%.2f") + " s";
+         m.body + " and " + m.other + ") at t = " + format_number(m.time_s, "%.2f") + " s";
 }
 
 }  // namespace telear::session

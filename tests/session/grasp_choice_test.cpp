@@ -189,7 +189,7 @@ TEST(GraspChoice, OnACollisionCheckingSessionABoxReachedOnlyThroughTheTableIsRef
   EXPECT_THAT(message, ::testing::HasSubstr("every gripper orientation that reaches the box at "
                                             "[0.550, -0.350, 0.545] m (base frame) within the "
                                             "joint limits touches the scene on the way (tilted "));
-  EXPECT_THAT(message, ::testing::HasSubstr("link3 \u2013 table_top ("));
+  EXPECT_THAT(message, ::testing::HasSubstr("link3 and table_top ("));
   EXPECT_THAT(message, ::testing::HasSubstr(" mm deep)); move it where the arm reaches it"));
 }
 
