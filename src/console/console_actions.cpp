@@ -198,9 +198,11 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
     }
     case ActionKind::kCaptureAdd: {
       if (!s.capture()) return Error{"no capture open: open one on a folder first"};
-      auto added = s.capture()->add_current_pose();
-      if (!added) return added.error();
-      ui.last_message = "registration: " + added->summary();
+      // On the capture's worker: the console stays live while the arm comes to rest; the
+      // session appends the pose when it is done (and logs it).
+      if (Status st = s.capture()->start_add_pose(); !st.ok()) return st;
+      ui.last_message = "registration: adding pose " + std::to_string(s.capture()->poses().size()) +
+                        " (when the arm is at rest)";
       return Status::Ok();
     }
     case ActionKind::kCaptureSolve: {

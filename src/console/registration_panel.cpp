@@ -131,7 +131,12 @@ void draw_registration_panel(PanelContext& ctx, const PanelLayout& layout,
 
   // [SECTION] buttons
   const bool idle = robot_idle(s);
-  if (ImGui::Button("Add pose", ImVec2(110, 0))) ctx.act(simple(ActionKind::kCaptureAdd));
+  const bool adding = capture->adding();
+  ImGui::BeginDisabled(adding);
+  if (ImGui::Button(adding ? "Adding..." : "Add pose", ImVec2(110, 0))) {
+    ctx.act(simple(ActionKind::kCaptureAdd));
+  }
+  ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("Solve", ImVec2(80, 0))) ctx.act(simple(ActionKind::kCaptureSolve));
   ImGui::SameLine();
@@ -139,9 +144,13 @@ void draw_registration_panel(PanelContext& ctx, const PanelLayout& layout,
   ImGui::Text("%zu poses, %s in %d left / %d right", capture->poses().size(),
               capture->target().is_board() ? "board" : "marker", detected.left_found,
               detected.right_found);
-  if (!idle) {
+  if (adding || !idle) {
     ImGui::SameLine();
-    ImGui::TextColored(ImVec4(0.9f, 0.7f, 0.2f, 1), "(arm moving: added at rest)");
+    ImGui::TextColored(
+        ImVec4(0.9f, 0.7f, 0.2f, 1), "%s",
+        adding ? "(adding: waits for the arm to rest)" : "(arm moving: added at rest)");
+  } else if (!capture->last_add_error().empty()) {
+    ImGui::TextColored(kBad, "not added: %s", capture->last_add_error().c_str());
   }
 
   // [SECTION] poses | coverage

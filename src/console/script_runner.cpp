@@ -1,6 +1,7 @@
 #include "telear/console/script_runner.hpp"
 
 #include "telear/console/console_actions.hpp"
+#include "telear/session/capture_session.hpp"
 
 namespace telear::console {
 
@@ -25,8 +26,28 @@ bool ScriptRunner::condition_met(session::Session& session, Condition condition)
   return false;
 }
 
+bool ScriptRunner::add_running(session::Session& session,
+                               const std::function<void(const std::string&)>& report) {
+  if (!add_line_) return false;
+  const session::CaptureSession* capture = session.capture();
+  if (capture == nullptr) {  // closed meanwhile: the add was cancelled with it
+    add_line_.reset();
+    return false;
+  }
+  if (capture->adding() || capture->adds_finished() == adds_before_) return true;
+  if (!capture->last_add_error().empty()) {
+    ++failures_;
+    const ScriptLine& line = lines_[*add_line_];
+    report("line " + std::to_string(line.line) + ": " + line.text + ": " +
+           capture->last_add_error());
+  }
+  add_line_.reset();
+  return false;
+}
+
 void ScriptRunner::step(session::Session& session, UiState& ui, double now,
                         const std::function<void(const std::string&)>& report) {
+  if (add_running(session, report)) return;
   if (waiting_) {
     const ScriptLine& line = lines_[next_ - 1];
     if (const auto* w = std::get_if<WaitUntil>(&line.step)) {
@@ -57,9 +78,14 @@ void ScriptRunner::step(session::Session& session, UiState& ui, double now,
       return;
     }
     const UiAction& action = std::get<UiAction>(line.step);
+    const int adds_before = session.capture() ? session.capture()->adds_finished() : 0;
     if (Status s = apply_action(session, ui, action); !s.ok()) {
       ++failures_;
       report("line " + std::to_string(line.line) + ": " + line.text + ": " + s.error().message);
+    } else if (action.kind == ActionKind::kCaptureAdd) {
+      add_line_ = next_ - 1;
+      adds_before_ = adds_before;
+      return;
     }
     if (action.kind == ActionKind::kScreenshot || action.kind == ActionKind::kQuit) return;
   }

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <future>
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
@@ -192,6 +193,7 @@ Result<net::RobotStateSample> CaptureSession::wait_for_rest() {
   const auto start = Clock::now();
   std::uint64_t sequence = state->sequence;
   while (seconds_since(start) < options_.rest_timeout_s) {
+    if (cancel_) return Error{"cancelled: the capture was closed"};
     if (state->state.estop) return Error{"the robot is e-stopped: " + state->state.estop_reason};
     if (state->state.mode == core::RobotMode::kIdle && state->state.trajectory_id.empty()) {
       // Still there after settling: at rest, not between two jog steps.
@@ -217,8 +219,8 @@ Result<net::RobotStateSample> CaptureSession::wait_for_rest() {
                std::string(core::to_string(state->state.mode)) + ")"};
 }
 
-Result<CapturedPoseReport> CaptureSession::add_current_pose() {
-  const int index = static_cast<int>(capture_.poses.size());
+Result<CaptureSession::PoseCapture> CaptureSession::capture_pose(int index,
+                                                                 std::uint64_t last_frame_id) {
   const std::string label = "pose " + std::to_string(index);
   auto rest = wait_for_rest();
   if (!rest) return Error{label + ": " + rest.error().message};
@@ -226,15 +228,17 @@ Result<CapturedPoseReport> CaptureSession::add_current_pose() {
   frames_options.frames = options_.frames_per_pose;
   frames_options.max_sync_skew_ns = options_.max_sync_skew_ns;
   frames_options.timeout_s = options_.rest_timeout_s;
-  const std::uint64_t first_frame_id = last_frame_id_;
+  PoseCapture out;
+  out.index = index;
+  out.last_frame_id = last_frame_id;
   auto frames = capture_pose_frames(vision_, options_.directory, index, *rest, frames_options,
-                                    last_frame_id_);
+                                    out.last_frame_id);
   if (!frames) return Error{label + ": " + frames.error().message};
   if (frames->empty()) {
     return Error{label + ": no synchronized stereo frame from the vision server within " +
                  core::format_fixed(options_.rest_timeout_s, 0) + " s after the arm settled"};
   }
-  vision::CapturedPose pose;
+  vision::CapturedPose& pose = out.pose;
   pose.q_commanded = rest->state.q_commanded.size() == rest->state.q.size()
                          ? rest->state.q_commanded
                          : rest->state.q;
@@ -256,32 +260,85 @@ Result<CapturedPoseReport> CaptureSession::add_current_pose() {
   }
   auto detected = vision::detect_capture_targets(options_.directory, one, *options_.target);
   if (!detected) return Error{label + ": " + detected.error().message};
+  out.detected = std::move(*detected);
+  return out;
+}
 
-  capture_.poses.push_back(pose);
+Result<CapturedPoseReport> CaptureSession::append_pose(PoseCapture captured) {
+  const int index = captured.index;
+  const std::string label = "pose " + std::to_string(index);
+  capture_.poses.push_back(captured.pose);
   if (Status s = vision::write_capture_manifest(capture_, options_.directory); !s) {
     capture_.poses.pop_back();
-    last_frame_id_ = first_frame_id;
     return Error{label + ": " + s.error().message};
   }
+  last_frame_id_ = captured.last_frame_id;
+  const vision::CaptureObservations& detected = captured.detected;
   CapturedPoseReport report;
   report.index = index;
   report.target = options_.target->is_board() ? "board" : "marker";
-  report.frames = static_cast<int>(pose.frames.size());
-  report.q = pose.q;
-  vision::HandEyeView view = detected->observations.views.front();
+  report.frames = static_cast<int>(captured.pose.frames.size());
+  report.q = captured.pose.q;
+  vision::HandEyeView view = detected.observations.views.front();
   view.name = label;
   report.left_seen = !view.left.empty();
   report.right_seen = !view.right.empty();
-  for (const std::string& note : detected->notes) {
+  for (const std::string& note : detected.notes) {
     report.notes.push_back(renamed(note, index));
     detected_.notes.push_back(report.notes.back());
   }
   detected_.observations.views.push_back(std::move(view));
-  detected_.left_found += detected->left_found;
-  detected_.right_found += detected->right_found;
+  detected_.left_found += detected.left_found;
+  detected_.right_found += detected.right_found;
   reports_.push_back(report);
   ++revision_;
   return report;
+}
+
+Result<CapturedPoseReport> CaptureSession::add_current_pose() {
+  if (adding()) return Error{"a pose is being added: wait for it"};
+  auto captured = capture_pose(static_cast<int>(capture_.poses.size()), last_frame_id_);
+  if (!captured) return captured.error();
+  return append_pose(std::move(*captured));
+}
+
+Status CaptureSession::start_add_pose() {
+  if (adding()) {
+    return Error{"pose " + std::to_string(capture_.poses.size()) +
+                 " is being added (waiting for the arm to come to rest): wait for it"};
+  }
+  const int index = static_cast<int>(capture_.poses.size());
+  const std::uint64_t last_frame_id = last_frame_id_;
+  cancel_ = false;
+  pending_ = std::async(std::launch::async, [this, index, last_frame_id] {
+    return capture_pose(index, last_frame_id);
+  });
+  ++revision_;
+  return Status::Ok();
+}
+
+bool CaptureSession::adding() const {
+  return pending_.valid();
+}
+
+std::optional<Result<CapturedPoseReport>> CaptureSession::poll_add() {
+  if (!pending_.valid() ||
+      pending_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+    return std::nullopt;
+  }
+  auto captured = pending_.get();
+  Result<CapturedPoseReport> added =
+      captured ? append_pose(std::move(*captured)) : Result<CapturedPoseReport>(captured.error());
+  last_add_error_ = added ? std::string() : added.error().message;
+  ++adds_finished_;
+  ++revision_;
+  return added;
+}
+
+CaptureSession::~CaptureSession() {
+  // The worker reads this session: stop its wait for rest and let it finish first.
+  cancel_ = true;
+  if (pending_.valid()) pending_.wait();
 }
 
 Result<vision::CaptureRegistration> CaptureSession::solve() {

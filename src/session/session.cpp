@@ -390,6 +390,18 @@ void Session::update(double dt) {
 
   update_frame(t);
   update_registration(t);
+  update_capture();
+}
+
+void Session::update_capture() {
+  if (!capture_) return;
+  auto added = capture_->poll_add();
+  if (!added) return;
+  if (*added) {
+    log(SessionEvent::Kind::kInfo, "registration: " + (*added)->summary());
+  } else {
+    log(SessionEvent::Kind::kWarning, "registration: " + added->error().message);
+  }
 }
 
 void Session::update_frame(double t) {

@@ -106,7 +106,11 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
   for (const Eigen::VectorXd& q : poses) {
     script << "real initialize " << degrees(q) << "\nwait-until idle 30\nregistration add\n";
   }
-  script << "registration solve\n"
+  // An add while e-stopped fails on the capture's worker: reported on its line when done.
+  script << "estop\n"
+            "registration add\n"
+            "reset-estop\n"
+            "registration solve\n"
             "screenshot "
          << shot << "\n";
   const std::string script_file = (dir / "registration.txt").string();
@@ -133,12 +137,14 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
     ASSERT_TRUE(app.frame()) << log.str();
     ASSERT_LT(std::chrono::duration<double>(Clock::now() - begin).count(), 300) << log.str();
   }
-  EXPECT_EQ(app.script().failures(), 3) << log.str();
+  EXPECT_EQ(app.script().failures(), 4) << log.str();
   EXPECT_THAT(log.str(), HasSubstr("line 3: registration add: no capture open: open one on a "
                                    "folder first"));
   EXPECT_THAT(log.str(), HasSubstr("line 4: registration open " + captures.string() +
                                    " qr:1: registration: target 'qr:1': unknown kind 'qr'"));
   EXPECT_THAT(log.str(), HasSubstr("line 12: registration solve: capture '"));
+  EXPECT_THAT(log.str(), HasSubstr(": registration add: pose " + std::to_string(poses.size() + 2) +
+                                   ": the robot is e-stopped"));
 
   // The capture is the Session's; the console only shows it.
   const session::CaptureSession* capture = app.session().capture();

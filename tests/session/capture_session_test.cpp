@@ -10,6 +10,8 @@
 #include <unistd.h>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <thread>
 
 #include "capture_test_rig.hpp"
 #include "telear/core/angles.hpp"
@@ -145,12 +147,32 @@ TEST_F(CaptureSessionTest, JoggedPosesAreAddedAtRestAndSolvedAgainstTheTruth) {
   EXPECT_EQ(first->summary(), "pose 0: 2 frames, marker seen left and right");
   EXPECT_LT((first->q - start).cwiseAbs().maxCoeff(), 0.01);
 
-  // Pose 1: after a jog of the last joint by 8 degrees (the console's and the CLI's jog).
+  // Pose 1: after a jog of the last joint by 8 degrees (the console's and the CLI's jog),
+  // added the console's way: on the worker, appended by poll_add once the arm is at rest.
   auto jog = robot->jog(core::JointIncrement{5, core::radians_from_degrees(8.0)}, 0.5);
   ASSERT_TRUE(jog) << jog.error().message;
-  auto second = capture.add_current_pose();
-  ASSERT_TRUE(second) << second.error().message;
-  EXPECT_NEAR(second->q[5] - first->q[5], core::radians_from_degrees(8.0), 0.01);
+  ASSERT_TRUE(capture.start_add_pose().ok());
+  EXPECT_TRUE(capture.adding());
+  Status again = capture.start_add_pose();
+  ASSERT_FALSE(again.ok());
+  EXPECT_EQ(again.error().message,
+            "pose 1 is being added (waiting for the arm to come to rest): wait for it");
+  auto blocked = capture.add_current_pose();
+  ASSERT_FALSE(blocked);
+  EXPECT_EQ(blocked.error().message, "a pose is being added: wait for it");
+  std::optional<Result<CapturedPoseReport>> second;
+  for (int poll = 0; poll < 6000 && !second; ++poll) {
+    second = capture.poll_add();
+    if (!second) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(second.has_value()) << "the add did not finish in 60 s";
+  ASSERT_TRUE(*second) << second->error().message;
+  EXPECT_FALSE(capture.adding());
+  EXPECT_FALSE(capture.poll_add().has_value());  // the outcome is given once
+  EXPECT_EQ(capture.adds_finished(), 1);
+  EXPECT_EQ(capture.last_add_error(), "");
+  EXPECT_EQ((*second)->index, 1);
+  EXPECT_NEAR((*second)->q[5] - first->q[5], core::radians_from_degrees(8.0), 0.01);
 
   // Too few poses to solve: refused, saying so, and kept for the panel.
   auto early = capture.solve();
@@ -250,9 +272,21 @@ TEST_F(CaptureSessionTest, RefusesAUsedFolderBadOptionsAndAReducedStream) {
   ASSERT_TRUE(opened) << opened.error().message;
   auto added = (*opened)->add_current_pose();
   ASSERT_FALSE(added);
-  EXPECT_EQ(added.error().message,
-            "pose 0: the stream's images are 320x240, the calibration's 640x480: capture at the "
-            "cameras' own size");
+  const std::string reduced_error =
+      "pose 0: the stream's images are 320x240, the calibration's 640x480: capture at the "
+      "cameras' own size";
+  EXPECT_EQ(added.error().message, reduced_error);
+  // The same on the worker: the error is kept for the panel.
+  ASSERT_TRUE((*opened)->start_add_pose().ok());
+  std::optional<Result<CapturedPoseReport>> later;
+  for (int poll = 0; poll < 6000 && !later; ++poll) {
+    later = (*opened)->poll_add();
+    if (!later) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(later.has_value());
+  ASSERT_FALSE(*later);
+  EXPECT_EQ(later->error().message, reduced_error);
+  EXPECT_EQ((*opened)->last_add_error(), reduced_error);
   EXPECT_TRUE((*opened)->poses().empty());
   EXPECT_FALSE(fs::exists(fs::path((*opened)->directory()) / "capture.yaml"));
 

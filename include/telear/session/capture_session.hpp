@@ -23,7 +23,9 @@
 // Also here: the pieces capture_for_registration shares (folder, camera info, frames at rest).
 
 #include <Eigen/Core>
+#include <atomic>
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -124,6 +126,19 @@ class CaptureSession {
   // calibration, files that cannot be written -- the manifest is left as before the call.
   Result<CapturedPoseReport> add_current_pose();
 
+  // The same without blocking the caller (the console: its view, jog and e-stop stay live
+  // while the arm comes to rest): the waiting, the frames and the detection run on a worker
+  // thread; poll_add(), called from the caller's thread (every display frame), appends the
+  // pose when the worker is done and returns the outcome once. One at a time: a second
+  // start_add_pose() (or add_current_pose()) while adding() is refused. Closing the session
+  // cancels the wait for rest.
+  Status start_add_pose();
+  bool adding() const;
+  std::optional<Result<CapturedPoseReport>> poll_add();
+  // Adds finished through poll_add, and the last one's error (empty: it succeeded).
+  int adds_finished() const { return adds_finished_; }
+  const std::string& last_add_error() const { return last_add_error_; }
+
   // register_captures on the folder as it stands (needs hand_eye.min_views poses with the
   // target seen, turning about two axes). The last success is kept in solution().
   Result<vision::CaptureRegistration> solve();
@@ -143,7 +158,22 @@ class CaptureSession {
   const std::optional<vision::CaptureRegistration>& solution() const { return solution_; }
   const std::string& last_solve_error() const { return solve_error_; }
 
+  ~CaptureSession();
+  CaptureSession(const CaptureSession&) = delete;
+  CaptureSession& operator=(const CaptureSession&) = delete;
+
  private:
+  // A pose's frames written and its target detected, not yet in the folder's manifest.
+  struct PoseCapture {
+    int index = 0;
+    vision::CapturedPose pose;
+    vision::CaptureObservations detected;
+    std::uint64_t last_frame_id = 0;  // the newest frame used
+  };
+  // The slow half of adding a pose; reads only what open() set, so it may run on the worker.
+  Result<PoseCapture> capture_pose(int index, std::uint64_t last_frame_id);
+  // The quick half: appends the pose and rewrites the manifest (the caller's thread).
+  Result<CapturedPoseReport> append_pose(PoseCapture captured);
   CaptureSession(const core::RobotModel& model, net::RobotClient& robot, net::VisionClient& vision,
                  CaptureSessionOptions options);
   Result<net::RobotStateSample> wait_for_rest();
@@ -160,6 +190,10 @@ class CaptureSession {
   std::string solve_error_;
   std::uint64_t last_frame_id_ = 0;
   int revision_ = 0;
+  std::future<Result<PoseCapture>> pending_;
+  std::atomic<bool> cancel_{false};
+  int adds_finished_ = 0;
+  std::string last_add_error_;
 };
 
 }  // namespace telear::session

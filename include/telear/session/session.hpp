@@ -216,6 +216,8 @@ class Session {
   CaptureSession* capture() { return capture_.get(); }
   const CaptureSession* capture() const { return capture_.get(); }
   void close_capture();
+  // An add started with CaptureSession::start_add_pose is appended by update() when done
+  // (logged: the pose's summary, or why it was not added).
 
   // [SECTION] per frame
   // Advances the preview by dt (s), feeds the monitor, the display mode and the registration
@@ -235,6 +237,7 @@ class Session {
   void update_frame(double now);
   void update_monitor();
   void update_registration(double now);
+  void update_capture();
   void update_clearance(const Eigen::VectorXd& q, double gripper);
   std::optional<Eigen::VectorXd> real_q() const;
 
