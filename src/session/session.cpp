@@ -103,6 +103,7 @@ void Session::connect() {
 
 void Session::disconnect() {
   if (!connected_) return;
+  close_capture();  // it uses the robot client: a pose being added is cancelled first
   if (robot_->lease_held()) (void)robot_->release_lease();
   robot_->stop();
   vision_->stop();

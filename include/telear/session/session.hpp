@@ -155,7 +155,7 @@ class Session {
 
   // [SECTION] connection
   void connect();     // starts both clients (lazy connection, reconnects by itself)
-  void disconnect();  // releases the lease, stops the clients
+  void disconnect();  // closes a registration capture, releases the lease, stops the clients
   bool connected() const { return connected_; }
   bool robot_connected() const;
   bool vision_connected() const;
