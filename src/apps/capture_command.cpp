@@ -94,13 +94,30 @@ void print_pose(const session::CaptureSession& capture, const session::CapturedP
   for (const std::string& note : pose.notes) out << "  " << note << "\n";
 }
 
-// The target on the flange: --target, else the robot's marker (its mount says where either sits).
-Result<vision::RegistrationTarget> target_of(const CaptureOptions& options,
-                                             const core::MarkerMount& marker) {
-  if (options.target.empty()) return vision::registration_target_from_mount(marker);
-  auto parsed = vision::parse_registration_target(options.target);
-  if (!parsed) return Error{"--target: " + parsed.error().message};
-  return *parsed;
+// What both captures start from: the servers and the folder given, the arm, its marker mount
+// and the target on the flange (--target, else the mount's marker; the mount says where either
+// sits). Errors name the option.
+struct CaptureArm {
+  core::RobotModelPtr model;
+  core::MarkerMount marker;
+  vision::RegistrationTarget target;
+};
+
+Result<CaptureArm> capture_arm(const CaptureOptions& options) {
+  if (options.robot_server.empty()) return Error{"--robot: give the robot server HOST:PORT"};
+  if (options.vision_server.empty()) return Error{"--vision: give the vision server HOST:PORT"};
+  if (options.output.empty()) return Error{"-o: give the folder to write"};
+  auto model = core::load_robot(options.robot_spec());
+  if (!model) return Error{"--arm: " + model.error().message};
+  auto marker = core::marker_mount_for(**model);
+  if (!marker) return Error{"marker: " + marker.error().message};
+  CaptureArm arm{*model, *marker, vision::registration_target_from_mount(*marker)};
+  if (!options.target.empty()) {
+    auto parsed = vision::parse_registration_target(options.target);
+    if (!parsed) return Error{"--target: " + parsed.error().message};
+    arm.target = *parsed;
+  }
+  return arm;
 }
 
 // The robot and vision clients both captures use, started, with the token file's token.
@@ -137,36 +154,30 @@ Result<Clients> connect(const CaptureOptions& options) {
 
 int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ostream& out,
                        std::ostream& err) {
-  if (options.robot_server.empty()) return fail(err, "--robot: give the robot server HOST:PORT");
-  if (options.vision_server.empty()) return fail(err, "--vision: give the vision server HOST:PORT");
-  if (options.output.empty()) return fail(err, "-o: give the folder to write");
-  auto model = core::load_robot(options.robot_spec());
-  if (!model) return fail(err, "--arm: " + model.error().message);
-  auto marker = core::marker_mount_for(**model);
-  if (!marker) return fail(err, "marker: " + marker.error().message);
-  auto target = target_of(options, *marker);
-  if (!target) return fail(err, target.error().message);
+  auto loaded = capture_arm(options);
+  if (!loaded) return fail(err, loaded.error().message);
+  const vision::RegistrationTarget& target = loaded->target;
   session::CaptureSessionOptions capture_options;
   capture_options.directory = options.output;
   capture_options.frames_per_pose = options.frames;
   capture_options.settle_s = options.settle_s;
-  capture_options.marker = *marker;
-  capture_options.target = *target;
+  capture_options.marker = loaded->marker;
+  capture_options.target = target;
   if (Status s = capture_options.validate(); !s) return fail(err, s.error().message);
   auto clients = connect(options);
   if (!clients) return fail(err, clients.error().message);
   net::RobotClient& robot = *clients->robot;
   net::VisionClient& vision = *clients->vision;
 
-  const core::RobotModel& arm = **model;
+  const core::RobotModel& arm = *loaded->model;
   auto opened = session::CaptureSession::open(arm, robot, vision, capture_options);
   if (!opened) return fail(err, opened.error().message, 1);
   session::CaptureSession& capture = **opened;
   if (Status s = robot.acquire_lease(kLeaseHeartbeatS); !s)
     return fail(err, "lease: " + s.error().message, 1);
-  const std::string noun = target->is_board() ? "board" : "marker";
+  const std::string noun = target.is_board() ? "board" : "marker";
   out << "manual capture into " << options.output << " (" << arm.name() << ", "
-      << target->description() << "): jog the arm until both cameras see the " << noun
+      << target.description() << "): jog the arm until both cameras see the " << noun
       << ", add the pose, and repeat over the images, turning the wrist\n"
       << kManualHelp << std::flush;
 
@@ -239,16 +250,11 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
 
 int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& err) {
   if (options.manual) return run_manual_capture(options, std::cin, out, err);
-  if (options.robot_server.empty()) return fail(err, "--robot: give the robot server HOST:PORT");
-  if (options.vision_server.empty()) return fail(err, "--vision: give the vision server HOST:PORT");
-  if (options.output.empty()) return fail(err, "-o: give the folder to write");
-  auto model = core::load_robot(options.robot_spec());
-  if (!model) return fail(err, "--arm: " + model.error().message);
-  auto marker = core::marker_mount_for(**model);
-  if (!marker) return fail(err, "marker: " + marker.error().message);
-  // Detected for automatic poses and recorded in the folder for `telear register`.
-  auto target = target_of(options, *marker);
-  if (!target) return fail(err, target.error().message);
+  // The target is detected for automatic poses and recorded in the folder for `register`.
+  auto loaded = capture_arm(options);
+  if (!loaded) return fail(err, loaded.error().message);
+  const core::RobotModel& arm = *loaded->model;
+  const vision::RegistrationTarget& target = loaded->target;
 
   session::RegistrationCaptureOptions capture;
   capture.directory = options.output;
@@ -256,8 +262,8 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
   capture.velocity_scale = options.speed;
   capture.settle_s = options.settle_s;
   capture.seed = options.seed;
-  capture.marker = *marker;
-  capture.target = *target;
+  capture.marker = loaded->marker;
+  capture.target = target;
   if (options.poses.rfind("auto:", 0) == 0) {
     const std::string count = options.poses.substr(5);
     try {
@@ -268,7 +274,7 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
       return fail(err, "--poses '" + options.poses + "': expected auto:N with N a number");
     }
   } else {
-    auto poses = session::load_capture_poses_file(options.poses, (*model)->dof());
+    auto poses = session::load_capture_poses_file(options.poses, arm.dof());
     if (!poses) return fail(err, "--poses: " + poses.error().message);
     capture.poses = std::move(*poses);
   }
@@ -279,19 +285,19 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
   net::RobotClient& robot = *clients->robot;
   net::VisionClient& vision = *clients->vision;
 
-  auto result = session::capture_for_registration(**model, robot, vision, capture,
+  auto result = session::capture_for_registration(arm, robot, vision, capture,
                                                   [&](const session::CaptureProgress& p) {
                                                     out << p.message << "\n" << std::flush;
                                                   });
   if (!result) return fail(err, result.error().message, 1);
   for (const std::string& note : result->notes) out << "note: " << note << "\n";
   // Where the target was seen in each eye, for the operator to judge the spread.
-  auto detected = vision::detect_capture_targets(options.output, result->capture, *target);
+  auto detected = vision::detect_capture_targets(options.output, result->capture, target);
   if (detected) {
     const std::string coverage = options.output + "/coverage.png";
     const auto& camera = result->cameras.left;
     if (cv::imwrite(coverage, vision::coverage_image(*detected, camera.width, camera.height))) {
-      out << "coverage: the " << (target->is_board() ? "board" : "marker") << " found at "
+      out << "coverage: the " << (target.is_board() ? "board" : "marker") << " found at "
           << detected->left_found << " (left) and " << detected->right_found << " (right) of "
           << result->capture.poses.size() << " poses; " << coverage << "\n";
     }
