@@ -10,10 +10,8 @@ pose at rest, `s` to solve, `q` to finish. The capture folder it leaves is check
 `telear register --captures` and compared with the rig's true cameras by `telear eval`.
 """
 
-import json
 import os
 import re
-import signal
 import subprocess
 import sys
 import tempfile
@@ -21,7 +19,7 @@ import tempfile
 import yaml
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from capture_register_cli_test import run, start, start_pose  # noqa: E402
+from capture_register_cli_test import lab_servers, registration_errors, run  # noqa: E402
 
 # The operator's moves, each from the start pose (where both cameras see the marker) and back:
 # joints by degrees as `j N D`, the tool along the base's axes by mm. Spread like the automatic
@@ -85,19 +83,8 @@ def main():
     failures = []
     calibration = os.path.join(data, "cameras", "puma560_stereo.yaml")
     with tempfile.TemporaryDirectory() as tmp:
-        token = os.path.join(tmp, "token")
-        with open(token, "w") as f:
-            f.write("manual-capture-test-token\n")
-        q = ",".join(f"{v:.9f}" for v in start_pose(telear, tmp))
-        robot, robot_address = start(telear, ["robot-server", "--listen", "127.0.0.1:0",
-                                              "--token-file", token, "--q", q])
-        vision = None
         captures = os.path.join(tmp, "captures")
-        try:
-            vision, vision_address = start(
-                telear, ["vision-server", "--listen", "127.0.0.1:0", "--source", "sim",
-                         "--robot-server", robot_address, "--token-file", token,
-                         "--calibration", calibration, "--fps", "10"])
+        with lab_servers(telear, calibration, tmp) as (robot_address, vision_address, token):
             arguments = ["capture", "--manual", "--robot", robot_address, "--vision",
                          vision_address, "--token-file", token, "--arm", "puma560",
                          "--frames", "3", "--settle", "0.1", "-o", captures]
@@ -160,11 +147,6 @@ def main():
                                   text=True, timeout=120)
             if used.returncode != 1 or "already holds a capture" not in used.stderr:
                 failures.append(f"a used folder: {used.returncode} {used.stderr!r}")
-        finally:
-            for server in (vision, robot):
-                if server:
-                    server.send_signal(signal.SIGTERM)
-                    server.communicate(timeout=30)
 
         if not failures:
             registered = os.path.join(tmp, "registered.yaml")
@@ -173,19 +155,9 @@ def main():
             if r.returncode != 0:
                 failures.append(f"register: status {r.returncode}, {r.stdout!r} {r.stderr!r}")
             else:
-                table = os.path.join(tmp, "eval.json")
-                e = run(telear, ["eval", "--truth", calibration, "--estimate", registered,
-                                 "--configurations", "10", "--json", table])
-                if e.returncode != 0:
-                    failures.append(f"eval: {e.returncode} {e.stderr!r}")
-                else:
-                    with open(table) as f:
-                        accuracy = json.load(f)
-                    for eye in ("left", "right"):
-                        mm = accuracy[eye]["registration_mm"]
-                        print(f"manual capture, {eye} eye: registration {mm:.3f} mm")
-                        if not mm < 2.0:
-                            failures.append(f"{eye} registration {mm} mm (bound 2 mm)")
+                errors = registration_errors(telear, calibration, registered, tmp, failures)
+                for eye, mm in errors.items():
+                    print(f"manual capture, {eye} eye: registration {mm:.3f} mm")
 
     for failure in failures:
         print(failure, file=sys.stderr)

@@ -10,6 +10,7 @@ simulated rig following the robot server, serving the rig's calibration) run on 
 rig's true cameras (its JSON). Bad input exits 2 with one line naming the problem.
 """
 
+import contextlib
 import json
 import os
 import re
@@ -51,23 +52,57 @@ def start_pose(telear, tmp):
     raise AssertionError("the marker was not detected in both eyes anywhere")
 
 
+@contextlib.contextmanager
+def lab_servers(telear, calibration, tmp):
+    """The lab's servers on loopback, sharing a token file: `telear robot-server` (the simulated
+    PUMA 560 where both cameras see the marker) and `telear vision-server --source sim` (the rig
+    following it, serving `calibration`). Yields (robot address, vision address, token file);
+    both are stopped (SIGTERM) on leaving."""
+    token = os.path.join(tmp, "token")
+    with open(token, "w") as f:
+        f.write("capture-test-token\n")
+    q = ",".join(f"{v:.9f}" for v in start_pose(telear, tmp))
+    robot, robot_address = start(telear, ["robot-server", "--listen", "127.0.0.1:0",
+                                          "--token-file", token, "--q", q])
+    vision = None
+    try:
+        vision, vision_address = start(
+            telear, ["vision-server", "--listen", "127.0.0.1:0", "--source", "sim",
+                     "--robot-server", robot_address, "--token-file", token,
+                     "--calibration", calibration, "--fps", "10"])
+        yield robot_address, vision_address, token
+    finally:
+        for server in (vision, robot):
+            if server:
+                server.send_signal(signal.SIGTERM)
+                server.communicate(timeout=30)
+
+
+def registration_errors(telear, truth, registered, tmp, failures):
+    """`telear eval` of `registered` against `truth`: {eye: registration mm}, each checked
+    against the 2 mm bound (a failure appended otherwise); empty when eval failed."""
+    table = os.path.join(tmp, "eval.json")
+    e = run(telear, ["eval", "--truth", truth, "--estimate", registered, "--configurations",
+                     "10", "--json", table])
+    if e.returncode != 0:
+        failures.append(f"eval: {e.returncode} {e.stderr!r}")
+        return {}
+    with open(table) as f:
+        accuracy = json.load(f)
+    print(json.dumps(accuracy)[:2000])
+    errors = {eye: accuracy[eye]["registration_mm"] for eye in ("left", "right")}
+    for eye, mm in errors.items():
+        if not mm < 2.0:
+            failures.append(f"{eye} registration {mm} mm (bound 2 mm)")
+    return errors
+
+
 def main():
     telear, data = sys.argv[1], sys.argv[2]
     failures = []
     calibration = os.path.join(data, "cameras", "puma560_stereo.yaml")
     with tempfile.TemporaryDirectory() as tmp:
-        token = os.path.join(tmp, "token")
-        with open(token, "w") as f:
-            f.write("capture-test-token\n")
-        q = ",".join(f"{v:.9f}" for v in start_pose(telear, tmp))
-        robot, robot_address = start(telear, ["robot-server", "--listen", "127.0.0.1:0",
-                                              "--token-file", token, "--q", q])
-        vision = None
-        try:
-            vision, vision_address = start(
-                telear, ["vision-server", "--listen", "127.0.0.1:0", "--source", "sim",
-                         "--robot-server", robot_address, "--token-file", token,
-                         "--calibration", calibration, "--fps", "10"])
+        with lab_servers(telear, calibration, tmp) as (robot_address, vision_address, token):
             captures = os.path.join(tmp, "captures")
             r = run(telear, ["capture", "--robot", robot_address, "--vision", vision_address,
                              "--token-file", token, "--arm", "puma560", "--poses", "auto:10",
@@ -97,11 +132,6 @@ def main():
             if again.returncode != 1 or "already holds a capture" not in again.stderr:
                 failures.append(f"capture into a used folder: {again.returncode} "
                                 f"{again.stderr!r}")
-        finally:
-            for server in (vision, robot):
-                if server:
-                    server.send_signal(signal.SIGTERM)
-                    server.communicate(timeout=30)
 
         if not failures:
             registered = os.path.join(tmp, "registered.yaml")
@@ -112,19 +142,7 @@ def main():
                 failures.append(f"register: status {r.returncode}, {r.stdout!r} {r.stderr!r}")
             else:
                 print(r.stdout)
-                table = os.path.join(tmp, "eval.json")
-                e = run(telear, ["eval", "--truth", calibration, "--estimate", registered,
-                                 "--configurations", "10", "--json", table])
-                if e.returncode != 0:
-                    failures.append(f"eval: {e.returncode} {e.stderr!r}")
-                else:
-                    with open(table) as f:
-                        accuracy = json.load(f)
-                    print(json.dumps(accuracy)[:2000])
-                    for eye in ("left", "right"):
-                        mm = accuracy[eye]["registration_mm"]
-                        if not mm < 2.0:
-                            failures.append(f"{eye} registration {mm} mm (bound 2 mm)")
+                registration_errors(telear, calibration, registered, tmp, failures)
 
             empty = os.path.join(tmp, "empty")
             os.makedirs(empty)

@@ -59,17 +59,16 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
 
   // Where the operator starts (both cameras see the marker), then poses spread around it as
   // an operator would choose them (here: the automatic chooser with the rig's true cameras).
-  auto model = core::load_robot("puma560");
-  ASSERT_TRUE(model) << model.error().message;
-  auto rig = sim::load_stereo_rig(sim::default_rig_file("puma560"));
-  ASSERT_TRUE(rig) << rig.error().message;
-  auto marker = core::marker_mount_for(**model);
-  ASSERT_TRUE(marker) << marker.error().message;
+  auto loaded = test::load_puma_capture_rig();
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  const core::RobotModel& model = *loaded->model;
+  const sim::StereoRig& rig = loaded->rig;
+  const core::MarkerMount& marker = loaded->marker;
   auto visible = test::marker_visible_start();
   ASSERT_TRUE(visible) << visible.error().message;
   Eigen::VectorXd start = *visible;
   const std::vector<Eigen::VectorXd> poses =
-      session::choose_capture_poses(**model, start, rig->cameras, *marker, 16, 5);
+      session::choose_capture_poses(model, start, rig.cameras, marker, 16, 5);
   ASSERT_GE(poses.size(), 14u);
 
   // The servers: the simulated PUMA where the operator left it (no workspace: the poses are
@@ -79,7 +78,7 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
   server_options.calibration_file = calibration;
   server_options.initial_q = start;
   server_options.fps = 10.0;
-  auto servers = session::EmbeddedServers::create(*model, server_options);
+  auto servers = session::EmbeddedServers::create(loaded->model, server_options);
   ASSERT_TRUE(servers) << servers.error().message;
   const std::string token_file = (dir / "token").string();
   std::ofstream(token_file) << (*servers)->token() << "\n";
@@ -180,7 +179,22 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
     }
   }
   EXPECT_GT(green, 500) << "no coverage drawn in the Registration panel";
+
+  // Another target, as the panel's target field sends it: the new capture detects it and
+  // names it in its folder.
+  UiState& ui = app.ui();
+  const std::string board_folder = (dir / "board_captures").string();
+  fs::remove_all(board_folder);
+  ASSERT_TRUE(apply_action(app.session(), ui,
+                           {.kind = ActionKind::kCaptureOpen,
+                            .text = board_folder,
+                            .spec = "charuco:5x5:0.06:0.045:4x4_50"})
+                  .ok());
+  ASSERT_NE(app.session().capture(), nullptr);
+  EXPECT_EQ(app.session().capture()->target().spec(), "charuco:5x5:0.06:0.045:DICT_4X4_50");
+  EXPECT_THAT(ui.last_message, HasSubstr("see the ChArUco board 5x5"));
   app.session().disconnect();
+  EXPECT_EQ(app.session().capture(), nullptr);  // disconnecting closes the capture
 }
 
 TEST(RegistrationPanel, ScriptLinesParseAndExplainMistakes) {

@@ -1,11 +1,22 @@
 #include "capture_test_rig.hpp"
 
+#include "telear/core/robot_loader.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration.hpp"
 
 namespace telear::test {
+
+Result<PumaCaptureRig> load_puma_capture_rig() {
+  auto model = core::load_robot("puma560");
+  if (!model) return Error{"robot: " + model.error().message};
+  auto rig = sim::load_stereo_rig(sim::default_rig_file("puma560"));
+  if (!rig) return Error{"rig: " + rig.error().message};
+  auto marker = core::marker_mount_for(**model);
+  if (!marker) return Error{"marker: " + marker.error().message};
+  return PumaCaptureRig{*model, std::move(*rig), *marker};
+}
 
 Result<Eigen::VectorXd> marker_visible_start() {
   sim::MarkerObservationsOptions find;

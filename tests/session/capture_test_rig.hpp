@@ -6,10 +6,20 @@
 #include <filesystem>
 #include <string>
 
+#include "telear/core/marker_mount.hpp"
 #include "telear/core/result.hpp"
+#include "telear/core/robot_model.hpp"
 #include "telear/sim/stereo_rig.hpp"
 
 namespace telear::test {
+
+// The shipped PUMA 560, its default rig and its marker mount. Errors say which failed to load.
+struct PumaCaptureRig {
+  core::RobotModelPtr model;
+  sim::StereoRig rig;
+  core::MarkerMount marker;
+};
+Result<PumaCaptureRig> load_puma_capture_rig();
 
 // Where the operator jogs the arm before capturing: the first configuration at which the
 // default PUMA rig's own rendered observations (seed 2, 4 configurations) found the marker in

@@ -36,15 +36,11 @@ namespace fs = std::filesystem;
 class RegistrationCaptureTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto m = core::load_robot("puma560");
-    ASSERT_TRUE(m) << m.error().message;
-    model = *m;
-    auto r = sim::load_stereo_rig(sim::default_rig_file("puma560"));
-    ASSERT_TRUE(r) << r.error().message;
-    rig = std::move(*r);
-    auto marker_mount = core::marker_mount_for(*model);
-    ASSERT_TRUE(marker_mount) << marker_mount.error().message;
-    marker = *marker_mount;
+    auto loaded = test::load_puma_capture_rig();
+    ASSERT_TRUE(loaded) << loaded.error().message;
+    model = loaded->model;
+    rig = std::move(loaded->rig);
+    marker = loaded->marker;
     // A folder per test process: CTest runs the cases of this fixture in parallel.
     dir = temp_dir.path();
     // The vision server serves the rig's true intrinsics as its calibration (registration is
@@ -235,23 +231,22 @@ TEST_F(RegistrationCaptureTest, RefusesAFolderThatAlreadyHoldsACapture) {
 // The automatic poses' line-of-sight test: a marker facing the camera is seen until an object
 // stands between them (named) or the wrist turns it away.
 TEST(MarkerVisibilityTest, NamesWhatHidesTheMarker) {
-  auto model = core::load_robot("puma560");
-  ASSERT_TRUE(model) << model.error().message;
-  auto rig = sim::load_stereo_rig(sim::default_rig_file("puma560"));
-  ASSERT_TRUE(rig) << rig.error().message;
-  auto marker = core::marker_mount_for(**model);
-  ASSERT_TRUE(marker) << marker.error().message;
+  auto loaded = test::load_puma_capture_rig();
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  const core::RobotModel& model = *loaded->model;
+  const sim::StereoRig& rig = loaded->rig;
+  const core::MarkerMount& marker = loaded->marker;
   sim::MarkerObservationsOptions find;
   find.rig_file = sim::default_rig_file("puma560");
   find.configurations = 4;
   find.seed = 2;
   auto found = sim::simulate_marker_observations(find);
   ASSERT_TRUE(found) << found.error().message;
-  const vision::CameraModel& camera = rig->cameras.left;
-  auto body = core::body_description_for(**model);
+  const vision::CameraModel& camera = rig.cameras.left;
+  auto body = core::body_description_for(model);
   ASSERT_TRUE(body) << body.error().message;
   const core::ArmBody arm = core::build_arm_body(*body);
-  MarkerVisibility clear(**model, *marker, &arm, nullptr);
+  MarkerVisibility clear(model, marker, &arm, nullptr);
   // A configuration where the rendered image showed the marker, and the test agrees.
   Eigen::VectorXd q;
   for (const auto& c : found->observations.configurations) {
@@ -269,7 +264,7 @@ TEST(MarkerVisibilityTest, NamesWhatHidesTheMarker) {
   const Eigen::Vector3d camera_centre = camera.T_cam_base.inverse().translation();
   blocker.T_base_object.translation() = 0.5 * (clear.marker_pose(q).translation() + camera_centre);
   workspace.objects.push_back(blocker);
-  MarkerVisibility blocked(**model, *marker, &arm, &workspace);
+  MarkerVisibility blocked(model, marker, &arm, &workspace);
   EXPECT_GE(blocked.occluder_count(), clear.occluder_count() + 1);
   EXPECT_EQ(blocked.hidden_reason(camera, q), "hidden by blocker");
   // The last joint turned half a turn: the marker's back faces the camera.
@@ -283,8 +278,8 @@ TEST(MarkerVisibilityTest, NamesWhatHidesTheMarker) {
   ASSERT_TRUE(small_board) << small_board.error().message;
   auto large_board = vision::parse_registration_target("charuco:10x10:0.2:0.15:6x6_250");
   ASSERT_TRUE(large_board) << large_board.error().message;
-  MarkerVisibility small(**model, *marker, &arm, nullptr, {}, *small_board);
-  MarkerVisibility large(**model, *marker, &arm, nullptr, {}, *large_board);
+  MarkerVisibility small(model, marker, &arm, nullptr, {}, *small_board);
+  MarkerVisibility large(model, marker, &arm, nullptr, {}, *large_board);
   EXPECT_EQ(small.hidden_reason(camera, q), "");
   EXPECT_EQ(large.hidden_reason(camera, q), "outside the image");
   EXPECT_TRUE(small.marker_pose(q).isApprox(clear.marker_pose(q)));

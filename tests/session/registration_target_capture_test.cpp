@@ -41,15 +41,11 @@ struct Errors {
 class RegistrationTargetCaptureTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto m = core::load_robot("puma560");
-    ASSERT_TRUE(m) << m.error().message;
-    model = *m;
-    auto r = sim::load_stereo_rig(sim::default_rig_file("puma560"));
-    ASSERT_TRUE(r) << r.error().message;
-    rig = std::move(*r);
-    auto mount = core::marker_mount_for(*model);
-    ASSERT_TRUE(mount) << mount.error().message;
-    marker = *mount;
+    auto loaded = test::load_puma_capture_rig();
+    ASSERT_TRUE(loaded) << loaded.error().message;
+    model = loaded->model;
+    rig = std::move(loaded->rig);
+    marker = loaded->marker;
     // A folder per test process: CTest runs the cases of this fixture in parallel.
     dir = temp_dir.path();
     auto written = test::write_true_calibration(rig, dir);

@@ -147,6 +147,21 @@ void expect_accurate(const char* what, const vision::CameraModel& truth,
   EXPECT_LT(std::abs(cy_px), 4.0 * sd.cy) << what;
 }
 
+// The pair's figures against the rig's truth (of 20 rendered pairs), and the targets both
+// lens models meet: 15 pairs found, each camera (expect_accurate), the baseline within 0.5 mm.
+void expect_stereo_accurate(const char* model, const StereoRig& rig, const Outcome& outcome) {
+  const vision::StereoCalibration& c = outcome.calibration;
+  std::printf(
+      "%s: %d of 20 pairs found, %zu used, stereo RMS %.3f px, baseline %.4f mm (truth %.4f, "
+      "sd %.4f)\n",
+      model, outcome.pairs_found, c.views.size(), c.rms_px, 1e3 * c.baseline(),
+      1e3 * rig.baseline_m, 1e3 * c.baseline_std);
+  EXPECT_GE(outcome.pairs_found, 15);
+  expect_accurate("left ", rig.cameras.left, c.cameras.left, c.left_std_dev);
+  expect_accurate("right", rig.cameras.right, c.cameras.right, c.right_std_dev);
+  EXPECT_LT(std::abs(c.baseline() - rig.baseline_m), 0.5e-3);
+}
+
 std::string rig_path(const char* name) {
   return test::data_path(std::string("rigs/") + name);
 }
@@ -219,17 +234,8 @@ TEST(LensModelCalibration, FisheyeRigFromRenderedChessboards) {
   ASSERT_TRUE(rig.ok()) << rig.error().message;
   auto outcome = calibrate_rendered(*rig, DistortionModel::equidistant, 20, 7);
   ASSERT_TRUE(outcome.ok()) << outcome.error().message;
-  const vision::StereoCalibration& c = outcome->calibration;
-  std::printf(
-      "equidistant: %d of 20 pairs found, %zu used, stereo RMS %.3f px, baseline %.4f mm "
-      "(truth %.4f, sd %.4f)\n",
-      outcome->pairs_found, c.views.size(), c.rms_px, 1e3 * c.baseline(), 1e3 * rig->baseline_m,
-      1e3 * c.baseline_std);
-  EXPECT_GE(outcome->pairs_found, 15);
-  expect_accurate("left ", rig->cameras.left, c.cameras.left, c.left_std_dev);
-  expect_accurate("right", rig->cameras.right, c.cameras.right, c.right_std_dev);
-  EXPECT_LT(std::abs(c.baseline() - rig->baseline_m), 0.5e-3);
-  EXPECT_LT(c.rms_px, 0.3);
+  expect_stereo_accurate("equidistant", *rig, *outcome);
+  EXPECT_LT(outcome->calibration.rms_px, 0.3);
 }
 
 TEST(LensModelCalibration, RationalLensFromRenderedChessboards) {
@@ -248,16 +254,7 @@ TEST(LensModelCalibration, RationalLensFromRenderedChessboards) {
           .value();
   auto outcome = calibrate_rendered(*rig, DistortionModel::rational_polynomial, 20, 7);
   ASSERT_TRUE(outcome.ok()) << outcome.error().message;
-  const vision::StereoCalibration& c = outcome->calibration;
-  std::printf(
-      "rational_polynomial: %d of 20 pairs found, %zu used, stereo RMS %.3f px, "
-      "baseline %.4f mm (truth %.4f, sd %.4f)\n",
-      outcome->pairs_found, c.views.size(), c.rms_px, 1e3 * c.baseline(), 1e3 * rig->baseline_m,
-      1e3 * c.baseline_std);
-  EXPECT_GE(outcome->pairs_found, 15);
-  expect_accurate("left ", rig->cameras.left, c.cameras.left, c.left_std_dev);
-  expect_accurate("right", rig->cameras.right, c.cameras.right, c.right_std_dev);
-  EXPECT_LT(std::abs(c.baseline() - rig->baseline_m), 0.5e-3);
+  expect_stereo_accurate("rational_polynomial", *rig, *outcome);
 }
 
 }  // namespace
