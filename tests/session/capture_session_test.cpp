@@ -33,20 +33,11 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-class CaptureSessionTest : public ::testing::Test {
+class CaptureSessionTest : public test::CaptureRigTest {
  protected:
   void SetUp() override {
-    auto loaded = test::load_puma_capture_rig();
-    ASSERT_TRUE(loaded) << loaded.error().message;
-    model = loaded->model;
-    rig = std::move(loaded->rig);
-    marker = loaded->marker;
-    // A folder per test process: CTest runs the cases of this fixture in parallel.
-    dir = temp_dir.path();
-    // The vision server serves the rig's true intrinsics (registration is tested here).
-    auto written = test::write_true_calibration(rig, dir);
-    ASSERT_TRUE(written) << written.error().message;
-    const std::string calibration = *written;
+    test::CaptureRigTest::SetUp();
+    if (HasFatalFailure()) return;
     // Where the operator jogged the arm first: both cameras see the marker.
     auto visible = test::marker_visible_start();
     ASSERT_TRUE(visible) << visible.error().message;
@@ -114,11 +105,6 @@ class CaptureSessionTest : public ::testing::Test {
     return options;
   }
 
-  core::RobotModelPtr model;
-  sim::StereoRig rig;
-  core::MarkerMount marker;
-  test_files::TempDir temp_dir;
-  fs::path dir;
   Eigen::VectorXd start;
   std::unique_ptr<EmbeddedServers> servers;
   std::unique_ptr<net::RobotClient> robot;

@@ -18,6 +18,18 @@ Result<PumaCaptureRig> load_puma_capture_rig() {
   return PumaCaptureRig{*model, std::move(*rig), *marker};
 }
 
+void CaptureRigTest::SetUp() {
+  auto loaded = load_puma_capture_rig();
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  model = loaded->model;
+  rig = std::move(loaded->rig);
+  marker = loaded->marker;
+  dir = temp_dir.path();
+  auto written = write_true_calibration(rig, dir);
+  ASSERT_TRUE(written) << written.error().message;
+  calibration = *written;
+}
+
 Result<Eigen::VectorXd> marker_visible_start() {
   sim::MarkerObservationsOptions find;
   find.rig_file = sim::default_rig_file("puma560");

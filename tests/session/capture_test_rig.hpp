@@ -2,6 +2,8 @@
 // What the capture tests (automatic, manual, other targets, the console panel) set up the same
 // way on the simulated PUMA 560 rig.
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Core>
 #include <filesystem>
 #include <string>
@@ -10,6 +12,7 @@
 #include "telear/core/result.hpp"
 #include "telear/core/robot_model.hpp"
 #include "telear/sim/stereo_rig.hpp"
+#include "test_util/mesh_test_files.hpp"
 
 namespace telear::test {
 
@@ -30,5 +33,21 @@ Result<Eigen::VectorXd> marker_visible_start();
 // serves when registration, not calibration, is what a test measures. Returns the path.
 Result<std::string> write_true_calibration(const sim::StereoRig& rig,
                                            const std::filesystem::path& dir);
+
+// The fixture the capture tests derive from: the PUMA rig loaded, a folder of the test's own
+// (CTest runs a fixture's cases in parallel processes) and the rig's true cameras written
+// there as the calibration the vision server serves. A derived SetUp calls this one first and
+// returns on HasFatalFailure().
+class CaptureRigTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+
+  core::RobotModelPtr model;
+  sim::StereoRig rig;
+  core::MarkerMount marker;
+  test_files::TempDir temp_dir;
+  std::filesystem::path dir;
+  std::string calibration;  // dir/calibration.yaml
+};
 
 }  // namespace telear::test

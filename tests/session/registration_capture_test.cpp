@@ -33,21 +33,11 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-class RegistrationCaptureTest : public ::testing::Test {
+class RegistrationCaptureTest : public test::CaptureRigTest {
  protected:
   void SetUp() override {
-    auto loaded = test::load_puma_capture_rig();
-    ASSERT_TRUE(loaded) << loaded.error().message;
-    model = loaded->model;
-    rig = std::move(loaded->rig);
-    marker = loaded->marker;
-    // A folder per test process: CTest runs the cases of this fixture in parallel.
-    dir = temp_dir.path();
-    // The vision server serves the rig's true intrinsics as its calibration (registration is
-    // what is tested here, not calibration).
-    auto written = test::write_true_calibration(rig, dir);
-    ASSERT_TRUE(written) << written.error().message;
-    const std::string calibration = *written;
+    test::CaptureRigTest::SetUp();
+    if (HasFatalFailure()) return;
     // Start where both cameras detect the marker (the operator's jog before capturing): the
     // first configuration the simulated rig's own observations found it at in both eyes.
     auto visible = test::marker_visible_start();
@@ -84,11 +74,6 @@ class RegistrationCaptureTest : public ::testing::Test {
     servers.reset();
   }
 
-  core::RobotModelPtr model;
-  sim::StereoRig rig;
-  core::MarkerMount marker;
-  test_files::TempDir temp_dir;
-  fs::path dir;
   std::unique_ptr<EmbeddedServers> servers;
   std::unique_ptr<net::RobotClient> robot;
   std::unique_ptr<net::VisionClient> vision;

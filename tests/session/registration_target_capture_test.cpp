@@ -38,19 +38,11 @@ struct Errors {
   double left_mm, left_deg, right_mm, right_deg, target_mm;
 };
 
-class RegistrationTargetCaptureTest : public ::testing::Test {
+class RegistrationTargetCaptureTest : public test::CaptureRigTest {
  protected:
   void SetUp() override {
-    auto loaded = test::load_puma_capture_rig();
-    ASSERT_TRUE(loaded) << loaded.error().message;
-    model = loaded->model;
-    rig = std::move(loaded->rig);
-    marker = loaded->marker;
-    // A folder per test process: CTest runs the cases of this fixture in parallel.
-    dir = temp_dir.path();
-    auto written = test::write_true_calibration(rig, dir);
-    ASSERT_TRUE(written) << written.error().message;
-    calibration = *written;
+    test::CaptureRigTest::SetUp();
+    if (HasFatalFailure()) return;
     // The PUMA rig file with the board on the flange: paths made absolute, `target:` added.
     const fs::path rig_file = sim::default_rig_file("puma560");
     std::ifstream in(rig_file);
@@ -121,12 +113,6 @@ class RegistrationTargetCaptureTest : public ::testing::Test {
     return {left.position_mm, left.rotation_deg, right.position_mm, right.rotation_deg, target_mm};
   }
 
-  core::RobotModelPtr model;
-  sim::StereoRig rig;
-  core::MarkerMount marker;
-  test_files::TempDir temp_dir;
-  fs::path dir;
-  std::string calibration;
   std::string board_rig;
 };
 
