@@ -21,7 +21,6 @@
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/capture_observations.hpp"
 #include "telear/vision/hand_eye_registration.hpp"
-#include "telear/vision/marker_detection.hpp"
 #include "telear/vision/registration_target.hpp"
 
 namespace telear::session {

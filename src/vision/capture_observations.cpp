@@ -40,10 +40,6 @@ std::vector<TargetPixel> average_points(const std::vector<FramePoints>& found, d
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> marker_target_points(const core::MarkerMount& marker) {
-  return registration_target_from_mount(marker).points();
-}
-
 Result<CaptureObservations> detect_capture_targets(const std::string& directory,
                                                    const CaptureSet& capture,
                                                    const core::MarkerMount& marker,

@@ -16,8 +16,15 @@ std::string fixed(double value, int decimals) {
 }
 
 std::string vector3(const Eigen::Vector3d& v, int decimals) {
-  return "[" + fixed(v.x(), decimals) + ", " + fixed(v.y(), decimals) + ", " +
-         fixed(v.z(), decimals) + "]";
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "[" + string.
+  std::string out = "[";
+  out += fixed(v.x(), decimals);
+  out += ", ";
+  out += fixed(v.y(), decimals);
+  out += ", ";
+  out += fixed(v.z(), decimals);
+  out += "]";
+  return out;
 }
 
 std::string eye_line(const std::string& label, const EyeResiduals& r) {

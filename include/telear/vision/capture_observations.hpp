@@ -39,9 +39,6 @@ struct CaptureObservations {
   int right_found = 0;
 };
 
-// The marker's corners in its own frame, in cv::aruco's order (marker_mount.hpp).
-std::vector<Eigen::Vector3d> marker_target_points(const core::MarkerMount& marker);
-
 // Reads every image of `capture` (folder `directory`) and detects `target`; views are named
 // "pose N" after the capture's order. Errors: an image that cannot be read (naming it).
 Result<CaptureObservations> detect_capture_targets(const std::string& directory,
