@@ -26,12 +26,13 @@
 #include <iosfwd>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
-// --robot, --tip, --package-path (RobotArguments; --missing-meshes is not offered: no meshes).
-struct BenchKinOptions : RobotArguments {
+// --robot, --tip, --package-path (geometry/robot_selection.hpp; --missing-meshes is not
+// offered: no meshes).
+struct BenchKinOptions : geometry::RobotSelection {
   int poses = 10000;  // numeric IK targets (and FK sanity-check configurations)
   std::string json;   // also write the table as JSON to this file; empty: no
 };

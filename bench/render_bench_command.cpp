@@ -21,6 +21,7 @@
 
 #include "telear/core/arm_body.hpp"
 #include "telear/core/arm_body_pose.hpp"
+#include "telear/core/image_size.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/geometry/robot_assets.hpp"
@@ -458,8 +459,8 @@ int run_bench_render(const RenderBenchOptions& options, std::ostream& out, std::
     out << j.dump(2) << "\n";
     return 0;
   }
-  out << "telear bench render: " << options.width << "x" << options.height << " per view, "
-      << core::format_fixed(options.seconds, 1) << " s per case\n"
+  out << "telear bench render: " << core::to_string(core::ImageSize{options.width, options.height})
+      << " per view, " << core::format_fixed(options.seconds, 1) << " s per case\n"
       << "device: " << device << "\n";
   if (has_load) {
     out << "load average: " << core::format_fixed(load[0], 2) << " "

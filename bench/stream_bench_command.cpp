@@ -277,8 +277,9 @@ std::string format(const char* pattern, double value) {
 }
 
 void print_video(const VideoResult& v, const StreamBenchOptions& options, std::ostream& out) {
-  out << "\nstereo " << v.size.width << "x" << v.size.height << " (synthetic source at "
-      << format("%.0f", options.source_fps) << " fps, JPEG quality " << options.quality << ")\n";
+  out << "\nstereo " << core::to_string(core::ImageSize{v.size.width, v.size.height})
+      << " (synthetic source at " << format("%.0f", options.source_fps) << " fps, JPEG quality "
+      << options.quality << ")\n";
   out << "| figure | p50 | p99 | target | met |\n|---|---|---|---|---|\n";
   const std::string fps_target = v.target ? ">= " + format("%.0f", v.target->fps) + " fps" : "-";
   out << "| sustained decoded fps | " << format("%.1f", v.fps) << " | | " << fps_target << " | "

@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "apps/command_failure.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/calibration_images.hpp"
@@ -12,13 +13,6 @@
 
 namespace telear::cli {
 namespace {
-
-constexpr const char* kCommand = "telear calibrate: ";
-
-int fail(std::ostream& err, const std::string& message, int code = 2) {
-  err << kCommand << message << "\n";
-  return code;
-}
 
 vision::DetectionCallback progress_printer(std::ostream& out) {
   return [&out](const vision::DetectionProgress& p) {
@@ -45,56 +39,55 @@ std::vector<std::string> output_paths(const CalibrateOptions& o) {
 }  // namespace
 
 int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostream& err) {
+  const CommandFailure fail{err, "telear calibrate"};
   // Everything that can be checked cheaply, before detection.
   auto pattern = vision::parse_calibration_pattern(options.pattern);
-  if (!pattern) return fail(err, "--pattern: " + pattern.error().message);
+  if (!pattern) return fail("--pattern: " + pattern.error().message);
   auto model = vision::parse_distortion_model(options.model);
-  if (!model) return fail(err, "--model: " + model.error().message);
+  if (!model) return fail("--model: " + model.error().message);
   vision::StereoCalibrationOptions calibration;
   calibration.calibration.model = *model;
   if (*model == vision::DistortionModel::equidistant && options.zero_tangential) {
-    return fail(err,
-                "--zero-tangential: the equidistant (fisheye) model has no tangential terms; "
-                "leave it out with --model equidistant");
+    return fail(
+        "--zero-tangential: the equidistant (fisheye) model has no tangential terms; "
+        "leave it out with --model equidistant");
   }
   if (*model != vision::DistortionModel::plumb_bob && options.estimate_k3) {
-    return fail(err, std::string("--estimate-k3: applies to plumb_bob only; --model ") +
-                         vision::distortion_model_name(*model) + " estimates all its terms");
+    return fail(std::string("--estimate-k3: applies to plumb_bob only; --model ") +
+                vision::distortion_model_name(*model) + " estimates all its terms");
   }
   calibration.calibration.outlier_factor = options.outlier_factor;
   calibration.calibration.fix_k3 = !options.estimate_k3;
   calibration.calibration.zero_tangential = options.zero_tangential;
   calibration.refine_intrinsics = !options.keep_mono_intrinsics;
   if (Status s = calibration.validate(); !s) {
-    return fail(err, "--outlier-factor: " + s.error().message);
+    return fail("--outlier-factor: " + s.error().message);
   }
-  if (options.output.empty())
-    return fail(err, "-o: give the camera file to write, e.g. -o stereo.yaml");
+  if (options.output.empty()) return fail("-o: give the camera file to write, e.g. -o stereo.yaml");
   const std::vector<std::string> outputs = output_paths(options);
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const char* option =
         i == 0 ? "-o" : (outputs[i] == options.report ? "--report" : "--camera-info");
     if (Status s = vision::check_output_path(outputs[i], option); !s)
-      return fail(err, s.error().message);
+      return fail(s.error().message);
     for (std::size_t j = 0; j < i; ++j) {
-      if (outputs[i] == outputs[j])
-        return fail(err, "'" + outputs[i] + "' is given as two outputs");
+      if (outputs[i] == outputs[j]) return fail("'" + outputs[i] + "' is given as two outputs");
     }
   }
   auto left = vision::expand_image_glob(options.left, "--left");
-  if (!left) return fail(err, left.error().message);
+  if (!left) return fail(left.error().message);
 
   std::vector<std::string> right;
   if (!options.right.empty()) {
     auto expanded = vision::expand_image_glob(options.right, "--right");
-    if (!expanded) return fail(err, expanded.error().message);
+    if (!expanded) return fail(expanded.error().message);
     right = std::move(*expanded);
   }
   vision::ImageCalibrationProgress progress;
   progress.stage = [&out](const std::string& text) { out << text << std::endl; };
   progress.detection = progress_printer(out);
   auto calibrated = vision::calibrate_image_files(*left, right, *pattern, calibration, progress);
-  if (!calibrated) return fail(err, calibrated.error().message);
+  if (!calibrated) return fail(calibrated.error().message);
   const vision::CalibrationReport& report = *calibrated;
 
   out << "\n" << vision::calibration_summary(report);
@@ -107,7 +100,7 @@ int run_calibrate(const CalibrateOptions& options, std::ostream& out, std::ostre
     files.emplace_back(options.report, vision::calibration_report_json(report));
   for (auto& file : vision::ros_camera_info_files(options.camera_info, report))
     files.push_back(std::move(file));
-  if (Status s = vision::write_files_atomically(files); !s) return fail(err, s.error().message, 1);
+  if (Status s = vision::write_files_atomically(files); !s) return fail(s.error().message, 1);
   out << "\nwrote";
   for (const auto& [path, text] : files) out << " " << path;
   out << "\n";

@@ -9,11 +9,13 @@
 #include <sstream>
 #include <vector>
 
+#include "apps/command_failure.hpp"
 #include "telear/core/angles.hpp"
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/number_format.hpp"
+#include "telear/core/number_list.hpp"
 #include "telear/core/robot_loader.hpp"
-#include "telear/net/bearer_auth.hpp"
+#include "telear/net/token_file.hpp"
 #include "telear/session/capture_session.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/vision/capture_observations.hpp"
@@ -21,13 +23,6 @@
 
 namespace telear::cli {
 namespace {
-
-constexpr const char* kCommand = "telear capture: ";
-
-int fail(std::ostream& err, const std::string& message, int code = 2) {
-  err << kCommand << message << "\n";
-  return code;
-}
 
 // [SECTION] --manual
 
@@ -50,16 +45,6 @@ std::vector<std::string> words_of(const std::string& line) {
   std::vector<std::string> words;
   for (std::string w; in >> w;) words.push_back(w);
   return words;
-}
-
-std::optional<double> number_of(const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  return std::nullopt;
 }
 
 // Sends one jog; a lease that lapsed while the operator was typing is taken again once (the
@@ -154,8 +139,9 @@ Result<Clients> connect(const CaptureOptions& options) {
 
 int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ostream& out,
                        std::ostream& err) {
+  const CommandFailure fail{err, "telear capture"};
   auto loaded = capture_arm(options);
-  if (!loaded) return fail(err, loaded.error().message);
+  if (!loaded) return fail(loaded.error().message);
   const vision::RegistrationTarget& target = loaded->target;
   session::CaptureSessionOptions capture_options;
   capture_options.directory = options.output;
@@ -163,18 +149,18 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
   capture_options.settle_s = options.settle_s;
   capture_options.marker = loaded->marker;
   capture_options.target = target;
-  if (Status s = capture_options.validate(); !s) return fail(err, s.error().message);
+  if (Status s = capture_options.validate(); !s) return fail(s.error().message);
   auto clients = connect(options);
-  if (!clients) return fail(err, clients.error().message);
+  if (!clients) return fail(clients.error().message);
   net::RobotClient& robot = *clients->robot;
   net::VisionClient& vision = *clients->vision;
 
   const core::RobotModel& arm = *loaded->model;
   auto opened = session::CaptureSession::open(arm, robot, vision, capture_options);
-  if (!opened) return fail(err, opened.error().message, 1);
+  if (!opened) return fail(opened.error().message, 1);
   session::CaptureSession& capture = **opened;
   if (Status s = robot.acquire_lease(kLeaseHeartbeatS); !s)
-    return fail(err, "lease: " + s.error().message, 1);
+    return fail("lease: " + s.error().message, 1);
   const std::string noun = target.is_board() ? "board" : "marker";
   out << "manual capture into " << options.output << " (" << arm.name() << ", "
       << target.description() << "): jog the arm until both cameras see the " << noun
@@ -204,8 +190,8 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
         out << "not solved: " << solved.error().message << "\n";
       }
     } else if (verb == "j" && w.size() == 3) {
-      const auto joint = number_of(w[1]);
-      const auto delta = number_of(w[2]);
+      const auto joint = core::parse_number(w[1], "N");
+      const auto delta = core::parse_number(w[2], "D");
       if (!joint || *joint != std::floor(*joint) || *joint < 1 || *joint > arm.dof() || !delta) {
         out << "'" << line << "': j N D with N 1.." << arm.dof() << " and D a number\n";
       } else {
@@ -217,7 +203,7 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
             out);
       }
     } else if ((verb == "x" || verb == "y" || verb == "z") && w.size() == 2) {
-      const auto delta = number_of(w[1]);
+      const auto delta = core::parse_number(w[1], "D");
       if (!delta) {
         out << "'" << line << "': " << verb << " D with D in mm\n";
       } else {
@@ -234,7 +220,7 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
   (void)robot.release_lease();
 
   if (capture.poses().empty()) {
-    return fail(err, "no pose was added: nothing to register (" + options.output + ")", 1);
+    return fail("no pose was added: nothing to register (" + options.output + ")", 1);
   }
   const std::string coverage = options.output + "/coverage.png";
   if (cv::imwrite(coverage, capture.coverage())) {
@@ -249,10 +235,11 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
 }
 
 int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& err) {
+  const CommandFailure fail{err, "telear capture"};
   if (options.manual) return run_manual_capture(options, std::cin, out, err);
   // The target is detected for automatic poses and recorded in the folder for `register`.
   auto loaded = capture_arm(options);
-  if (!loaded) return fail(err, loaded.error().message);
+  if (!loaded) return fail(loaded.error().message);
   const core::RobotModel& arm = *loaded->model;
   const vision::RegistrationTarget& target = loaded->target;
 
@@ -271,17 +258,17 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
       capture.auto_poses = std::stoi(count, &used);
       if (used != count.size()) throw std::invalid_argument(count);
     } catch (const std::exception&) {
-      return fail(err, "--poses '" + options.poses + "': expected auto:N with N a number");
+      return fail("--poses '" + options.poses + "': expected auto:N with N a number");
     }
   } else {
     auto poses = session::load_capture_poses_file(options.poses, arm.dof());
-    if (!poses) return fail(err, "--poses: " + poses.error().message);
+    if (!poses) return fail("--poses: " + poses.error().message);
     capture.poses = std::move(*poses);
   }
-  if (Status s = capture.validate(); !s) return fail(err, s.error().message);
+  if (Status s = capture.validate(); !s) return fail(s.error().message);
 
   auto clients = connect(options);
-  if (!clients) return fail(err, clients.error().message);
+  if (!clients) return fail(clients.error().message);
   net::RobotClient& robot = *clients->robot;
   net::VisionClient& vision = *clients->vision;
 
@@ -289,7 +276,7 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
                                                   [&](const session::CaptureProgress& p) {
                                                     out << p.message << "\n" << std::flush;
                                                   });
-  if (!result) return fail(err, result.error().message, 1);
+  if (!result) return fail(result.error().message, 1);
   for (const std::string& note : result->notes) out << "note: " << note << "\n";
   // Where the target was seen in each eye, for the operator to judge the spread.
   auto detected = vision::detect_capture_targets(options.output, result->capture, target);

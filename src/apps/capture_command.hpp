@@ -20,11 +20,11 @@
 #include <iosfwd>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
-struct CaptureOptions : RobotArguments {
+struct CaptureOptions : geometry::RobotSelection {
   std::string robot_server;  // HOST:PORT
   std::string vision_server;
   std::string token_file;

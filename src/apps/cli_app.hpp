@@ -12,8 +12,8 @@
 #include <ostream>
 #include <vector>
 
-#include "apps/robot_arguments.hpp"
 #include "telear/core/image_size.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace CLI {
 class App;
@@ -43,7 +43,7 @@ void add_bench_commands(CLI::App& app, Commands& commands);  // bench render | k
 // --robot, --tip, --package-path (repeatable) and, when the command draws the arm,
 // --missing-meshes: the same four options on every command that takes a robot. The console,
 // whose --robot is the robot server's address, names the arm with `robot_option` "--arm".
-void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_meshes,
+void add_robot_arguments(CLI::App* app, geometry::RobotSelection& arguments, bool draws_meshes,
                          const std::string& robot_option = "--robot");
 
 // The one WIDTHxHEIGHT validator (core::parse_image_size) for every option that takes a

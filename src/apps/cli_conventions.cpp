@@ -26,7 +26,7 @@ constexpr core::ImageSize kMaxWindow{8192, 8192};
 
 // [SECTION] console (docs/console.md)
 
-void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_meshes,
+void add_robot_arguments(CLI::App* app, geometry::RobotSelection& arguments, bool draws_meshes,
                          const std::string& robot_option) {
   app->add_option(robot_option, arguments.robot,
                   "shipped robot name, robot file (.yaml), DH table (.yaml) or URDF (.urdf)")
@@ -46,7 +46,7 @@ void add_robot_arguments(CLI::App* app, RobotArguments& arguments, bool draws_me
 void add_console_command(CLI::App& app, Commands& commands) {
   struct ConsoleArguments {
     console::ConsoleOptions console;
-    RobotArguments arm;
+    geometry::RobotSelection arm;
   };
   auto arguments = std::make_shared<ConsoleArguments>();
   console::ConsoleOptions& console = arguments->console;

@@ -4,8 +4,8 @@
 
 namespace telear::cli {
 
-int run_console(const console::ConsoleOptions& given, const RobotArguments& arm, std::ostream& out,
-                std::ostream& err) {
+int run_console(const console::ConsoleOptions& given, const geometry::RobotSelection& arm,
+                std::ostream& out, std::ostream& err) {
   console::ConsoleOptions options = given;
   options.arm = arm.robot_spec();
   auto geometry = arm.geometry_options();

@@ -6,14 +6,14 @@
 
 #include <ostream>
 
-#include "apps/robot_arguments.hpp"
 #include "telear/console/console_options.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
 // `arm`: --arm (the console's --robot is the server's address), --tip, --package-path,
 // --missing-meshes.
-int run_console(const console::ConsoleOptions& options, const RobotArguments& arm,
+int run_console(const console::ConsoleOptions& options, const geometry::RobotSelection& arm,
                 std::ostream& out, std::ostream& err);
 
 }  // namespace telear::cli

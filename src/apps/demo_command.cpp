@@ -5,7 +5,7 @@
 
 #include "telear/core/image_size.hpp"
 #include "telear/core/number_format.hpp"
-#include "telear/session/demo_workflow.hpp"
+#include "telear/lab/demo_workflow.hpp"
 
 namespace telear::cli {
 
@@ -23,7 +23,7 @@ std::string seconds_text(double seconds) {
 
 int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   const auto demo_start = Clock::now();
-  session::DemoOptions demo;
+  lab::DemoOptions demo;
   auto size = core::parse_image_size(options.resolution, {64, 48}, {1920, 1080});
   if (!size) {
     err << "telear demo: --resolution: " << size.error().message << "\n";
@@ -51,14 +51,14 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
     return 2;
   }
 
-  session::DemoProgress progress;
+  lab::DemoProgress progress;
   progress.step = [&](int n, const std::string& what) {
     const double t = std::chrono::duration<double>(Clock::now() - demo_start).count();
     out << "[" << n << "/" << kSteps << "] " << what << " (" << seconds_text(t) << " s)"
         << std::endl;
   };
   progress.note = [&](const std::string& text) { out << "      " << text << "\n"; };
-  auto outcome = session::run_demo(demo, progress);
+  auto outcome = lab::run_demo(demo, progress);
   if (!outcome) {
     err << "telear demo: " << outcome.error().message << "\n";
     return 2;

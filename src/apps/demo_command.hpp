@@ -17,13 +17,13 @@
 #include <ostream>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
 // --robot (a shipped robot with a rig, data/rigs/NAME_rig.yaml, or its robot file), --tip,
 // --package-path and --missing-meshes as on every command that takes a robot.
-struct DemoOptions : RobotArguments {
+struct DemoOptions : geometry::RobotSelection {
   std::string out = "out/demo";
   std::string cache;  // empty: <out>/cache
   std::string resolution = "640x480";

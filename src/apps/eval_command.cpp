@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/command_failure.hpp"
 #include "telear/core/arm_body.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/vision/accuracy_check.hpp"
@@ -13,38 +14,28 @@
 #include "telear/vision/registered_camera_file.hpp"
 
 namespace telear::cli {
-namespace {
-
-constexpr const char* kCommand = "telear eval: ";
-
-int fail(std::ostream& err, const std::string& message, int code = 2) {
-  err << kCommand << message << "\n";
-  return code;
-}
-
-}  // namespace
-
 int run_eval(const EvalOptions& options, std::ostream& out, std::ostream& err) {
-  if (options.truth.empty()) return fail(err, "--truth: give the true cameras (truth.yaml)");
+  const CommandFailure fail{err, "telear eval"};
+  if (options.truth.empty()) return fail("--truth: give the true cameras (truth.yaml)");
   if (options.estimate.empty())
-    return fail(err, "--estimate: give the registered camera file (telear register -o)");
+    return fail("--estimate: give the registered camera file (telear register -o)");
   if (options.configurations < 0 || options.configurations > 10000)
-    return fail(
-        err, "--configurations " + std::to_string(options.configurations) + " is outside 0..10000");
+    return fail("--configurations " + std::to_string(options.configurations) +
+                " is outside 0..10000");
   if (!(options.spacing_m >= 0.001 && options.spacing_m <= 1.0))
-    return fail(err, "--spacing must be within 0.001..1 m");
+    return fail("--spacing must be within 0.001..1 m");
   if (!options.json.empty()) {
     if (Status s = vision::check_output_path(options.json, "--json"); !s)
-      return fail(err, s.error().message);
+      return fail(s.error().message);
   }
   auto truth = vision::load_registered_pair(options.truth, "--truth");
-  if (!truth) return fail(err, truth.error().message);
+  if (!truth) return fail(truth.error().message);
   auto estimate = vision::load_registered_pair(options.estimate, "--estimate");
-  if (!estimate) return fail(err, estimate.error().message);
+  if (!estimate) return fail(estimate.error().message);
   auto geometry = options.geometry_options();
-  if (!geometry) return fail(err, geometry.error().message);
+  if (!geometry) return fail(geometry.error().message);
   auto robot = geometry::load_robot_assets(options.robot_spec(), *geometry);
-  if (!robot) return fail(err, "--robot: " + robot.error().message);
+  if (!robot) return fail("--robot: " + robot.error().message);
   const core::RobotModelPtr model = robot->model();
   const core::ArmBody body = core::build_arm_body(robot->body);
 
@@ -61,7 +52,7 @@ int run_eval(const EvalOptions& options, std::ostream& out, std::ostream& err) {
   if (!options.json.empty()) {
     const std::string json = vision::accuracy_report_json(report, checks);
     if (Status s = vision::write_files_atomically({{options.json, json}}); !s) {
-      return fail(err, s.error().message, 1);
+      return fail(s.error().message, 1);
     }
     out << "wrote " << options.json << "\n";
   }

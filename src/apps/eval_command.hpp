@@ -16,11 +16,11 @@
 #include <iosfwd>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
-struct EvalOptions : RobotArguments {
+struct EvalOptions : geometry::RobotSelection {
   std::string truth;
   std::string estimate;
   std::string json;         // report to write; empty: none

@@ -6,11 +6,11 @@
 #include <optional>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
-struct KinOptions : RobotArguments {
+struct KinOptions : geometry::RobotSelection {
   std::string q;                    // fk: comma-separated joint values
   std::optional<std::string> T;     // ik: 16 numbers, row-major
   std::optional<std::string> pose;  // ik: x,y,z,roll,pitch,yaw (m, rad or deg with --deg)

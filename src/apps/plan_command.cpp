@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "apps/command_failure.hpp"
 #include "telear/core/plan_hash.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/core/workspace.hpp"
@@ -12,10 +13,7 @@
 
 namespace telear::cli {
 int run_plan_check(const PlanCheckOptions& options, std::ostream& out, std::ostream& err) {
-  const auto fail = [&err](const std::string& message) {
-    err << "telear plan check: " << message << "\n";
-    return 2;
-  };
+  const CommandFailure fail{err, "telear plan check"};
   auto geometry_options = options.geometry_options();
   if (!geometry_options) return fail(geometry_options.error().message);
   auto description = core::load_robot_description(options.robot_spec());
@@ -43,10 +41,7 @@ int run_plan_check(const PlanCheckOptions& options, std::ostream& out, std::ostr
 }
 
 int run_plan_hash(const PlanHashOptions& options, std::ostream& out, std::ostream& err) {
-  const auto fail = [&err](const std::string& message) {
-    err << "telear plan hash: " << message << "\n";
-    return 2;
-  };
+  const CommandFailure fail{err, "telear plan hash"};
   auto description = core::load_robot_description(options.robot_spec());
   if (!description) return fail(description.error().message);
   auto plan = session::Plan::load(description->model, options.plan);

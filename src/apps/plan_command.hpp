@@ -7,11 +7,11 @@
 #include <iosfwd>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
-struct PlanCheckOptions : RobotArguments {
+struct PlanCheckOptions : geometry::RobotSelection {
   std::string workspace;  // empty: the robot's shipped workspace
   std::string plan;
   bool json = false;
@@ -24,7 +24,7 @@ int run_plan_check(const PlanCheckOptions& options, std::ostream& out, std::ostr
 // plan message carries, computed in this process: the same plan hashed by any process gives
 // the same 64 hex digits. Prints the hash alone on a line, or with --json
 // {"plan_hash", "algorithm", "duration_s", "waypoints"}. Exit codes: 0, or 2 bad input.
-struct PlanHashOptions : RobotArguments {
+struct PlanHashOptions : geometry::RobotSelection {
   std::string plan;
   bool json = false;
 };

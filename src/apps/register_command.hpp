@@ -24,11 +24,11 @@
 #include <iosfwd>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
-struct RegisterOptions : RobotArguments {
+struct RegisterOptions : geometry::RobotSelection {
   std::string rig;           // stereo camera file (calibration output)
   std::string observations;  // observations YAML (telear/vision/observations_file.hpp)
   std::string captures;      // a capture folder (telear capture); --rig optional then

@@ -7,6 +7,7 @@
 
 #include "telear/core/arm_body.hpp"
 #include "telear/core/arm_body_pose.hpp"
+#include "telear/core/image_size.hpp"
 #include "telear/core/joint_values.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/geometry/robot_assets.hpp"
@@ -125,7 +126,7 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
       err << prefix << written.error().message << "\n";
       return kBadInput;
     }
-    out << "wrote " << path << " (" << image.width << "x" << image.height;
+    out << "wrote " << path << " (" << core::to_string(core::ImageSize{image.width, image.height});
     if (eyes.size() == 2 && layout != render::StereoLayout::kSeparate) {
       out << ", stereo " << render::stereo_layout_name(layout);
     }

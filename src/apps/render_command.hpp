@@ -14,11 +14,11 @@
 #include <optional>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
-struct RenderOptions : RobotArguments {
+struct RenderOptions : geometry::RobotSelection {
   std::string q;  // joint values q1,...,qn (rad, or deg with degrees) or a name
   bool degrees = false;
   std::string camera;  // camera file (mono or stereo), or left.yaml,right.yaml; empty: default

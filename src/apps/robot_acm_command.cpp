@@ -3,16 +3,14 @@
 #include <fstream>
 #include <ostream>
 
+#include "apps/command_failure.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/geometry/allowed_collisions_file.hpp"
 
 namespace telear::cli {
 
 int run_robot_acm(const RobotAcmOptions& options, std::ostream& out, std::ostream& err) {
-  const auto fail = [&err](const std::string& message) {
-    err << "telear robot acm: " << message << "\n";
-    return 2;
-  };
+  const CommandFailure fail{err, "telear robot acm"};
   auto geometry_options = options.geometry_options();
   if (!geometry_options) return fail(geometry_options.error().message);
   auto description = core::load_robot_description(options.robot_spec());

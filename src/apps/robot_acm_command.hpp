@@ -9,11 +9,11 @@
 #include <iosfwd>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
 
-struct RobotAcmOptions : RobotArguments {
+struct RobotAcmOptions : geometry::RobotSelection {
   int samples = 2000;       // random configurations within the joint limits
   std::uint64_t seed = 13;  // the same matrix every run
   bool never = false;       // also allow the pairs in contact in no sample

@@ -2,24 +2,22 @@
 
 #include <csignal>
 
+#include "apps/command_failure.hpp"
 #include "telear/core/joint_values.hpp"
 #include "telear/core/robot_description.hpp"
+#include "telear/lab/simulated_robot_server.hpp"
 #include "telear/net/server_log.hpp"
-#include "telear/session/simulated_robot_server.hpp"
 
 namespace telear::cli {
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,
                      std::ostream& err) {
-  const auto fail = [&err](const std::string& message, int code) {
-    err << "telear robot-server: " << message << "\n";
-    return code;
-  };
+  const CommandFailure fail{err, "telear robot-server"};
   auto log_level = net::parse_log_level(options.log_level);
-  if (!log_level) return fail(log_level.error().message, 2);
+  if (!log_level) return fail("--log-level " + log_level.error().message, 2);
   auto description = core::load_robot_description(options.robot_spec());
   if (!description) return fail(description.error().message, 1);
-  session::SimulatedRobotServerOptions server_options;
+  lab::SimulatedRobotServerOptions server_options;
   if (!options.initial_q.empty()) {
     auto q = core::parse_joint_values(*description->model, options.initial_q, "--q", false);
     if (!q) return fail(q.error().message, 1);
@@ -54,7 +52,7 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
-  auto started = session::start_simulated_robot_server(*description, std::move(server_options));
+  auto started = lab::start_simulated_robot_server(*description, std::move(server_options));
   if (!started) return fail(started.error().message, 1);
   out << "robot server listening on " << (*started)->address() << std::endl;
 

@@ -12,12 +12,12 @@
 #include <ostream>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 #include "telear/net/motion_collision_guard.hpp"
 
 namespace telear::cli {
 
-struct RobotServerCommandOptions : RobotArguments {
+struct RobotServerCommandOptions : geometry::RobotSelection {
   std::string listen = "127.0.0.1:50051";
   std::string token_file;
   bool allow_observers = true;

@@ -1,5 +1,6 @@
 #include "apps/sim_frame_command.hpp"
 
+#include "apps/command_failure.hpp"
 #include "telear/core/arm_body.hpp"
 #include "telear/core/joint_values.hpp"
 #include "telear/core/kinematics.hpp"
@@ -13,10 +14,7 @@
 namespace telear::cli {
 
 int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostream& err) {
-  auto fail = [&err](const std::string& message, int code) {
-    err << "telear sim frame: " << message << "\n";
-    return code;
-  };
+  const CommandFailure fail{err, "telear sim frame"};
   if (options.output.empty()) return fail("-o PREFIX is required", 2);
   if (!(options.gripper >= 0.0 && options.gripper <= 0.2)) {
     return fail("--gripper must be an opening between 0 and 0.2 m", 2);

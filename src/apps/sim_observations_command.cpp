@@ -2,30 +2,21 @@
 
 #include <ostream>
 
+#include "apps/command_failure.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/observations_file.hpp"
 
 namespace telear::cli {
-namespace {
-
-constexpr const char* kCommand = "telear sim observations: ";
-
-int fail(std::ostream& err, const std::string& message, int code = 2) {
-  err << kCommand << message << "\n";
-  return code;
-}
-
-}  // namespace
-
 int run_sim_observations(const SimObservationsOptions& options, std::ostream& out,
                          std::ostream& err) {
+  const CommandFailure fail{err, "telear sim observations"};
   sim::MarkerObservationsOptions simulation;
   simulation.rig_file = options.rig;
   simulation.robot = options.robot;
   simulation.tip = options.tip;
   auto geometry = options.geometry_options();
-  if (!geometry) return fail(err, geometry.error().message);
+  if (!geometry) return fail(geometry.error().message);
   simulation.geometry = *geometry;
   simulation.configurations = options.configs;
   simulation.seed = options.seed;
@@ -33,11 +24,11 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
   simulation.supersample = options.supersample;
   simulation.max_view_angle_deg = options.max_view_angle_deg;
   simulation.margin_px = options.margin_px;
-  if (Status s = simulation.validate(); !s) return fail(err, s.error().message);
+  if (Status s = simulation.validate(); !s) return fail(s.error().message);
   if (options.output.empty())
-    return fail(err, "-o: give the observations file to write, e.g. -o obs.yaml");
+    return fail("-o: give the observations file to write, e.g. -o obs.yaml");
   if (Status s = vision::check_output_path(options.output, "-o"); !s)
-    return fail(err, s.error().message);
+    return fail(s.error().message);
 
   auto result = sim::simulate_marker_observations(
       simulation, [&out](int index, int count, bool left_found, bool right_found) {
@@ -50,9 +41,9 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
             << "\n"
             << std::flush;
       });
-  if (!result) return fail(err, result.error().message, 1);
+  if (!result) return fail(result.error().message, 1);
   if (Status s = vision::write_observations_file(result->observations, options.output); !s) {
-    return fail(err, s.error().message, 1);
+    return fail(s.error().message, 1);
   }
   out << "wrote " << result->observations.configurations.size() << " configurations to "
       << options.output;

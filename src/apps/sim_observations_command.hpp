@@ -15,13 +15,13 @@
 #include <iosfwd>
 #include <string>
 
-#include "apps/robot_arguments.hpp"
+#include "telear/geometry/robot_selection.hpp"
 
 #include "telear/sim/stereo_rig.hpp"
 
 namespace telear::cli {
 
-struct SimObservationsOptions : RobotArguments {
+struct SimObservationsOptions : geometry::RobotSelection {
   std::string rig = sim::default_rig_file();  // the shipped rig
   int configs = 20;                           // configurations to render (1..500)
   std::string output;                         // observations YAML to write

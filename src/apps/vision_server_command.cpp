@@ -6,11 +6,12 @@
 #include <memory>
 #include <optional>
 
+#include "apps/command_failure.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/number_list.hpp"
+#include "telear/lab/vision_source.hpp"
 #include "telear/net/server_log.hpp"
 #include "telear/net/vision_server.hpp"
-#include "telear/session/vision_source.hpp"
 
 namespace telear::cli {
 namespace {
@@ -27,10 +28,7 @@ Result<std::optional<core::ImageSize>> parse_resolution(const std::string& text)
 
 int run_vision_server(const VisionServerCommandOptions& options, std::ostream& out,
                       std::ostream& err) {
-  auto fail = [&err](const std::string& message, int code) {
-    err << "telear vision-server: " << message << "\n";
-    return code;
-  };
+  const CommandFailure fail{err, "telear vision-server"};
   // SIGINT / SIGTERM are taken by sigwait below: block them before any thread starts (every
   // thread inherits the mask), so no thread is interrupted and the main thread shuts down.
   sigset_t signals;
@@ -40,7 +38,7 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   auto log_level = net::parse_log_level(options.log_level);
-  if (!log_level) return fail(log_level.error().message, 2);
+  if (!log_level) return fail("--log-level " + log_level.error().message, 2);
   // The log (streams, clients, errors) goes to stderr: stdout carries only the ready line.
   net::log_to_stderr("vision-server", *log_level);
 
@@ -48,7 +46,7 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   if (!resolution) return fail(resolution.error().message, 2);
   if (!(options.fps >= 0.0 && options.fps <= 1000.0)) return fail("--fps must be in [0, 1000]", 2);
 
-  session::VisionSourceOptions source_options;
+  lab::VisionSourceOptions source_options;
   source_options.kind = options.source;
   source_options.rig = options.rig;
   source_options.robot_server = options.robot_server;
@@ -67,7 +65,7 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
     source_options.right_camera = static_cast<int>((*indices)[1]);
   }
   // Outlives the server (declared first): the simulated rig reads the robot it follows.
-  auto opened = session::open_vision_source(source_options);
+  auto opened = lab::open_vision_source(source_options);
   if (!opened) {
     // A camera that does not open is a failure to start; anything else, a bad option.
     const bool device = options.source == "v4l2" && options.robot_server.empty();

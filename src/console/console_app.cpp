@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -30,6 +29,8 @@
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
+#include "telear/lab/view_input.hpp"
+#include "telear/net/token_file.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/framebuffer_readback.hpp"
@@ -40,7 +41,6 @@
 #include "telear/render/scene_objects.hpp"
 #include "telear/render/stereo_composer.hpp"
 #include "telear/session/capture_session.hpp"
-#include "telear/session/view_input.hpp"
 #include "telear/vision/camera_file.hpp"
 
 namespace telear::console {
@@ -48,16 +48,6 @@ namespace telear::console {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-Result<std::string> read_token(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return Error{"--token-file '" + path + "': cannot be read"};
-  std::string token;
-  std::getline(in, token);
-  while (!token.empty() && (token.back() == '\r' || token.back() == ' ')) token.pop_back();
-  if (token.empty()) return Error{"--token-file '" + path + "': the first line is empty"};
-  return token;
-}
 
 Result<vision::StereoCameraModel> load_stereo_file(const std::string& path) {
   auto file = vision::load_camera_file(path);
@@ -235,10 +225,10 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   robot.client_name = "telear-console";
   vision.client_name = "telear-console";
   if (embedded) {
-    session::EmbeddedServersOptions server_options;
+    lab::EmbeddedServersOptions server_options;
     server_options.calibration_file = calibration_file;
-    if (Status s = session::serve_robot(server_options, arm->description); !s) return s.error();
-    auto servers = session::EmbeddedServers::create(m.model, server_options);
+    if (Status s = lab::serve_robot(server_options, arm->description); !s) return s.error();
+    auto servers = lab::EmbeddedServers::create(m.model, server_options);
     if (!servers) return servers.error();
     app->servers_ = std::move(*servers);
     if (!cameras) {
@@ -259,7 +249,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     robot.address = options.robot;
     vision.address = options.vision;
     if (!options.token_file.empty()) {
-      auto token = read_token(options.token_file);
+      auto token = net::load_token_file(options.token_file);
       if (!token) return token.error();
       robot.token = *token;
       vision.token = *token;
@@ -483,7 +473,7 @@ bool ConsoleApp::frame() {
       ui_.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
   m.view->set_options(view_options);
   const session::SessionView& v = session_->view();
-  render::ArViewInput input = session::ar_view_input(v);
+  render::ArViewInput input = lab::ar_view_input(v);
   if (input.ghost_q.size() == 0) input.ghost_q = session_->ghost().q();  // before the first update
   m.view->render(input);
   ViewTextures textures;
@@ -600,8 +590,8 @@ int ConsoleApp::run() {
       return 1;
     }
     *impl_->log << "telear console: wrote " << impl_->options.screenshot << " ("
-                << last_image_.width << "x" << last_image_.height << ", " << frames_
-                << " frames)\n";
+                << core::to_string(core::ImageSize{last_image_.width, last_image_.height}) << ", "
+                << frames_ << " frames)\n";
   }
   if (script_.failures() > 0) {
     *impl_->log << "telear console: " << script_.failures() << " script line(s) failed\n";

@@ -1,11 +1,11 @@
 #include <imgui.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "telear/console/console_actions.hpp"
 #include "telear/console/panels.hpp"
 #include "telear/core/angles.hpp"
+#include "telear/core/number_list.hpp"
 
 namespace telear::console {
 
@@ -77,24 +77,22 @@ void draw_real_robot_panel(PanelContext& ctx, const PanelLayout& layout) {
                            sizeof ui.typed_configuration);
   ImGui::SameLine();
   if (ImGui::Button("Initialize##typed")) {
-    std::vector<double> values;
-    std::stringstream in(ui.typed_configuration);
-    for (std::string item; std::getline(in, item, ',');) {
-      try {
-        values.push_back(std::stod(item));
-      } catch (...) {
-        values.clear();
-        break;
+    // The robot moves to these values: "2abc" is refused, not read as 2.
+    const auto values = core::parse_number_list(ui.typed_configuration, "joint values");
+    if (!values) {
+      ui.last_message =
+          std::string(to_string(ActionKind::kRealInitialize)) + ": " + values.error().message;
+      ui.last_failed = true;
+    } else {
+      UiAction a{.kind = ActionKind::kRealInitialize};
+      a.q.resize(static_cast<int>(values->size()));
+      for (std::size_t j = 0; j < values->size(); ++j) {
+        a.q[static_cast<int>(j)] = is_prismatic(model, static_cast<int>(j))
+                                       ? (*values)[j] / 1000.0
+                                       : core::radians_from_degrees((*values)[j]);
       }
+      ctx.act(a);
     }
-    UiAction a{.kind = ActionKind::kRealInitialize};
-    a.q.resize(static_cast<int>(values.size()));
-    for (std::size_t j = 0; j < values.size(); ++j) {
-      a.q[static_cast<int>(j)] = is_prismatic(model, static_cast<int>(j))
-                                     ? values[j] / 1000.0
-                                     : core::radians_from_degrees(values[j]);
-    }
-    ctx.act(a);
   }
 
   section("Direct jog (conventional mode: moves the robot now)");

@@ -7,16 +7,14 @@
 #include "telear/console/panels.hpp"
 #include "telear/session/capture_session.hpp"
 
+#include "imgui_texture.hpp"
+
 namespace telear::console {
 
 namespace {
 
 const ImVec4 kGood(0.35f, 0.85f, 0.35f, 1);
 const ImVec4 kBad(0.95f, 0.35f, 0.3f, 1);
-
-ImTextureID texture(unsigned id) {
-  return reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(id));
-}
 
 void seen(bool yes) {
   ImGui::TextColored(yes ? kGood : kBad, "%s", yes ? "seen" : "not seen");

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "telear/core/angles.hpp"
+#include "telear/core/number_list.hpp"
 
 namespace telear::console {
 
@@ -22,17 +23,9 @@ std::vector<std::string> split_words(const std::string& line) {
 }
 
 double parse_double(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (...) {
-    used = 0;
-  }
-  if (used != text.size() || !std::isfinite(v)) {
-    throw ParseError{what + ": '" + text + "' is not a number"};
-  }
-  return v;
+  auto value = core::parse_number(text, what);
+  if (!value) throw ParseError{value.error().message};
+  return *value;
 }
 
 // An angle (degrees unless "rad" or "deg" suffix) in radians.

@@ -6,13 +6,11 @@
 #include "telear/console/console_actions.hpp"
 #include "telear/console/panels.hpp"
 
+#include "imgui_texture.hpp"
+
 namespace telear::console {
 
 namespace {
-
-ImTextureID texture(unsigned id) {
-  return reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(id));
-}
 
 // Draws a bottom-up GL texture of w x h fitted into `avail` (aspect kept); returns hovered.
 bool fitted_image(unsigned id, int w, int h, ImVec2 avail) {

@@ -17,24 +17,13 @@
 namespace telear::core {
 namespace {
 
-// Thrown inside this file only; parse_*() turns it into a Result (no exception leaves it).
-struct ParseError {
-  std::string message;
-};
-
-double scalar(const YAML::Node& node, const std::string& what) {
-  auto value = yaml_number(node, what, " ");
-  if (!value) throw ParseError{value.error().message};
-  return *value;
-}
-
 std::vector<double> numbers(const YAML::Node& node, const std::string& what, size_t count) {
   if (!node.IsSequence() || node.size() != count) {
-    throw ParseError{what + " must be a list of " + std::to_string(count) + " numbers"};
+    throw YamlFieldError{what + " must be a list of " + std::to_string(count) + " numbers"};
   }
   std::vector<double> values;
   for (size_t i = 0; i < count; ++i) {
-    values.push_back(scalar(node[i], what + "[" + std::to_string(i) + "]"));
+    values.push_back(number_or_throw(node[i], what + "[" + std::to_string(i) + "]", " "));
   }
   return values;
 }
@@ -44,9 +33,10 @@ std::optional<double> angle(const YAML::Node& map, const std::string& base,
                             const std::string& what) {
   const YAML::Node deg = map[base + "_deg"];
   const YAML::Node rad = map[base + "_rad"];
-  if (deg && rad) throw ParseError{what + ": give " + base + "_deg or " + base + "_rad, not both"};
-  if (deg) return radians_from_degrees(scalar(deg, what + "." + base + "_deg"));
-  if (rad) return scalar(rad, what + "." + base + "_rad");
+  if (deg && rad)
+    throw YamlFieldError{what + ": give " + base + "_deg or " + base + "_rad, not both"};
+  if (deg) return radians_from_degrees(number_or_throw(deg, what + "." + base + "_deg", " "));
+  if (rad) return number_or_throw(rad, what + "." + base + "_rad", " ");
   return std::nullopt;
 }
 
@@ -54,7 +44,7 @@ std::optional<double> angle(const YAML::Node& map, const std::string& base,
 double length(const YAML::Node& map, const std::string& base, const std::string& what) {
   const YAML::Node m = map[base + "_m"];
   if (!m) return 0.0;
-  return scalar(m, what + "." + base + "_m");
+  return number_or_throw(m, what + "." + base + "_m", " ");
 }
 
 // Angle pairs and rates: key_deg{suffix} or key_rad{suffix}, as a list of `count`.
@@ -65,7 +55,8 @@ std::optional<std::vector<double>> angles(const YAML::Node& map, const std::stri
   const std::string rad_key = base + "_rad" + suffix;
   const YAML::Node deg = map[deg_key];
   const YAML::Node rad = map[rad_key];
-  if (deg && rad) throw ParseError{what + ": give " + deg_key + " or " + rad_key + ", not both"};
+  if (deg && rad)
+    throw YamlFieldError{what + ": give " + deg_key + " or " + rad_key + ", not both"};
   if (!deg && !rad) return std::nullopt;
   std::vector<double> v = numbers(deg ? deg : rad, what + "." + (deg ? deg_key : rad_key), count);
   if (deg) {
@@ -75,7 +66,7 @@ std::optional<std::vector<double>> angles(const YAML::Node& map, const std::stri
 }
 
 Eigen::Isometry3d transform(const YAML::Node& node, const std::string& what) {
-  if (!node.IsMap()) throw ParseError{what + " must be a map with xyz_m and rpy_deg/rpy_rad"};
+  if (!node.IsMap()) throw YamlFieldError{what + " must be a map with xyz_m and rpy_deg/rpy_rad"};
   Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
   if (node["xyz_m"]) {
     const auto v = numbers(node["xyz_m"], what + ".xyz_m", 3);
@@ -86,19 +77,19 @@ Eigen::Isometry3d transform(const YAML::Node& node, const std::string& what) {
   return pose_from_xyz_rpy(xyz, rpy);
 }
 
-RobotModel::Description parse(const YAML::Node& root, const std::string& source) {
-  if (!root.IsMap()) throw ParseError{"the file must be a YAML map"};
+RobotModel::Description parse_dh_description(const YAML::Node& root, const std::string& source) {
+  if (!root.IsMap()) throw YamlFieldError{"the file must be a YAML map"};
   RobotModel::Description d;
   d.source = source;
-  if (!root["name"] || !root["name"].IsScalar()) throw ParseError{"missing 'name'"};
+  if (!root["name"] || !root["name"].IsScalar()) throw YamlFieldError{"missing 'name'"};
   d.name = root["name"].Scalar();
   const YAML::Node convention = root["convention"];
   if (!convention || convention.Scalar() != "standard_dh") {
-    throw ParseError{"'convention' must be standard_dh (the only DH form supported)"};
+    throw YamlFieldError{"'convention' must be standard_dh (the only DH form supported)"};
   }
   const YAML::Node joints = root["joints"];
   if (!joints || !joints.IsSequence() || joints.size() == 0) {
-    throw ParseError{"'joints' must be a non-empty list"};
+    throw YamlFieldError{"'joints' must be a non-empty list"};
   }
   std::vector<DhRow> rows;
   std::vector<std::string> names;
@@ -106,10 +97,10 @@ RobotModel::Description parse(const YAML::Node& root, const std::string& source)
   for (size_t i = 0; i < joints.size(); ++i) {
     const YAML::Node j = joints[i];
     const std::string what = "joints[" + std::to_string(i) + "]";
-    if (!j.IsMap()) throw ParseError{what + " must be a map"};
+    if (!j.IsMap()) throw YamlFieldError{what + " must be a map"};
     if (j["type"] && j["type"].Scalar() != "revolute") {
-      throw ParseError{what + ": only revolute DH joints are supported, got '" +
-                       j["type"].Scalar() + "'"};
+      throw YamlFieldError{what + ": only revolute DH joints are supported, got '" +
+                           j["type"].Scalar() + "'"};
     }
     names.push_back(j["name"] ? j["name"].Scalar() : "joint" + std::to_string(i + 1));
     DhRow row;
@@ -120,20 +111,22 @@ RobotModel::Description parse(const YAML::Node& root, const std::string& source)
     rows.push_back(row);
     JointLimits l;
     const auto range = angles(j, "limits", "", what, 2);
-    if (!range) throw ParseError{what + ": missing limits_deg or limits_rad"};
+    if (!range) throw YamlFieldError{what + ": missing limits_deg or limits_rad"};
     l.lower = (*range)[0];
     l.upper = (*range)[1];
     const YAML::Node v_deg = j["max_velocity_deg_s"];
     const YAML::Node v_rad = j["max_velocity_rad_s"];
     const YAML::Node a_deg = j["max_acceleration_deg_s2"];
     const YAML::Node a_rad = j["max_acceleration_rad_s2"];
-    if (!v_deg && !v_rad) throw ParseError{what + ": missing max_velocity_deg_s or _rad_s"};
-    if (!a_deg && !a_rad) throw ParseError{what + ": missing max_acceleration_deg_s2 or _rad_s2"};
-    l.max_velocity = v_deg ? radians_from_degrees(scalar(v_deg, what + ".max_velocity_deg_s"))
-                           : scalar(v_rad, what + ".max_velocity_rad_s");
+    if (!v_deg && !v_rad) throw YamlFieldError{what + ": missing max_velocity_deg_s or _rad_s"};
+    if (!a_deg && !a_rad)
+      throw YamlFieldError{what + ": missing max_acceleration_deg_s2 or _rad_s2"};
+    l.max_velocity =
+        v_deg ? radians_from_degrees(number_or_throw(v_deg, what + ".max_velocity_deg_s", " "))
+              : number_or_throw(v_rad, what + ".max_velocity_rad_s", " ");
     l.max_acceleration =
-        a_deg ? radians_from_degrees(scalar(a_deg, what + ".max_acceleration_deg_s2"))
-              : scalar(a_rad, what + ".max_acceleration_rad_s2");
+        a_deg ? radians_from_degrees(number_or_throw(a_deg, what + ".max_acceleration_deg_s2", " "))
+              : number_or_throw(a_rad, what + ".max_acceleration_rad_s2", " ");
     limits.push_back(l);
   }
   d.joints = joints_from_dh(rows, names, limits);
@@ -142,7 +135,8 @@ RobotModel::Description parse(const YAML::Node& root, const std::string& source)
   for (const char* key : {"named_configurations_deg", "named_configurations_rad"}) {
     const YAML::Node configs = root[key];
     if (!configs) continue;
-    if (!configs.IsMap()) throw ParseError{std::string(key) + " must be a map of name: [values]"};
+    if (!configs.IsMap())
+      throw YamlFieldError{std::string(key) + " must be a map of name: [values]"};
     const bool degrees = std::string(key).find("_deg") != std::string::npos;
     for (const auto& entry : configs) {
       const std::string name = entry.first.Scalar();
@@ -163,13 +157,8 @@ Result<RobotModel> parse_dh_yaml(const std::string& text, const std::string& sou
   const std::string where = "robot file '" + source + "': ";
   auto root = load_yaml(text, where);
   if (!root) return root.error();
-  try {
-    return RobotModel::create(parse(*root, source));
-  } catch (const ParseError& e) {
-    return Error{where + e.message};
-  } catch (const YAML::Exception& e) {
-    return Error{where + describe_yaml_error(e)};
-  }
+  return catch_yaml_errors<RobotModel>(
+      where, [&] { return RobotModel::create(parse_dh_description(*root, source)); });
 }
 
 Result<RobotModel> load_dh_yaml_file(const std::string& path) {

@@ -11,37 +11,14 @@
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/number_format.hpp"
 
+#include "ik_common.hpp"
+
 namespace telear::core {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-// Lengths within this of a reach boundary count as on it (rounding of the target pose).
-constexpr double kReachTolerance = 1e-10;  // m
-// Flags a solution `singular` when the relevant sine or distance is below this.
-constexpr double kSingularTolerance = 1e-6;  // rad or m
 // Below this, the ZYZ decomposition's first angle is undetermined (the Toolbox's 10 eps).
 constexpr double kEulerDegenerate = 10.0 * std::numeric_limits<double>::epsilon();
-// Joint values this close outside a limit still count as within it.
-constexpr double kLimitTolerance = 1e-9;  // rad
-constexpr double kDhTolerance = 1e-9;     // rad or m, for the class checks
-
-// Lengths and angles in the solver's messages: "0.8641 m", "12.50 deg".
-std::string format_length(double metres) {
-  return format_fixed(metres, 4, "m");
-}
-std::string format_angle(double radians) {
-  return format_fixed(degrees_from_radians(radians), 2, "deg");
-}
-
-// wrap_to_pi for the closed form's angles, which lie within a few pi: a subtraction or two
-// instead of std::remainder (a tenth of the solver's time otherwise).
-double wrap_small_angle(double angle) {
-  if (std::abs(angle) > 8.0 * kPi) return wrap_to_pi(angle);  // a huge DH offset
-  while (angle > kPi) angle -= kTwoPi;
-  while (angle <= -kPi) angle += kTwoPi;
-  return angle;
-}
+constexpr double kDhTolerance = 1e-9;  // rad or m, for the class checks
 
 // Unit complex numbers (cos, sin) for exact angle sums without trigonometric calls. Lengths
 // here are of order 1 (unit vectors, metres), so sqrt(x^2 + y^2) cannot overflow and is several
@@ -53,7 +30,7 @@ struct Rot2 {
 inline Rot2 operator*(Rot2 a, Rot2 b) {
   return {a.c * b.c - a.s * b.s, a.s * b.c + a.c * b.s};
 }
-inline Rot2 normalized(double c, double s) {
+inline Rot2 normalized_rot2(double c, double s) {
   const double n = std::sqrt(c * c + s * s);
   return n > 0.0 ? Rot2{c / n, s / n} : Rot2{};
 }
@@ -68,7 +45,7 @@ Rot2 triangle_angle(double a, double b, double c) {
   if (x < y) std::swap(x, y);
   const double product = (x + (y + z)) * (z - (x - y)) * (z + (x - y)) * (x + (y - z));
   const double area = 0.25 * std::sqrt(std::max(0.0, product));
-  return normalized(cosine, 2.0 * area / (a * c));
+  return normalized_rot2(cosine, 2.0 * area / (a * c));
 }
 
 }  // namespace
@@ -92,7 +69,7 @@ Result<PumaGeometry> puma_geometry(const RobotModel& model) {
       return Error{who + "joint " + std::to_string(i + 1) + " is prismatic, needs revolute"};
     }
   }
-  const double h = kPi / 2.0;
+  const double h = std::numbers::pi / 2.0;
   const std::array<double, 5> pattern = {h, 0.0, -h, h, -h};
   const bool mirrored = std::abs(dh[0].alpha + h) < kDhTolerance;
   const double sign = mirrored ? -1.0 : 1.0;
@@ -186,7 +163,7 @@ void solve_puma_ik(const PumaGeometry& g, const Eigen::Isometry3d& T_base_tool,
   std::array<Rot2, 2> rot1;                // [0] 'l', [1] 'r'
   std::array<double, 2> theta1;
   theta1[1] = phi + alpha;
-  theta1[0] = phi + kPi - alpha;
+  theta1[0] = phi + std::numbers::pi - alpha;
   if (r2 > 0.0) {
     rot1[1] = {(px * x1 - py * D) / r2, (py * x1 + px * D) / r2};
     rot1[0] = {-(px * x1 + py * D) / r2, -(py * x1 - px * D) / r2};
@@ -218,15 +195,16 @@ void solve_puma_ik(const PumaGeometry& g, const Eigen::Isometry3d& T_base_tool,
   const bool elbow_singular = psi.s * rho < kSingularTolerance * B;
   const Rot2 beta{g.a3 / B, g.d4 / B};  // forearm_angle = atan2(d4, a3)
   const Rot2 beta_inv{beta.c, -beta.s};
-  const double shift_a2 = g.a2 < 0.0 ? kPi : 0.0;
+  const double shift_a2 = g.a2 < 0.0 ? std::numbers::pi : 0.0;
   const double psi_angle = std::atan2(psi.s, psi.c);
   // Elbow angle epsilon = theta3 + beta (- pi when a2 < 0) for n2 = +1; n2 = -1 negates it.
-  const Rot2 eps_up = normalized(rho * psi.c - A, -rho * psi.s);
+  const Rot2 eps_up = normalized_rot2(rho * psi.c - A, -rho * psi.s);
   const double eps_up_angle = std::atan2(eps_up.s, eps_up.c);
 
   // gamma = atan2(Pz, V114): 'r' has V114 = x1, 'l' has -x1, i.e. pi - gamma_r (mod 2 pi).
   const double gamma_r = rho > 0.0 ? std::atan2(pz, x1) : 0.0;
-  const std::array<double, 2> gamma_angles = {rho > 0.0 ? kPi - gamma_r : 0.0, gamma_r};
+  const std::array<double, 2> gamma_angles = {rho > 0.0 ? std::numbers::pi - gamma_r : 0.0,
+                                              gamma_r};
   for (int lr = 0; lr < 2; ++lr) {  // 0 'l', 1 'r'
     const double xw = lr == 1 ? x1 : -x1;
     const Rot2 gamma = rho > 0.0 ? Rot2{xw / rho, pz / rho} : Rot2{};
@@ -270,10 +248,12 @@ void solve_puma_ik(const PumaGeometry& g, const Eigen::Isometry3d& T_base_tool,
       for (int nf = 0; nf < 2; ++nf) {  // 0 'n', 1 'f'
         const int index = lr * 4 + ud * 2 + nf;
         const bool flip = nf == 1 && !degenerate;  // degenerate: 'n' and 'f' coincide
-        double theta[6] = {theta1[static_cast<size_t>(lr)], theta2, theta3,
-                           flip ? e_phi + kPi : e_phi,
+        double theta[6] = {theta1[static_cast<size_t>(lr)],
+                           theta2,
+                           theta3,
+                           flip ? e_phi + std::numbers::pi : e_phi,
                            flip ? e_theta : -e_theta,  // theta5 = -th since alpha4 > 0
-                           flip ? e_psi + kPi : e_psi};
+                           flip ? e_psi + std::numbers::pi : e_psi};
         Vector6d& q = out.q[static_cast<size_t>(index)];
         bool inside = true;
         for (int j = 0; j < 6; ++j) {
@@ -315,16 +295,16 @@ Status check_ik_config(std::string_view config) {
   return Status::Ok();
 }
 
-namespace {
-
-bool config_matches(std::string_view label, std::string_view config) {
+bool ik_config_matches(std::string_view label, std::string_view config) {
   for (char c : config) {
     if (label.find(c) == std::string_view::npos) return false;
   }
   return true;
 }
 
-std::string unreachable_message(const PumaGeometry& g, const PumaIkSolutions& s) {
+namespace {
+
+std::string puma_unreachable_message(const PumaGeometry& g, const PumaIkSolutions& s) {
   switch (s.reach) {
     case PumaReach::kNotFinite:
       return "target pose is not finite";
@@ -375,14 +355,14 @@ AnalyticIkResult solve_analytic_ik(const RobotModel& model, const PumaGeometry& 
   solve_puma_ik(geometry, T_base_tool, raw);
   if (!raw.reachable()) {
     result.status = IkStatus::kUnreachable;
-    result.message = unreachable_message(geometry, raw);
+    result.message = puma_unreachable_message(geometry, raw);
     return result;
   }
   result.solutions.reserve(PumaIkSolutions::kCount);
   unsigned singular_bits = 0;
   for (int i = 0; i < PumaIkSolutions::kCount; ++i) {
     const char* label = PumaIkSolutions::kConfigs[static_cast<size_t>(i)];
-    if (!config_matches(label, config)) continue;
+    if (!ik_config_matches(label, config)) continue;
     IkSolution& s = result.solutions.emplace_back();
     s.config = label;
     s.q = raw.q[static_cast<size_t>(i)];

@@ -6,37 +6,17 @@
 #include <numbers>
 #include <string>
 
+#include "telear/core/angles.hpp"
 #include "telear/core/ik_numeric.hpp"
 #include "telear/core/ik_ur.hpp"
 #include "telear/core/joint_limits.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/motion_command.hpp"
 #include "telear/core/number_format.hpp"
+#include "telear/core/seeded_random.hpp"
 
 namespace telear::core {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-// splitmix64: the seeds must be the same on every platform (std distributions are not).
-std::uint64_t next_random(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-double uniform01(std::uint64_t& state) {
-  return static_cast<double>(next_random(state) >> 11) * 0x1.0p-53;
-}
-
-// Into (-pi, pi].
-double wrap(double angle) {
-  double a = std::remainder(angle, kTwoPi);
-  if (a <= -kPi) a += kTwoPi;
-  return a;
-}
 
 // The model with every revolute joint turning freely in [-pi, pi] (a span of 2 pi: the
 // numeric solver wraps such joints instead of holding them at a limit).
@@ -49,8 +29,8 @@ Result<RobotModel> free_model(const RobotModel& model) {
   d.dh = model.dh();
   for (Joint& joint : d.joints) {
     if (joint.type != JointType::kRevolute) continue;
-    joint.limits.lower = -kPi;
-    joint.limits.upper = kPi;
+    joint.limits.lower = -std::numbers::pi;
+    joint.limits.upper = std::numbers::pi;
   }
   return RobotModel::create(std::move(d));
 }
@@ -58,7 +38,8 @@ Result<RobotModel> free_model(const RobotModel& model) {
 bool same_branch(const RobotModel& model, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
                  double tolerance) {
   for (int j = 0; j < model.dof(); ++j) {
-    const double d = model.joint(j).type == JointType::kRevolute ? wrap(a[j] - b[j]) : a[j] - b[j];
+    const double d =
+        model.joint(j).type == JointType::kRevolute ? wrap_to_pi(a[j] - b[j]) : a[j] - b[j];
     if (std::abs(d) > tolerance) return false;
   }
   return true;
@@ -88,7 +69,7 @@ bool move_into_limits(const RobotModel& model, Eigen::VectorXd& q) {
       continue;
     }
     double best = *low;
-    for (double v = *low; v <= hi; v += kTwoPi) {
+    for (double v = *low; v <= hi; v += 2.0 * std::numbers::pi) {
       if (std::abs(v) < std::abs(best)) best = v;
     }
     q[j] = best;
@@ -176,7 +157,7 @@ Result<std::vector<IkSolution>> search_ik_branches(const RobotModel& model,
       const double lo = free->lower_limits()[j], hi = free->upper_limits()[j];
       const bool finite = std::isfinite(lo) && std::isfinite(hi);
       const double u = uniform01(state);
-      seed[j] = finite ? lo + (hi - lo) * u : -kPi + kTwoPi * u;
+      seed[j] = finite ? lo + (hi - lo) * u : -std::numbers::pi + 2.0 * std::numbers::pi * u;
     }
     const NumericIkResult r = solver.solve(T_base_tool, seed);
     if (!r.success) {
@@ -188,7 +169,7 @@ Result<std::vector<IkSolution>> search_ik_branches(const RobotModel& model,
     }
     Eigen::VectorXd q = r.q;
     for (int j = 0; j < n; ++j) {
-      if (model.joint(j).type == JointType::kRevolute) q[j] = wrap(q[j]);
+      if (model.joint(j).type == JointType::kRevolute) q[j] = wrap_to_pi(q[j]);
     }
     const bool known = std::any_of(found.begin(), found.end(), [&](const Eigen::VectorXd& b) {
       return same_branch(model, b, q, options.distinct_tolerance_rad);

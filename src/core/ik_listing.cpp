@@ -29,7 +29,7 @@ Result<IkListing> list_ik_solutions(const RobotModel& model, const Eigen::Isomet
     return listing;
   }
   if (!config.empty()) {
-    return Error{"--config selects closed-form solutions, and " + geometry.error().message + "; " +
+    return Error{"config selects closed-form solutions, and " + geometry.error().message + "; " +
                  ur.error().message};
   }
   if (model.dof() == 6) {

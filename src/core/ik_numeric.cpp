@@ -8,6 +8,8 @@
 #include <numbers>
 #include <vector>
 
+#include "telear/core/seeded_random.hpp"
+
 namespace telear::core {
 
 // The solver's state behind a small interface, so that 6- and 7-joint arms get fixed-size Eigen
@@ -21,7 +23,6 @@ class NumericIkSolver::Workspace {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kInitialMu = 0.1;
 constexpr double kMuDecrease = 0.5;
 constexpr double kMuIncrease = 8.0;
@@ -34,19 +35,6 @@ constexpr double kSlowProgressHeld = 0.5;
 // 2 |a| / |dq| (Transtrum & Sethna's alpha).
 constexpr double kAccelerationProbe = 0.1;
 constexpr double kMaxAccelerationRatio = 0.75;
-
-// splitmix64: a tiny, well-mixed generator; the solver needs reproducible restarts, not
-// cryptographic quality.
-std::uint64_t next_random(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-double uniform01(std::uint64_t& state) {
-  return static_cast<double>(next_random(state) >> 11) * 0x1.0p-53;
-}
 
 // Pose error [dp; log(R_target R^T)] in the base frame. The SO(3) logarithm directly from the
 // skew part (2 sin(theta) axis) and the trace (1 + 2 cos(theta)); near theta = pi, where the
@@ -107,8 +95,8 @@ class LevenbergMarquardt final : public NumericIkSolver::Workspace {
       const bool finite = std::isfinite(lower_[i]) && std::isfinite(upper_[i]);
       sample_lower_[i] = finite ? lower_[i] : -std::numbers::pi;
       sample_upper_[i] = finite ? upper_[i] : std::numbers::pi;
-      wraps_[static_cast<size_t>(i)] =
-          model.joint(i).type == JointType::kRevolute && finite && upper_[i] - lower_[i] >= kTwoPi;
+      wraps_[static_cast<size_t>(i)] = model.joint(i).type == JointType::kRevolute && finite &&
+                                       upper_[i] - lower_[i] >= 2.0 * std::numbers::pi;
     }
   }
 
@@ -291,8 +279,8 @@ void LevenbergMarquardt<N>::take_step(Vec& q) const {
   for (int i = 0; i < n_; ++i) {
     if (!wraps_[static_cast<size_t>(i)]) continue;
     // A joint whose limits span 2 pi or more reaches the same pose within them.
-    if (q[i] > upper_[i]) q[i] -= kTwoPi;
-    if (q[i] < lower_[i]) q[i] += kTwoPi;
+    if (q[i] > upper_[i]) q[i] -= 2.0 * std::numbers::pi;
+    if (q[i] < lower_[i]) q[i] += 2.0 * std::numbers::pi;
   }
   clamp(q);
 }

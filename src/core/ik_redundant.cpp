@@ -13,7 +13,6 @@
 namespace telear::core {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kCorrections = 8;         // Newton steps restoring the pose after a step
 constexpr int kHalvings = 30;           // of alpha, before giving up on a direction
 constexpr double kGramDamping = 1e-12;  // keeps J J^T invertible at a singularity
@@ -25,7 +24,8 @@ constexpr double kMaxAlpha = 1e3;
 bool penalized(const RobotModel& model, int i) {
   const double lo = model.lower_limits()[i], hi = model.upper_limits()[i];
   return std::isfinite(lo) && std::isfinite(hi) &&
-         !(model.joint(i).type == JointType::kRevolute && hi - lo >= kTwoPi) && hi > lo;
+         !(model.joint(i).type == JointType::kRevolute && hi - lo >= 2.0 * std::numbers::pi) &&
+         hi > lo;
 }
 
 bool converged(const Vector6d& e, double tolerance) {

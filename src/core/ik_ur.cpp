@@ -13,41 +13,21 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/number_format.hpp"
 
+#include "ik_common.hpp"
+
 namespace telear::core {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // The class checks: directions (unit-vector products) and lengths.
 constexpr double kGeometryTolerance = 1e-9;  // 1 or m
 // Axes closer than this are one line: no upper arm / forearm.
 constexpr double kMinLinkLength = 1e-6;  // m
-// Lengths within this of a reach boundary count as on it (rounding of the target pose).
-constexpr double kReachTolerance = 1e-10;  // m
-// Flags a solution `singular` when the relevant sine or distance is below this.
-constexpr double kSingularTolerance = 1e-6;  // 1 or m
 // Below this sine, an angle decided by the directions of two projected vectors is undefined
 // (the vectors are rounding noise): the joint takes its q_free value instead.
 constexpr double kDegenerate = 1e-12;
-constexpr double kLimitTolerance = 1e-9;  // rad
 // Newton polish of the labelled API: below this error (m, rad) a solution is left as it is.
 constexpr double kPolishTolerance = 1e-12;
 constexpr int kPolishSteps = 4;
-
-std::string format_length(double metres) {
-  return format_fixed(metres, 4, "m");
-}
-std::string format_angle(double radians) {
-  return format_fixed(degrees_from_radians(radians), 2, "deg");
-}
-
-// Into (-pi, pi]; the closed form's angles lie within a few pi.
-double wrap_angle(double angle) {
-  if (std::abs(angle) > 8.0 * kPi) return wrap_to_pi(angle);
-  while (angle > kPi) angle -= kTwoPi;
-  while (angle <= -kPi) angle += kTwoPi;
-  return angle;
-}
 
 // Rodrigues: v turned by the angle (c = cos, s = sin) about the unit axis k.
 inline Eigen::Vector3d rotate(const Eigen::Vector3d& k, double c, double s,
@@ -282,9 +262,12 @@ void solve_ur_ik(const UrGeometry& g, const Eigen::Isometry3d& T, UrIkSolutions&
           if (std::abs(cos_gamma) <= 1.0 + kDegenerate) {
             const double gamma = std::acos(std::clamp(cos_gamma, -1.0, 1.0));
             const double phi0 = angle_about(n, centre, spoke);
-            const double a = wrap_angle(turn * (gamma - phi0));
-            const double b = wrap_angle(turn * (-gamma - phi0));
-            q6 = std::abs(wrap_angle(a - q_free[5])) <= std::abs(wrap_angle(b - q_free[5])) ? a : b;
+            const double a = wrap_small_angle(turn * (gamma - phi0));
+            const double b = wrap_small_angle(turn * (-gamma - phi0));
+            q6 = std::abs(wrap_small_angle(a - q_free[5])) <=
+                         std::abs(wrap_small_angle(b - q_free[5]))
+                     ? a
+                     : b;
             delta = axis4_target(std::cos(q6), std::sin(q6));
             D = delta.norm();
           }
@@ -337,7 +320,7 @@ void solve_ur_ik(const UrGeometry& g, const Eigen::Isometry3d& T, UrIkSolutions&
         q << a1, q2, q3, q4, q5, q6;
         bool inside = true;
         for (int j = 0; j < 6; ++j) {
-          q[j] = wrap_angle(q[j]);
+          q[j] = wrap_small_angle(q[j]);
           inside =
               inside && angle_equivalent_within(q[j], g.lower[static_cast<size_t>(j)],
                                                 g.upper[static_cast<size_t>(j)], kLimitTolerance);
@@ -361,14 +344,7 @@ void solve_ur_ik(const UrGeometry& g, const Eigen::Isometry3d& T, UrIkSolutions&
 
 namespace {
 
-bool config_matches(std::string_view label, std::string_view config) {
-  for (char c : config) {
-    if (label.find(c) == std::string_view::npos) return false;
-  }
-  return true;
-}
-
-std::string unreachable_message(const UrGeometry& g, const UrIkSolutions& s) {
+std::string ur_unreachable_message(const UrGeometry& g, const UrIkSolutions& s) {
   const double max_reach = g.upper_arm + g.forearm;
   const double min_reach = std::abs(g.upper_arm - g.forearm);
   switch (s.reach) {
@@ -448,7 +424,7 @@ AnalyticIkResult solve_ur_analytic_ik(const RobotModel& model, const UrGeometry&
   solve_ur_ik(geometry, T_base_tool, raw, q_free);
   if (!raw.reachable()) {
     result.status = IkStatus::kUnreachable;
-    result.message = unreachable_message(geometry, raw);
+    result.message = ur_unreachable_message(geometry, raw);
     return result;
   }
   KinematicsData data(model);
@@ -456,7 +432,7 @@ AnalyticIkResult solve_ur_analytic_ik(const RobotModel& model, const UrGeometry&
   for (int i = 0; i < UrIkSolutions::kCount; ++i) {
     const auto k = static_cast<size_t>(i);
     const char* label = UrIkSolutions::kConfigs[k];
-    if (!raw.valid[k] || !config_matches(label, config)) continue;
+    if (!raw.valid[k] || !ik_config_matches(label, config)) continue;
     IkSolution& s = result.solutions.emplace_back();
     s.config = label;
     s.q = raw.q[k];
@@ -465,7 +441,7 @@ AnalyticIkResult solve_ur_analytic_ik(const RobotModel& model, const UrGeometry&
     if (s.q != Eigen::VectorXd(raw.q[k])) {
       s.within_limits = true;
       for (int j = 0; j < 6; ++j) {
-        s.q[j] = wrap_angle(s.q[j]);
+        s.q[j] = wrap_small_angle(s.q[j]);
         s.within_limits =
             s.within_limits &&
             angle_equivalent_within(s.q[j], geometry.lower[static_cast<size_t>(j)],

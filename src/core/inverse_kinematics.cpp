@@ -13,11 +13,11 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/pose.hpp"
 
+#include "ik_common.hpp"
+
 namespace telear::core {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kLimitTolerance = 1e-9;  // rad: rounding of a solution lying on a limit
 // Exact wrist singularity of the closed form (its ZYZ decomposition set q4 = 0).
 constexpr double kWristDegenerate = 1e-13;
 // Numeric solutions: smallest Jacobian singular value below this is reported as singular.
@@ -37,16 +37,16 @@ bool nearest_equivalent_within_limits(const RobotModel& model, const Eigen::Vect
       if (q[j] < lower - kLimitTolerance || q[j] > upper + kLimitTolerance) inside = false;
       continue;
     }
-    const double nearest = std::round((q_current[j] - q[j]) / kTwoPi);
+    const double nearest = std::round((q_current[j] - q[j]) / (2.0 * std::numbers::pi));
     // Doubles, so that infinite limits give infinite bounds on k.
-    const double k_min = std::ceil((lower - kLimitTolerance - q[j]) / kTwoPi);
-    const double k_max = std::floor((upper + kLimitTolerance - q[j]) / kTwoPi);
+    const double k_min = std::ceil((lower - kLimitTolerance - q[j]) / (2.0 * std::numbers::pi));
+    const double k_max = std::floor((upper + kLimitTolerance - q[j]) / (2.0 * std::numbers::pi));
     if (k_min > k_max) {
       inside = false;
-      q[j] += kTwoPi * nearest;
+      q[j] += 2.0 * std::numbers::pi * nearest;
       continue;
     }
-    q[j] += kTwoPi * std::clamp(nearest, k_min, k_max);
+    q[j] += 2.0 * std::numbers::pi * std::clamp(nearest, k_min, k_max);
     q[j] = std::clamp(q[j], lower, upper);  // absorb the tolerance
   }
   return inside;

@@ -36,7 +36,12 @@ Result<Eigen::VectorXd> parse_joint_values(const RobotModel& model, const std::s
 
 std::string format_joint_values(const Eigen::VectorXd& q, int width, int precision) {
   std::string text = "[";
-  const std::string format = "%" + std::to_string(width) + "." + std::to_string(precision) + "f";
+  // Appended piece by piece: GCC 12 warns (-Wstringop-overflow) on a "literal" + string chain.
+  std::string format = "%";
+  format += std::to_string(width);
+  format += '.';
+  format += std::to_string(precision);
+  format += 'f';
   const double zero = 0.5 * std::pow(10.0, -precision);
   for (Eigen::Index i = 0; i < q.size(); ++i) {
     const double value = std::abs(q[i]) < zero ? 0.0 : q[i];

@@ -20,7 +20,10 @@ std::string matrix_rows(const Eigen::Isometry3d& T) {
   std::string text;
   for (int r = 0; r < 4; ++r) {
     text += "  [";
-    for (int c = 0; c < 4; ++c) text += (c ? " " : "") + format_number(T.matrix()(r, c), "%10.6f");
+    for (int c = 0; c < 4; ++c) {
+      if (c) text += ' ';
+      text += format_number(T.matrix()(r, c), "%10.6f");
+    }
     text += "]\n";
   }
   return text;
@@ -132,7 +135,9 @@ std::string robot_info_json(const RobotModel& model) {
 std::string forward_kinematics_text(const RobotModel& model, const Eigen::VectorXd& q) {
   KinematicsData data(model);
   forward_kinematics(model, data, q);
-  std::string text = "T_base_tool:\n" + matrix_rows(data.T_base_tool) + pose_line(data.T_base_tool);
+  std::string text = "T_base_tool:\n";
+  text += matrix_rows(data.T_base_tool);
+  text += pose_line(data.T_base_tool);
   if (auto v = first_limit_violation(model, q)) {
     text += "warning: " + describe_violation(model, *v) + "\n";
   }

@@ -7,7 +7,7 @@
 namespace telear::core {
 namespace {
 
-constexpr float kTwoPi = 6.28318530717958647692f;
+constexpr float kTwoPiFloat = 6.28318530717958647692f;
 
 // Two unit vectors completing `axis` to a right-handed orthonormal basis (u, v, axis).
 void orthonormal_basis(const Eigen::Vector3f& axis, Eigen::Vector3f& u, Eigen::Vector3f& v) {
@@ -110,7 +110,7 @@ void append_cylinder(Mesh& mesh, const Eigen::Vector3f& p0, const Eigen::Vector3
   strip.reserve(2 * (n + 1));
   std::vector<Eigen::Vector3f> ring(n);
   for (std::size_t k = 0; k <= n; ++k) {
-    const float angle = kTwoPi * static_cast<float>(k % n) / static_cast<float>(segments);
+    const float angle = kTwoPiFloat * static_cast<float>(k % n) / static_cast<float>(segments);
     const Eigen::Vector3f radial = std::cos(angle) * u + std::sin(angle) * v;
     if (k < n) ring[k] = radial;
     // (p1, p0) order makes the strip counter-clockwise seen from outside.
@@ -194,9 +194,9 @@ void append_sphere(Mesh& mesh, const Eigen::Vector3f& centre, float radius, int 
   const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
   // Vertex (i, j): ring i = 0..R from the +z pole, column j = 0..N (N is the seam again).
   for (int i = 0; i <= r; ++i) {
-    const float theta = 0.5f * kTwoPi * static_cast<float>(i) / static_cast<float>(r);
+    const float theta = 0.5f * kTwoPiFloat * static_cast<float>(i) / static_cast<float>(r);
     for (int j = 0; j <= n; ++j) {
-      const float phi = kTwoPi * static_cast<float>(j % n) / static_cast<float>(n);
+      const float phi = kTwoPiFloat * static_cast<float>(j % n) / static_cast<float>(n);
       const Eigen::Vector3f d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                               std::cos(theta));
       mesh.add_vertex(centre + radius * d, d, colour);

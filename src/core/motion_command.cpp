@@ -35,8 +35,9 @@ std::string vector_text(const Eigen::Vector3d& v) {
   return buffer;
 }
 
-// Why a 4x4 is not a rigid transform, or an empty string when it is one.
-std::string rigid_transform_problem(const Eigen::Matrix4d& T, double tolerance) {
+// Why a 4x4 is not a rigid transform, or an empty string when it is one (for the Cartesian
+// target's message; rigid_transform.hpp's rigid_transform_problem words it for the CLI).
+std::string cartesian_target_problem(const Eigen::Matrix4d& T, double tolerance) {
   if (!T.allFinite()) return "has a non-finite entry";
   if ((T.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > tolerance) {
     return "has a bottom row other than (0, 0, 0, 1)";
@@ -238,7 +239,7 @@ struct CommandVisitor {
 
   MotionOutcome operator()(const CartesianTarget& c) const {
     const std::string problem =
-        rigid_transform_problem(c.T_base_tool.matrix(), options.rigid_tolerance);
+        cartesian_target_problem(c.T_base_tool.matrix(), options.rigid_tolerance);
     if (!problem.empty()) return invalid(q_current, "Cartesian target " + problem);
     // Project the rotation onto SO(3) so that IK sees an exact rotation.
     Eigen::Isometry3d T = c.T_base_tool;

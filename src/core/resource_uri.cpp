@@ -12,7 +12,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kMaxPackageDepth = 3;
-constexpr const char* kPackageHint = "set ROS_PACKAGE_PATH or pass --package-path DIR";
+constexpr const char* kPackageHint = "set ROS_PACKAGE_PATH or add a package path";
 
 bool is_dir(const fs::path& p) {
   std::error_code ec;
@@ -52,7 +52,7 @@ void search_depth(const fs::path& root, const std::string& package, std::vector<
   }
 }
 
-std::string join(const std::vector<std::string>& items) {
+std::string join_dirs(const std::vector<std::string>& items) {
   std::string s;
   for (const std::string& item : items) s += (s.empty() ? "" : ", ") + item;
   return s;
@@ -135,7 +135,7 @@ Result<std::string> resolve_resource_uri(const std::string& uri, const ResourceS
       return Error{what + " '" + uri + "' not found (no package search path; " + kPackageHint +
                    ")"};
     }
-    return Error{what + " '" + uri + "' not found (looked in " + join(looked) + "; " +
+    return Error{what + " '" + uri + "' not found (looked in " + join_dirs(looked) + "; " +
                  kPackageHint + ")"};
   }
   if (uri.rfind(kFile, 0) == 0) {

@@ -134,7 +134,7 @@ Result<RobotDescription> from_dh_table(const std::string& path, const std::strin
                                        bool companions) {
   if (!tip.empty()) {
     return Error{"robot file '" + path + "' is a DH table: it has no links, so no tip '" + tip +
-                 "' can be chosen (--tip applies to URDF robots)"};
+                 "' can be chosen (a tip applies to URDF robots)"};
   }
   auto model = load_dh_yaml_file(path);
   if (!model) return model.error();
@@ -211,11 +211,11 @@ Result<RobotDescription> from_robot_file(const std::string& path, const YAML::No
     tip = *t;
   }
 
-  std::optional<GripperSpec> gripper;
+  std::optional<RobotFileGripper> gripper;
   if (const YAML::Node g = root["gripper"]) {
     if (!g.IsMap())
       return Error{where + "gripper must be a map (joints, closed, open, max_opening_m)"};
-    GripperSpec spec;
+    RobotFileGripper spec;
     spec.where = where;
     for (const auto& entry : g) {
       const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
@@ -385,11 +385,9 @@ Result<RobotDescription> load_robot_description_impl(const RobotSpec& spec, bool
     // A file that is not a YAML map, or has no `urdf:`, is the DH loader's to judge.
     auto root = load_yaml_file(path, "robot file '" + path + "': ");
     if (root && root->IsMap() && root.value()["urdf"]) {
-      try {
+      return catch_yaml_errors<RobotDescription>("robot file '" + path + "': ", [&] {
         return from_robot_file(path, *root, spec.tip, spec.package_paths, companions);
-      } catch (const YAML::Exception& e) {
-        return Error{"robot file '" + path + "': " + describe_yaml_error(e)};
-      }
+      });
     }
     return from_dh_table(path, spec.tip, companions);
   }

@@ -8,7 +8,7 @@
 namespace telear::core {
 namespace {
 
-bool is_identity(const Eigen::Isometry3d& T) {
+bool is_identity_transform(const Eigen::Isometry3d& T) {
   return (T.matrix() - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff() == 0.0;
 }
 
@@ -27,7 +27,7 @@ JointForm classify(const Joint& joint) {
   return JointForm::kDh;
 }
 
-std::string joint_label(int i, const Joint& joint) {
+std::string numbered_joint_label(int i, const Joint& joint) {
   std::ostringstream s;
   s << "joint " << (i + 1) << " (" << joint.name << ")";
   return s.str();
@@ -42,7 +42,7 @@ Result<RobotModel> RobotModel::create(Description d) {
   if (d.joints.empty()) return Error{where + ": has no movable joints"};
   for (size_t i = 0; i < d.joints.size(); ++i) {
     Joint& joint = d.joints[i];
-    const std::string label = joint_label(static_cast<int>(i), joint);
+    const std::string label = numbered_joint_label(static_cast<int>(i), joint);
     const JointLimits& l = joint.limits;
     if (!joint.before.matrix().allFinite() || !joint.after.matrix().allFinite() ||
         !std::isfinite(joint.offset)) {
@@ -57,8 +57,8 @@ Result<RobotModel> RobotModel::create(Description d) {
         !std::isfinite(l.max_acceleration)) {
       return Error{where + ": " + label + " needs finite, positive max velocity and acceleration"};
     }
-    joint.before_is_identity = is_identity(joint.before);
-    joint.after_is_identity = is_identity(joint.after);
+    joint.before_is_identity = is_identity_transform(joint.before);
+    joint.after_is_identity = is_identity_transform(joint.after);
     joint.form = classify(joint);
   }
   if (!d.T_flange_tool.matrix().allFinite()) {

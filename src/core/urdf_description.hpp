@@ -20,7 +20,7 @@
 namespace telear::core {
 
 // The gripper as a robot file names it; `where` prefixes its errors ("robot file 'r.yaml': ").
-struct GripperSpec {
+struct RobotFileGripper {
   std::vector<std::string> joints;  // driven joints
   std::vector<double> closed, open;
   double max_opening_m = 0.08;
@@ -35,9 +35,9 @@ struct UrdfDescription {
 };
 
 // Errors start with "URDF '<source>': " (gripper errors with gripper->where).
-Result<UrdfDescription> describe_urdf(const std::string& text, const std::string& source,
-                                      const std::string& tip_link,
-                                      const std::optional<GripperSpec>& gripper = std::nullopt);
+Result<UrdfDescription> describe_urdf(
+    const std::string& text, const std::string& source, const std::string& tip_link,
+    const std::optional<RobotFileGripper>& gripper = std::nullopt);
 
 // The whole file as text; "cannot open URDF file '<path>'" or "URDF '<path>': the file is empty".
 Result<std::string> read_urdf_text(const std::string& path);

@@ -174,7 +174,7 @@ Result<std::string> read_urdf_text(const std::string& path) {
 
 Result<UrdfDescription> describe_urdf(const std::string& text, const std::string& source,
                                       const std::string& tip_link,
-                                      const std::optional<GripperSpec>& gripper_spec) {
+                                      const std::optional<RobotFileGripper>& gripper_spec) {
   const std::string where = "URDF '" + source + "'";
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
     return Error{where + ": the file is empty"};
@@ -272,7 +272,7 @@ Result<UrdfDescription> describe_urdf(const std::string& text, const std::string
     }
     if (leaves.size() != 1) {
       return Error{where + ": the tree has several leaf links (" + join(leaves) +
-                   "); name the tip with --tip LINK"};
+                   "); name the tip link"};
     }
   }
 
@@ -345,7 +345,7 @@ Result<UrdfDescription> describe_urdf(const std::string& text, const std::string
   // The gripper: driven joints first, then every joint whose mimic chain ends at one of them.
   std::map<std::string, OffChainJoint> off_chain;
   if (gripper_spec) {
-    const GripperSpec& spec = *gripper_spec;
+    const RobotFileGripper& spec = *gripper_spec;
     Gripper g;
     g.max_opening_m = spec.max_opening_m;
     if (spec.closed.size() != spec.joints.size() || spec.open.size() != spec.joints.size()) {

@@ -15,33 +15,10 @@
 namespace telear::core {
 namespace {
 
-// Parsing throws this inside this file only; parse_workspace_yaml turns it into a Result.
-struct ParseError {
-  std::string message;
-};
-
-template <typename T>
-T checked(Result<T> result) {
-  if (!result) throw ParseError{result.error().message};
-  return std::move(*result);
-}
-
-void check_keys(const YAML::Node& map, const std::set<std::string>& allowed,
-                const std::string& what) {
-  for (const auto& entry : map) {
-    const std::string key = entry.first.Scalar();
-    if (!allowed.count(key)) {
-      std::string list;
-      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw ParseError{what + ": unknown key '" + key + "' (expected " + list + ")"};
-    }
-  }
-}
-
-double positive(const YAML::Node& node, const std::string& what) {
-  if (!node) throw ParseError{what + ": missing"};
-  const double value = checked(yaml_number(node, what));
-  if (!(value > 0.0)) throw ParseError{what + " must be positive, got " + format_number(value)};
+double positive_length(const YAML::Node& node, const std::string& what) {
+  if (!node) throw YamlFieldError{what + ": missing"};
+  const double value = number_or_throw(node, what);
+  if (!(value > 0.0)) throw YamlFieldError{what + " must be positive, got " + format_number(value)};
   return value;
 }
 
@@ -53,72 +30,73 @@ struct MeshSearch {
 
 WorkspaceObject parse_object(const YAML::Node& node, const std::string& what,
                              const MeshSearch& search) {
-  if (!node.IsMap()) throw ParseError{what + " must be a map"};
+  if (!node.IsMap()) throw YamlFieldError{what + " must be a map"};
   WorkspaceObject object;
   if (!node["name"] || !node["name"].IsScalar() || node["name"].Scalar().empty()) {
-    throw ParseError{what + ".name: missing (every object has a name)"};
+    throw YamlFieldError{what + ".name: missing (every object has a name)"};
   }
   object.name = node["name"].Scalar();
   const std::string where = "object '" + object.name + "'";
   if (!node["shape"] || !node["shape"].IsScalar()) {
-    throw ParseError{where + ": shape: missing (box, cylinder, sphere or mesh)"};
+    throw YamlFieldError{where + ": shape: missing (box, cylinder, sphere or mesh)"};
   }
   const std::string shape = node["shape"].Scalar();
   const std::set<std::string> common = {"name", "shape", "pose", "colour", "graspable"};
   auto keys = [&](std::initializer_list<std::string> extra) {
     std::set<std::string> allowed = common;
     allowed.insert(extra.begin(), extra.end());
-    check_keys(node, allowed, where);
+    ok_or_throw(check_yaml_keys(node, allowed, where));
   };
   if (shape == "box") {
     object.shape = ShapeKind::kBox;
     keys({"size"});
-    if (!node["size"]) throw ParseError{where + ": size: missing ([x, y, z] in m)"};
-    object.size_m = checked(yaml_vector3(node["size"], where + ": size"));
+    if (!node["size"]) throw YamlFieldError{where + ": size: missing ([x, y, z] in m)"};
+    object.size_m = value_or_throw(yaml_vector3(node["size"], where + ": size"));
     for (int i = 0; i < 3; ++i) {
       if (!(object.size_m[i] > 0.0)) {
-        throw ParseError{where + ": size[" + std::to_string(i) + "] must be positive, got " +
-                         format_number(object.size_m[i])};
+        throw YamlFieldError{where + ": size[" + std::to_string(i) + "] must be positive, got " +
+                             format_number(object.size_m[i])};
       }
     }
   } else if (shape == "cylinder") {
     object.shape = ShapeKind::kCylinder;
     keys({"radius", "length"});
-    object.radius_m = positive(node["radius"], where + ": radius");
-    object.length_m = positive(node["length"], where + ": length");
+    object.radius_m = positive_length(node["radius"], where + ": radius");
+    object.length_m = positive_length(node["length"], where + ": length");
   } else if (shape == "sphere") {
     object.shape = ShapeKind::kSphere;
     keys({"radius"});
-    object.radius_m = positive(node["radius"], where + ": radius");
+    object.radius_m = positive_length(node["radius"], where + ": radius");
   } else if (shape == "mesh") {
     object.shape = ShapeKind::kMesh;
     keys({"file", "scale"});
     if (!node["file"] || !node["file"].IsScalar() || node["file"].Scalar().empty()) {
-      throw ParseError{where +
-                       ": file: missing (the mesh file: a path relative to the "
-                       "workspace file, package://PKG/PATH or file:///PATH)"};
+      throw YamlFieldError{where +
+                           ": file: missing (the mesh file: a path relative to the "
+                           "workspace file, package://PKG/PATH or file:///PATH)"};
     }
     object.mesh_file = node["file"].Scalar();
     auto resolved = resolve_resource_uri(object.mesh_file, search.paths, "mesh");
-    if (!resolved) throw ParseError{where + ": file: " + resolved.error().message};
+    if (!resolved) throw YamlFieldError{where + ": file: " + resolved.error().message};
     object.mesh_path = *resolved;
     if (node["scale"]) {
-      object.mesh_scale = checked(yaml_vector3(node["scale"], where + ": scale"));
+      object.mesh_scale = value_or_throw(yaml_vector3(node["scale"], where + ": scale"));
       for (int i = 0; i < 3; ++i) {
         if (!(object.mesh_scale[i] > 0.0)) {
-          throw ParseError{where + ": scale[" + std::to_string(i) + "] must be positive, got " +
-                           format_number(object.mesh_scale[i])};
+          throw YamlFieldError{where + ": scale[" + std::to_string(i) + "] must be positive, got " +
+                               format_number(object.mesh_scale[i])};
         }
       }
     }
   } else {
-    throw ParseError{where + ": unknown shape '" + shape + "' (box, cylinder, sphere or mesh)"};
+    throw YamlFieldError{where + ": unknown shape '" + shape + "' (box, cylinder, sphere or mesh)"};
   }
-  if (node["pose"]) object.T_base_object = checked(yaml_pose(node["pose"], where + ": pose"));
+  if (node["pose"])
+    object.T_base_object = value_or_throw(yaml_pose(node["pose"], where + ": pose"));
   if (node["colour"]) {
-    const Eigen::Vector3d c = checked(yaml_vector3(node["colour"], where + ": colour"));
+    const Eigen::Vector3d c = value_or_throw(yaml_vector3(node["colour"], where + ": colour"));
     if ((c.array() < 0.0).any() || (c.array() > 1.0).any()) {
-      throw ParseError{where + ": colour components must lie in 0..1"};
+      throw YamlFieldError{where + ": colour components must lie in 0..1"};
     }
     object.colour = c.cast<float>();
   }
@@ -126,8 +104,8 @@ WorkspaceObject parse_object(const YAML::Node& node, const std::string& what,
     try {
       object.graspable = node["graspable"].as<bool>();
     } catch (const YAML::Exception&) {
-      throw ParseError{where + ": graspable must be true or false, got '" +
-                       node["graspable"].Scalar() + "'"};
+      throw YamlFieldError{where + ": graspable must be true or false, got '" +
+                           node["graspable"].Scalar() + "'"};
     }
   }
   return object;
@@ -140,11 +118,11 @@ Result<Workspace> parse_workspace(const YAML::Node& root, const std::string& sou
   search.paths.ros_package_path = ros_package_path_from_environment();
   search.paths.base_dir =
       std::filesystem::absolute(std::filesystem::path(source)).parent_path().string();
-  Workspace workspace;
-  workspace.source = source;
-  try {
+  return catch_yaml_errors<Workspace>(source + ": ", [&]() -> Result<Workspace> {
+    Workspace workspace;
+    workspace.source = source;
     if (!root.IsMap()) return Error{source + ": not a workspace file (expected name, objects)"};
-    check_keys(root, {"name", "objects"}, source);
+    ok_or_throw(check_yaml_keys(root, {"name", "objects"}, ""));
     if (root["name"]) workspace.name = root["name"].Scalar();
     const YAML::Node objects = root["objects"];
     if (!objects || !objects.IsSequence()) {
@@ -159,13 +137,11 @@ Result<Workspace> parse_workspace(const YAML::Node& root, const std::string& sou
       }
       workspace.objects.push_back(std::move(object));
     }
-  } catch (const ParseError& e) {
-    return Error{source + ": " + e.message};
-  }
-  return workspace;
+    return workspace;
+  });
 }
 
-void append_sphere(Mesh& mesh, double radius, int segments, const Eigen::Vector3f& colour) {
+void append_object_sphere(Mesh& mesh, double radius, int segments, const Eigen::Vector3f& colour) {
   const int rings = std::max(2, segments / 2);
   const std::uint32_t first = static_cast<std::uint32_t>(mesh.vertices.size());
   for (int i = 0; i <= rings; ++i) {
@@ -298,7 +274,7 @@ Mesh workspace_object_mesh(const WorkspaceObject& object, int segments) {
       break;
     }
     case ShapeKind::kSphere:
-      append_sphere(mesh, object.radius_m, std::max(segments, 4), object.colour);
+      append_object_sphere(mesh, object.radius_m, std::max(segments, 4), object.colour);
       break;
     case ShapeKind::kMesh:
       if (object.mesh) mesh = *object.mesh;

@@ -85,4 +85,31 @@ Result<Eigen::Isometry3d> yaml_pose(const YAML::Node& node, const std::string& w
   return pose_from_xyz_rpy(*xyz, rpy);
 }
 
+Status check_yaml_keys(const YAML::Node& node, const std::set<std::string>& allowed,
+                       const std::string& what) {
+  for (const auto& entry : node) {
+    const std::string key = entry.first.Scalar();
+    if (allowed.count(key) == 0) {
+      std::string list;
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      return Error{(what.empty() ? "" : what + ": ") + "unknown key '" + key + "' (expected " +
+                   list + ")"};
+    }
+  }
+  return Status::Ok();
+}
+
+void ok_or_throw(const Status& status) {
+  if (!status) throw YamlFieldError{status.error().message};
+}
+
+double number_or_throw(const YAML::Node& node, const std::string& what,
+                       const std::string& separator) {
+  return value_or_throw(yaml_number(node, what, separator));
+}
+
+std::vector<double> numbers_or_throw(const YAML::Node& node, const std::string& what) {
+  return value_or_throw(yaml_numbers(node, what));
+}
+
 }  // namespace telear::core

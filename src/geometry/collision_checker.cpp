@@ -103,6 +103,13 @@ Result<CollisionShape> shape_of(const core::WorkspaceObject& o) {
   return s;
 }
 
+}  // namespace
+
+// Named, not file-local: CollisionChecker::Impl, which has linkage, holds Owners, and GCC warns
+// about a field of file-local type in such a class (-Wsubobject-linkage) when this file is
+// compiled as part of a unity batch.
+namespace collision_checker_detail {
+
 struct ShapeObject {
   Eigen::Isometry3d T_owner_shape = Eigen::Isometry3d::Identity();
   bool convex = false;  // a convex hull (see distance())
@@ -137,6 +144,13 @@ struct Owner {
     }
   }
 };
+
+}  // namespace collision_checker_detail
+
+namespace {
+
+using collision_checker_detail::Owner;
+using collision_checker_detail::ShapeObject;
 
 fcl::DistanceRequestd distance_request() {
   fcl::DistanceRequestd request;

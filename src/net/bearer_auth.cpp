@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cassert>
-#include <fstream>
 #include <utility>
 
 namespace telear::net {
@@ -20,16 +19,6 @@ std::string trim(const std::string& s) {
 }
 
 }  // namespace
-
-Result<std::string> load_token_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return Error{"cannot read the token file '" + path + "'"};
-  std::string line;
-  std::getline(in, line);
-  std::string token = trim(line);
-  if (token.empty()) return Error{"the token file '" + path + "' holds no token (first line)"};
-  return token;
-}
 
 bool constant_time_equal(const std::string& a, const std::string& b) {
   // Every byte of the longer string is visited; a length mismatch is folded in, not

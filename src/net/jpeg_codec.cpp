@@ -5,6 +5,8 @@
 #include <cassert>
 #include <utility>
 
+#include "telear/core/image_size.hpp"
+
 namespace telear::net {
 namespace {
 
@@ -48,8 +50,9 @@ Result<std::string> JpegEncoder::encode(const core::Image& rgb, int quality) {
   }
   if (rgb.channels != 3 || rgb.width <= 0 || rgb.height <= 0 ||
       rgb.pixels.size() != rgb.row_bytes() * static_cast<std::size_t>(rgb.height)) {
-    return Error{"JPEG encode: expected a non-empty RGB8 image, got " + std::to_string(rgb.width) +
-                 "x" + std::to_string(rgb.height) + "x" + std::to_string(rgb.channels)};
+    return Error{"JPEG encode: expected a non-empty RGB8 image, got " +
+                 core::to_string(core::ImageSize{rgb.width, rgb.height}) + "x" +
+                 std::to_string(rgb.channels)};
   }
   // Encode straight into the string: tjBufSize is the worst case, so NOREALLOC is safe.
   std::string out(tjBufSize(rgb.width, rgb.height, TJSAMP_420), '\0');
@@ -96,13 +99,13 @@ Result<core::Image> JpegDecoder::decode(std::string_view jpeg, std::size_t max_p
   }
   if (width <= 0 || height <= 0 ||
       static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > max_pixels) {
-    return Error{"JPEG decode: image size " + std::to_string(width) + "x" + std::to_string(height) +
+    return Error{"JPEG decode: image size " + core::to_string(core::ImageSize{width, height}) +
                  " is beyond the limit of " + std::to_string(max_pixels) + " pixels"};
   }
   core::Image image(width, height, 3);
   if (tjDecompress2(static_cast<tjhandle>(handle_), data, jpeg.size(), image.pixels.data(), width,
                     0, height, TJPF_RGB, TJFLAG_STOPONWARNING | TJFLAG_LIMITSCANS) != 0) {
-    return Error{"JPEG decode: corrupt " + std::to_string(width) + "x" + std::to_string(height) +
+    return Error{"JPEG decode: corrupt " + core::to_string(core::ImageSize{width, height}) +
                  " image: " + tj_error(handle_)};
   }
   return image;

@@ -10,17 +10,14 @@
 #include "telear/core/clock.hpp"
 #include "telear/net/random_token.hpp"
 
+#include "steady_time.hpp"
+
 namespace telear::net {
 
 namespace {
 
-std::string milliseconds(std::int64_t ns) {
+std::string milliseconds_whole(std::int64_t ns) {
   return core::format_fixed(static_cast<double>(ns) * 1e-6, 0, "ms");
-}
-
-std::chrono::steady_clock::time_point steady_time(std::int64_t ns) {
-  // monotonic_ns() is steady_clock's count (core/clock.cpp).
-  return std::chrono::steady_clock::time_point(std::chrono::nanoseconds(ns));
 }
 
 }  // namespace
@@ -55,7 +52,7 @@ Result<LeaseGrant> LeaseManager::acquire(const std::string& holder,
   if (lease_ && lease_->expires_ns > now) {
     return Error{"the lease is held by '" + lease_->holder +
                  "'; wait until it is released or lapses (it is renewed every " +
-                 milliseconds(lease_->heartbeat_ns) + ")"};
+                 milliseconds_whole(lease_->heartbeat_ns) + ")"};
   }
   LeaseGrant grant;
   grant.lease_id = random_token(16);
@@ -74,7 +71,7 @@ Result<std::string> LeaseManager::check_locked(const std::string& lease_id,
   if (lease_ && lease_->lease_id == lease_id) {
     if (lease_->expires_ns <= now_ns) {
       return Error{"the lease of '" + lease_->holder + "' lapsed: not renewed within " +
-                   milliseconds(lease_->heartbeat_ns)};
+                   milliseconds_whole(lease_->heartbeat_ns)};
     }
     return lease_->holder;
   }

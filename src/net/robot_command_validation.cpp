@@ -13,7 +13,7 @@ namespace {
 // Values in refusals: four significant digits unless a field needs another form.
 constexpr const char* kValue = "%.4g";
 
-std::string milliseconds(std::int64_t ns) {
+std::string milliseconds_tenths(std::int64_t ns) {
   return core::format_number(static_cast<double>(ns) * 1e-6, "%.1f") + " ms";
 }
 
@@ -189,13 +189,13 @@ Result<JogCommand> jog_command_from_request(const core::RobotModel& model,
 
 Status check_jog_expiry(std::int64_t expires_ns, std::int64_t now_ns, const CommandLimits& limits) {
   if (expires_ns <= now_ns) {
-    return Error{"jog ignored: it expired " + milliseconds(now_ns - expires_ns) +
+    return Error{"jog ignored: it expired " + milliseconds_tenths(now_ns - expires_ns) +
                  " before it arrived (expires_ns is on the server's clock; see Ping)"};
   }
   if (expires_ns - now_ns > limits.max_jog_duration_ns) {
-    return Error{"jog rejected: it expires " + milliseconds(expires_ns - now_ns) +
+    return Error{"jog rejected: it expires " + milliseconds_tenths(expires_ns - now_ns) +
                  " from now, later than the maximum of " +
-                 milliseconds(limits.max_jog_duration_ns)};
+                 milliseconds_tenths(limits.max_jog_duration_ns)};
   }
   return Status::Ok();
 }

@@ -10,6 +10,7 @@
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/bearer_auth.hpp"
 #include "telear/net/robot_service.hpp"
+#include "telear/net/token_file.hpp"
 
 namespace telear::net {
 

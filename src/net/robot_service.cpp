@@ -16,6 +16,8 @@
 #include "telear/net/plan_message.hpp"
 #include "telear/net/robot_messages.hpp"
 
+#include "steady_time.hpp"
+
 namespace telear::net {
 
 namespace {
@@ -63,10 +65,6 @@ std::string quoted(const std::string& id) {
 
 grpc::Status invalid(const Error& error) {
   return {grpc::StatusCode::INVALID_ARGUMENT, error.message};
-}
-
-std::chrono::steady_clock::time_point steady_time(std::int64_t ns) {
-  return std::chrono::steady_clock::time_point(std::chrono::nanoseconds(ns));
 }
 
 // An execution's acceptance into ExecuteTrajectory's or ExecutePlan's response (the same four

@@ -22,7 +22,7 @@ Result<spdlog::level::level_enum> parse_log_level(const std::string& text) {
     if (text == name) return level;
     accepted += accepted.empty() ? name : std::string(", ") + name;
   }
-  return Error{"--log-level '" + text + "' is not a log level; use one of " + accepted};
+  return Error{"'" + text + "' is not a log level; use one of " + accepted};
 }
 
 void log_to_stderr(const std::string& name, spdlog::level::level_enum level) {

@@ -19,13 +19,6 @@
 namespace telear::net {
 namespace {
 
-// One message as it came off the wire, stamped on arrival.
-struct Received {
-  telear::v1::StereoFrame message;
-  std::int64_t receive_ns = 0;
-  std::size_t bytes = 0;
-};
-
 // The intrinsics fields of a CameraInfo; a model name or coefficient count that does not fit
 // is an error (a camera with the wrong lens model would overlay the arm in the wrong place).
 Result<vision::CameraModel> model_from_intrinsics(const telear::v1::CameraIntrinsics& in,
@@ -67,6 +60,15 @@ double seconds_between(std::int64_t from_ns, std::int64_t to_ns) {
 constexpr int kMaxReceiveBytes = 64 * 1024 * 1024;
 
 struct VisionClient::Impl {
+  // One message as it came off the wire, stamped on arrival. A member type, not a file-local
+  // one: a field of Impl (which has linkage) of file-local type is what GCC warns about
+  // (-Wsubobject-linkage) once this file is compiled as part of a unity batch.
+  struct Received {
+    telear::v1::StereoFrame message;
+    std::int64_t receive_ns = 0;
+    std::size_t bytes = 0;
+  };
+
   explicit Impl(VisionClientOptions o)
       : options(std::move(o)),
         base(options, "vision server", kMaxReceiveBytes),

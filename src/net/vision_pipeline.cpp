@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "telear/core/image_size.hpp"
 #include "telear/vision/opencv_frame.hpp"
 
 namespace telear::net {
@@ -22,7 +23,7 @@ Status validate_stream_settings(const StreamSettings& s) {
   }
   if (s.width < 0 || s.height < 0 || s.width > 8192 || s.height > 8192 ||
       (s.width != 0 && (s.width < 16 || s.height < 16))) {
-    return Error{"size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+    return Error{"size " + core::to_string(core::ImageSize{s.width, s.height}) +
                  " is outside 16x16 .. 8192x8192"};
   }
   return {};

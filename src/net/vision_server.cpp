@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "telear/net/bearer_auth.hpp"
+#include "telear/net/token_file.hpp"
 #include "telear/net/vision_service.hpp"
 #include "telear/vision/camera_file.hpp"
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "telear/core/angles.hpp"
+#include "telear/core/image_size.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/render/arm_renderer.hpp"
 #include "telear/render/image_io.hpp"
@@ -25,10 +26,6 @@ std::vector<std::string> split_pair(const std::string& text) {
   const size_t comma = text.find(',');
   if (comma == std::string::npos) return {text};
   return {text.substr(0, comma), text.substr(comma + 1)};
-}
-
-std::string size_text(int width, int height) {
-  return std::to_string(width) + "x" + std::to_string(height);
 }
 
 }  // namespace
@@ -64,7 +61,7 @@ Result<std::vector<SnapshotEye>> snapshot_eyes(const std::string& camera, const 
                                                const Eigen::VectorXd& q, int default_width,
                                                int default_height) {
   if (!eye.empty() && eye != "left" && eye != "right" && eye != "both") {
-    return Error{"--eye must be left, right or both, got '" + eye + "'"};
+    return Error{"eye must be left, right or both, got '" + eye + "'"};
   }
   if (camera.empty()) {
     auto eyes = whole_arm_view(model, q, default_width, default_height, eye == "both");
@@ -87,8 +84,7 @@ Result<std::vector<SnapshotEye>> snapshot_eyes(const std::string& camera, const 
   };
   if (!file->is_stereo()) {
     if (eye == "right" || eye == "both") {
-      return Error{"--eye " + eye + " needs a stereo camera file; '" + camera +
-                   "' holds one camera"};
+      return Error{"eye " + eye + " needs a stereo camera file; '" + camera + "' holds one camera"};
     }
     if (Status s = add(file->left, file->left_has_pose, ""); !s) return s.error();
     return eyes;
@@ -106,7 +102,7 @@ Result<std::vector<core::Image>> read_snapshot_backgrounds(const std::string& ba
   std::vector<core::Image> images;
   if (background.empty()) return images;
   for (const std::string& path : split_pair(background)) {
-    if (path.empty()) return Error{"--background: empty file name in '" + background + "'"};
+    if (path.empty()) return Error{"background: empty file name in '" + background + "'"};
     Result<core::Image> image = read_image(path, 3);
     if (!image) return image.error();
     images.push_back(std::move(image.value()));
@@ -126,23 +122,24 @@ std::string snapshot_eye_path(const std::string& output, const std::string& eye)
 Status check_snapshot_inputs(const std::vector<SnapshotEye>& eyes,
                              const std::vector<core::Image>& backgrounds, StereoLayout layout) {
   if (backgrounds.size() > eyes.size()) {
-    return Error{"--background gives two images but only one eye is drawn"};
+    return Error{"background gives two images but only one eye is drawn"};
   }
   for (size_t i = 0; i < eyes.size() && !backgrounds.empty(); ++i) {
     const core::Image& image = backgrounds[std::min(i, backgrounds.size() - 1)];
     const vision::CameraModel& c = eyes[i].camera;
     if (image.width != c.width || image.height != c.height) {
-      return Error{"--background image is " + size_text(image.width, image.height) + " but the " +
+      return Error{"background image is " +
+                   core::to_string(core::ImageSize{image.width, image.height}) + " but the " +
                    (eyes[i].name.empty() ? "" : eyes[i].name + " ") + "camera's image is " +
-                   size_text(c.width, c.height)};
+                   core::to_string(core::ImageSize{c.width, c.height})};
     }
   }
   if (eyes.size() == 2 && layout != StereoLayout::kSeparate &&
       (eyes[0].camera.width != eyes[1].camera.width ||
        eyes[0].camera.height != eyes[1].camera.height)) {
     return Error{
-        "the left and right cameras have different image sizes; use --stereo "
-        "separate"};
+        "the left and right cameras have different image sizes; use the separate stereo "
+        "layout"};
   }
   return Status::Ok();
 }

@@ -1,5 +1,6 @@
 #include "telear/render/offscreen_target.hpp"
 
+#include "telear/core/image_size.hpp"
 #include "telear/render/framebuffer_readback.hpp"
 
 #include <algorithm>
@@ -16,7 +17,7 @@ Result<OffscreenTarget> OffscreenTarget::create(int width, int height) {
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   if (width <= 0 || height <= 0 || width > max_size || height > max_size) {
-    return Error{"offscreen target " + std::to_string(width) + "x" + std::to_string(height) +
+    return Error{"offscreen target " + core::to_string(core::ImageSize{width, height}) +
                  ": size must be in [1, " + std::to_string(max_size) + "]"};
   }
   OffscreenTarget t;
@@ -32,7 +33,7 @@ Result<OffscreenTarget> OffscreenTarget::create(int width, int height) {
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return Error{"offscreen target " + std::to_string(width) + "x" + std::to_string(height) +
+    return Error{"offscreen target " + core::to_string(core::ImageSize{width, height}) +
                  ": framebuffer incomplete (status " + std::to_string(status) + ")"};
   }
   return t;

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cstring>
 
+#include "telear/core/image_size.hpp"
 #include "telear/render/shaders.hpp"
 
 namespace telear::render {
@@ -58,8 +59,8 @@ void convert_rows(const std::uint8_t* src, std::uint8_t* dst, int width, int hei
 
 Result<VideoBackground> VideoBackground::create(int width, int height) {
   if (width <= 0 || height <= 0) {
-    return Error{"video background: frame size " + std::to_string(width) + "x" +
-                 std::to_string(height) + " is empty"};
+    return Error{"video background: frame size " + core::to_string(core::ImageSize{width, height}) +
+                 " is empty"};
   }
   auto program =
       Program::link(shaders::kBackgroundVertex, shaders::kBackgroundFragment, "background");

@@ -6,8 +6,11 @@
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
+#include "telear/core/image_size.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/vision/calibration_file.hpp"
+
+#include "seconds.hpp"
 
 namespace telear::session {
 namespace {
@@ -15,10 +18,6 @@ namespace {
 constexpr double kPoll = 0.01;  // s
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 cv::Mat bgr_of(const core::Image& image) {
   const cv::Mat rgb(image.height, image.width, CV_8UC3,
@@ -59,8 +58,8 @@ Result<net::CameraInfoReply> open_capture_folder(net::VisionClient& vision,
   if (!info) return Error{"capture: camera info: " + info.error().message};
   if (!info->found) {
     return Error{
-        "capture: the vision server has no camera calibration (start it with "
-        "--calibration FILE): registration needs the intrinsics"};
+        "capture: the vision server has no camera calibration (start it with a "
+        "calibration file): registration needs the intrinsics"};
   }
   return *info;
 }
@@ -132,11 +131,11 @@ Result<std::vector<vision::CapturedFrame>> capture_pose_frames(net::VisionClient
 
 Status CaptureSessionOptions::validate() const {
   auto bad = [](const std::string& what) { return Error{"capture: " + what}; };
-  if (directory.empty()) return bad("give the folder to write (-o DIR)");
+  if (directory.empty()) return bad("directory: give the folder to write");
   if (frames_per_pose < 1 || frames_per_pose > 30)
-    return bad("--frames " + std::to_string(frames_per_pose) + " must be 1..30");
+    return bad("frames_per_pose " + std::to_string(frames_per_pose) + " must be 1..30");
   if (!(settle_s >= 0.0 && settle_s <= 10.0))
-    return bad("--settle " + core::format_number(settle_s) + " must be 0..10 s");
+    return bad("settle_s " + core::format_number(settle_s) + " must be 0..10 s");
   if (!(rest_tolerance_rad > 0.0)) return bad("the rest tolerance must be positive");
   if (!(rest_timeout_s > 0.0)) return bad("the rest timeout must be positive");
   if (Status s = hand_eye.validate(); !s) return bad(s.error().message);
@@ -253,9 +252,10 @@ Result<CaptureSession::PoseCapture> CaptureSession::capture_pose(int index,
   if (!images) return Error{label + ": " + images.error().message};
   const vision::CameraModel& left = info_.cameras.left;
   if (images->left.cols != left.width || images->left.rows != left.height) {
-    return Error{label + ": the stream's images are " + std::to_string(images->left.cols) + "x" +
-                 std::to_string(images->left.rows) + ", the calibration's " +
-                 std::to_string(left.width) + "x" + std::to_string(left.height) +
+    return Error{label + ": the stream's images are " +
+                 core::to_string(core::ImageSize{images->left.cols, images->left.rows}) +
+                 ", the calibration's " +
+                 core::to_string(core::ImageSize{left.width, left.height}) +
                  ": capture at the cameras' own size"};
   }
   auto detected = vision::detect_capture_targets(options_.directory, one, *options_.target);

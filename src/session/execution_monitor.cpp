@@ -11,6 +11,8 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/number_format.hpp"
 
+#include "seconds.hpp"
+
 namespace telear::session {
 namespace {
 
@@ -21,10 +23,6 @@ std::string amount(const core::RobotModel& model, int joint, double value) {
   }
   return core::format_fixed(value, 4, "m") + " (" + core::format_fixed(value * 1000.0, 1, "mm") +
          ")";
-}
-
-std::string seconds(double value) {
-  return core::format_fixed(value, 3, "s");
 }
 
 }  // namespace

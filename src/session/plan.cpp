@@ -23,17 +23,6 @@ std::string waypoint_name(std::size_t index) {
   return "waypoint[" + std::to_string(index) + "]";
 }
 
-// Thrown inside this file only; parse_*() turns it into a Result (no exception leaves it).
-struct ParseError {
-  std::string message;
-};
-
-double scalar(const YAML::Node& node, const std::string& what) {
-  auto value = core::yaml_number(node, what);
-  if (!value) throw ParseError{value.error().message};
-  return *value;
-}
-
 void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& known,
                          const std::string& where) {
   for (const auto& entry : map) {
@@ -41,8 +30,8 @@ void reject_unknown_keys(const YAML::Node& map, const std::set<std::string>& kno
     if (known.count(key) == 0) {
       std::string list;
       for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-      throw ParseError{where + (where.empty() ? "" : ".") + key + ": unknown key (known: " + list +
-                       ")"};
+      throw core::YamlFieldError{where + (where.empty() ? "" : ".") + key +
+                                 ": unknown key (known: " + list + ")"};
     }
   }
 }
@@ -52,7 +41,7 @@ bool flag(const YAML::Node& map, const char* key, const std::string& name) {
   const YAML::Node node = map[key];
   if (!node) return false;
   if (!node.IsScalar() || (node.Scalar() != "true" && node.Scalar() != "false")) {
-    throw ParseError{name + "." + key + ": must be true or false"};
+    throw core::YamlFieldError{name + "." + key + ": must be true or false"};
   }
   return node.Scalar() == "true";
 }
@@ -233,67 +222,68 @@ Result<Plan> Plan::from_yaml(core::RobotModelPtr model, const std::string& text,
   const auto loaded = core::load_yaml(text, where);
   if (!loaded) return loaded.error();
   const YAML::Node& root = *loaded;
-  Plan plan(std::move(model));
-  try {
-    if (!root.IsMap()) throw ParseError{"expected a map with robot and waypoints"};
+  return core::catch_yaml_errors<Plan>(where, [&]() -> Result<Plan> {
+    Plan plan(std::move(model));
+    if (!root.IsMap()) throw core::YamlFieldError{"expected a map with robot and waypoints"};
     reject_unknown_keys(root, {"robot", "velocity_scale", "acceleration_scale", "waypoints"}, "");
     if (!root["robot"] || !root["robot"].IsScalar()) {
-      throw ParseError{"robot: missing (the model's name, e.g. robot: " + plan.model().name() +
-                       ")"};
+      throw core::YamlFieldError{
+          "robot: missing (the model's name, e.g. robot: " + plan.model().name() + ")"};
     }
     const std::string robot = root["robot"].Scalar();
     if (robot != plan.model().name()) {
-      throw ParseError{"robot: the plan is for '" + robot + "', not for the loaded model '" +
-                       plan.model().name() + "'"};
+      throw core::YamlFieldError{"robot: the plan is for '" + robot +
+                                 "', not for the loaded model '" + plan.model().name() + "'"};
     }
     const double velocity_scale =
-        root["velocity_scale"] ? scalar(root["velocity_scale"], "velocity_scale") : 1.0;
+        root["velocity_scale"] ? core::number_or_throw(root["velocity_scale"], "velocity_scale")
+                               : 1.0;
     const double acceleration_scale =
-        root["acceleration_scale"] ? scalar(root["acceleration_scale"], "acceleration_scale") : 1.0;
+        root["acceleration_scale"]
+            ? core::number_or_throw(root["acceleration_scale"], "acceleration_scale")
+            : 1.0;
     if (Status s = plan.set_scales(velocity_scale, acceleration_scale); !s) {
-      throw ParseError{s.error().message};
+      throw core::YamlFieldError{s.error().message};
     }
     const YAML::Node list = root["waypoints"];
-    if (!list) throw ParseError{"waypoints: missing"};
+    if (!list) throw core::YamlFieldError{"waypoints: missing"};
     if (list.IsNull()) return plan;  // an empty plan is a valid file
-    if (!list.IsSequence()) throw ParseError{"waypoints: must be a list"};
+    if (!list.IsSequence()) throw core::YamlFieldError{"waypoints: must be a list"};
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string name = waypoint_name(i);
       const YAML::Node node = list[i];
-      if (!node.IsMap()) throw ParseError{name + ": must be a map with q_rad"};
+      if (!node.IsMap()) throw core::YamlFieldError{name + ": must be a map with q_rad"};
       reject_unknown_keys(node, {"label", "q_rad", "gripper", "min_duration_s", "via", "cartesian"},
                           name);
       PlanWaypoint w;
       const YAML::Node q = node["q_rad"];
-      if (!q) throw ParseError{name + ".q_rad: missing"};
-      if (!q.IsSequence()) throw ParseError{name + ".q_rad: must be a list of numbers"};
+      if (!q) throw core::YamlFieldError{name + ".q_rad: missing"};
+      if (!q.IsSequence()) throw core::YamlFieldError{name + ".q_rad: must be a list of numbers"};
       if (static_cast<int>(q.size()) != plan.model().dof()) {
-        throw ParseError{name + ".q_rad: expected " + std::to_string(plan.model().dof()) +
-                         " numbers, got " + std::to_string(q.size())};
+        throw core::YamlFieldError{name + ".q_rad: expected " + std::to_string(plan.model().dof()) +
+                                   " numbers, got " + std::to_string(q.size())};
       }
       w.q.resize(plan.model().dof());
       for (int j = 0; j < plan.model().dof(); ++j) {
-        w.q[j] = scalar(q[static_cast<std::size_t>(j)], name + ".q_rad[" + std::to_string(j) + "]");
+        w.q[j] = core::number_or_throw(q[static_cast<std::size_t>(j)],
+                                       name + ".q_rad[" + std::to_string(j) + "]");
       }
-      if (node["gripper"]) w.gripper = scalar(node["gripper"], name + ".gripper");
+      if (node["gripper"]) w.gripper = core::number_or_throw(node["gripper"], name + ".gripper");
       if (node["min_duration_s"]) {
-        w.min_duration = scalar(node["min_duration_s"], name + ".min_duration_s");
+        w.min_duration = core::number_or_throw(node["min_duration_s"], name + ".min_duration_s");
       }
       w.via = flag(node, "via", name);
       w.cartesian = flag(node, "cartesian", name);
       if (node["label"]) {
-        if (!node["label"].IsScalar()) throw ParseError{name + ".label: must be text"};
+        if (!node["label"].IsScalar()) throw core::YamlFieldError{name + ".label: must be text"};
         w.label = node["label"].Scalar();
       }
-      if (Status s = plan.check_waypoint(w, name); !s) throw ParseError{s.error().message};
-      if (Status s = plan.add(std::move(w)); !s) throw ParseError{s.error().message};
+      if (Status s = plan.check_waypoint(w, name); !s)
+        throw core::YamlFieldError{s.error().message};
+      if (Status s = plan.add(std::move(w)); !s) throw core::YamlFieldError{s.error().message};
     }
-  } catch (const ParseError& e) {
-    return Error{where + e.message};
-  } catch (const YAML::Exception& e) {
-    return Error{where + core::describe_yaml_error(e)};
-  }
-  return plan;
+    return plan;
+  });
 }
 
 Status Plan::save(const std::string& path) const {

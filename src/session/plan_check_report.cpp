@@ -7,15 +7,13 @@
 
 #include "telear/core/number_format.hpp"
 
+#include "seconds.hpp"
+
 namespace telear::session {
 namespace {
 
 std::string millimetres(double metres) {
   return core::format_fixed(metres * 1e3, 1, "mm");
-}
-
-std::string seconds(double s) {
-  return core::format_fixed(s, 3, "s");
 }
 
 nlohmann::json clearance_json(const geometry::PlanClearance& m) {

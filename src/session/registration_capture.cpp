@@ -23,6 +23,8 @@
 #include "telear/vision/hand_eye_registration.hpp"
 #include "telear/vision/registration_target.hpp"
 
+#include "seconds.hpp"
+
 namespace telear::session {
 namespace {
 
@@ -30,10 +32,6 @@ constexpr double kArmRangeRad = 0.6;    // the first three joints' spread around
 constexpr double kWristRangeRad = 0.8;  // the others'
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 double rotation_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return std::abs(Eigen::AngleAxisd(Eigen::Matrix3d(a.transpose() * b)).angle());
@@ -118,16 +116,16 @@ Result<vision::StereoCameraModel> rough_cameras(const core::RobotModel& model,
 
 Status RegistrationCaptureOptions::validate() const {
   auto bad = [](const std::string& what) { return Error{"capture: " + what}; };
-  if (directory.empty()) return bad("give the folder to write (-o DIR)");
+  if (directory.empty()) return bad("directory: give the folder to write");
   if (auto_poses == 0 && poses.empty()) return bad("no poses: give auto:N or a poses file");
   if (auto_poses < 0 || auto_poses > 200)
     return bad("auto:" + std::to_string(auto_poses) + ": the number of poses must be 1..200");
   if (frames_per_pose < 1 || frames_per_pose > 30)
-    return bad("--frames " + std::to_string(frames_per_pose) + " must be 1..30");
+    return bad("frames_per_pose " + std::to_string(frames_per_pose) + " must be 1..30");
   if (!(velocity_scale > 0.0 && velocity_scale <= 1.0))
-    return bad("--speed " + core::format_number(velocity_scale) + " must be in (0, 1]");
+    return bad("velocity_scale " + core::format_number(velocity_scale) + " must be in (0, 1]");
   if (!(settle_s >= 0.0 && settle_s <= 10.0))
-    return bad("--settle " + core::format_number(settle_s) + " must be 0..10 s");
+    return bad("settle_s " + core::format_number(settle_s) + " must be 0..10 s");
   if (!(rest_tolerance_rad > 0.0)) return bad("the rest tolerance must be positive");
   if (!(pose_timeout_s > 0.0)) return bad("the pose timeout must be positive");
   if (!(lease_heartbeat_s >= 0.0 && lease_heartbeat_s <= 10.0))

@@ -48,15 +48,15 @@ std::string view_name(const char* eye, int view) {
 
 Status CalibrationCaptureOptions::validate() const {
   if (views < 1 || views > 100) {
-    return Error{"--views " + std::to_string(views) + " is outside 1..100"};
+    return Error{"views " + std::to_string(views) + " is outside 1..100"};
   }
   if (output_dir.empty()) {
-    return Error{"-o DIR is required (the directory to write the images and truth.yaml to)"};
+    return Error{"output_dir is required (the directory to write the images and truth.yaml to)"};
   }
   if (!(noise_grey >= 0.0 && noise_grey <= 50.0)) {
-    return Error{"--noise must be within 0..50 grey levels"};
+    return Error{"noise_grey must be within 0..50 grey levels"};
   }
-  if (supersample < 1 || supersample > 8) return Error{"--supersample must be within 1..8"};
+  if (supersample < 1 || supersample > 8) return Error{"supersample must be within 1..8"};
   return Status::Ok();
 }
 
@@ -64,7 +64,7 @@ Result<CalibrationCapture> capture_calibration_views(const CalibrationCaptureOpt
                                                      const CaptureProgress& progress) {
   if (Status s = options.validate(); !s) return s.error();
   auto pattern = vision::parse_calibration_pattern(options.pattern);
-  if (!pattern) return Error{"--pattern: " + pattern.error().message};
+  if (!pattern) return Error{"pattern: " + pattern.error().message};
   auto rig = load_stereo_rig(options.rig_file);
   if (!rig) return rig.error();
   auto robot = load_rig_robot(*rig);

@@ -9,11 +9,10 @@
 
 #include "telear/core/angles.hpp"
 
+#include "target_print.hpp"
+
 namespace telear::sim {
 namespace {
-
-const Eigen::Vector3f kBlack(0.04f, 0.04f, 0.045f);
-const Eigen::Vector3f kWhite(0.93f, 0.93f, 0.92f);
 
 // A quad with corners a, b, c, d (counter-clockwise seen from the side `normal` points to).
 void add_quad(core::Mesh& mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,

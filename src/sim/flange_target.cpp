@@ -1,10 +1,9 @@
 #include "telear/sim/flange_target.hpp"
 
+#include "target_print.hpp"
+
 namespace telear::sim {
 namespace {
-
-const Eigen::Vector3f kBlack(0.04f, 0.04f, 0.045f);
-const Eigen::Vector3f kWhite(0.93f, 0.93f, 0.92f);
 
 // Corners in printed order (top-left, top-right, bottom-right, bottom-left), seen from +z with
 // x right and y up: that order is clockwise, so the triangles go the other way round.

@@ -54,12 +54,12 @@ std::vector<Eigen::Vector2d> detect_marker(const core::Image& image, int id) {
 
 Status MarkerObservationsOptions::validate() const {
   if (configurations < 1 || configurations > 500) {
-    return Error{"--configs " + std::to_string(configurations) + " is outside 1..500"};
+    return Error{"configurations " + std::to_string(configurations) + " is outside 1..500"};
   }
   if (!(noise_grey >= 0.0 && noise_grey <= 50.0)) {
-    return Error{"--noise must be within 0..50 grey levels"};
+    return Error{"noise_grey must be within 0..50 grey levels"};
   }
-  if (supersample < 1 || supersample > 8) return Error{"--supersample must be within 1..8"};
+  if (supersample < 1 || supersample > 8) return Error{"supersample must be within 1..8"};
   if (!(max_view_angle_deg > 0.0 && max_view_angle_deg < 90.0)) {
     return Error{"max_view_angle_deg must be within 0..90 deg (exclusive)"};
   }
@@ -71,10 +71,10 @@ Result<MarkerObservations> simulate_marker_observations(const MarkerObservations
                                                         const ObservationProgress& progress) {
   if (Status s = options.validate(); !s) return s.error();
   auto rig = load_stereo_rig(options.rig_file);
-  if (!rig) return Error{"--rig: " + rig.error().message};
+  if (!rig) return Error{"rig_file: " + rig.error().message};
   auto loaded = load_rig_robot(*rig, {options.robot, options.tip, options.geometry.package_paths},
                                options.geometry);
-  if (!loaded) return Error{"--robot: " + loaded.error().message};
+  if (!loaded) return Error{"robot: " + loaded.error().message};
   const core::RobotModelPtr model = loaded->model();
   const core::BodyDescription* body = &loaded->body;
 

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "telear/core/kinematics.hpp"
+#include "telear/core/seeded_random.hpp"
 #include "telear/render/camera_projection.hpp"
 
 namespace telear::sim {
@@ -45,13 +46,6 @@ core::Mesh make_tiled_floor(double size_m, int tiles) {
   const std::uint32_t d = mesh.add_vertex({-h, h, -0.001f}, n, joint);
   mesh.triangles.insert(mesh.triangles.end(), {a, b, c, a, c, d});
   return mesh;
-}
-
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
 }
 
 }  // namespace
@@ -97,7 +91,8 @@ core::Image downsample_box(const core::Image& image, int factor) {
 }
 
 std::uint64_t noise_seed(std::uint64_t seed, std::uint64_t frame, Eye eye) {
-  return splitmix64(splitmix64(splitmix64(seed) ^ frame) ^ (eye == Eye::kLeft ? 1u : 2u));
+  return core::mix_seed(core::mix_seed(core::mix_seed(seed) ^ frame) ^
+                        (eye == Eye::kLeft ? 1u : 2u));
 }
 
 void add_sensor_noise(core::Image& image, double sigma, std::uint64_t seed) {

@@ -4,6 +4,8 @@
 #include <cctype>
 #include <opencv2/aruco.hpp>
 
+#include "vision_text.hpp"
+
 namespace telear::vision {
 namespace {
 
@@ -39,11 +41,6 @@ constexpr DictionaryName kDictionaries[] = {
     {"DICT_APRILTAG_36h10", cv::aruco::DICT_APRILTAG_36h10, false},
     {"DICT_APRILTAG_36h11", cv::aruco::DICT_APRILTAG_36h11, true},
 };
-
-std::string upper(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return text;
-}
 
 std::string lower(std::string text) {
   for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

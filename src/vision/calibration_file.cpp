@@ -126,8 +126,8 @@ std::string stereo_calibration_yaml(const StereoCalibration& c, const Calibratio
   return fs.releaseAndGetString();
 }
 
-std::string ros_camera_info_yaml(const CameraModel& camera, const cv::Matx33d& R,
-                                 const cv::Matx34d& P, const std::string& camera_name) {
+std::string rectified_camera_info_yaml(const CameraModel& camera, const cv::Matx33d& R,
+                                       const cv::Matx34d& P, const std::string& camera_name) {
   const Eigen::Matrix3d K = camera.K();
   double k[9];
   for (int r = 0; r < 3; ++r) {
@@ -148,14 +148,15 @@ std::string ros_mono_camera_info_yaml(const MonoCalibration& calibration,
   const CameraModel& camera = calibration.camera;
   const cv::Matx34d P(camera.fx, camera.skew(), camera.cx, 0.0, 0.0, camera.fy, camera.cy, 0.0, 0.0,
                       0.0, 1.0, 0.0);
-  return ros_camera_info_yaml(camera, cv::Matx33d::eye(), P, camera_name);
+  return rectified_camera_info_yaml(camera, cv::Matx33d::eye(), P, camera_name);
 }
 
 std::string ros_stereo_camera_info_yaml(const StereoCalibration& calibration, bool right,
                                         const std::string& camera_name) {
   const StereoRectification& rect = calibration.rectification;
-  return ros_camera_info_yaml(right ? calibration.cameras.right : calibration.cameras.left,
-                              right ? rect.R2 : rect.R1, right ? rect.P2 : rect.P1, camera_name);
+  return rectified_camera_info_yaml(right ? calibration.cameras.right : calibration.cameras.left,
+                                    right ? rect.R2 : rect.R1, right ? rect.P2 : rect.P1,
+                                    camera_name);
 }
 
 Result<StereoGeometry> load_stereo_geometry(const std::string& path) {

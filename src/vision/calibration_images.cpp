@@ -6,12 +6,10 @@
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 
+#include "telear/core/image_size.hpp"
+
 namespace telear::vision {
 namespace {
-
-std::string size_text(cv::Size size) {
-  return std::to_string(size.width) + "x" + std::to_string(size.height);
-}
 
 // One decoded image and its detection; `problem` is empty when the pattern was found;
 // `fatal` stops the whole run (the pattern does not describe the board).
@@ -44,8 +42,10 @@ ImageResult process_image(const std::string& path, const CalibrationPattern& pat
   } else if (image.size() != image_size) {
     return {{},
             {},
-            "image is " + size_text(image.size()) + " but the first image is " +
-                size_text(image_size) + "; use images from one camera at one resolution",
+            "image is " + core::to_string(core::ImageSize{image.cols, image.rows}) +
+                " but the first image is " +
+                core::to_string(core::ImageSize{image_size.width, image_size.height}) +
+                "; use images from one camera at one resolution",
             {}};
   }
   auto points = detect_pattern_points(image, pattern);
@@ -128,7 +128,7 @@ Result<std::vector<std::string>> expand_image_glob(const std::string& pattern,
   if (paths.empty()) {
     return Error{option + " '" + pattern +
                  "' matches no file; check the directory and the pattern, and quote it so "
-                 "that telear expands it (e.g. --left 'images/left*.png')"};
+                 "that telear expands it (e.g. 'images/left*.png')"};
   }
   std::sort(paths.begin(), paths.end());
   return paths;
@@ -170,8 +170,8 @@ Result<StereoImageViews> detect_in_image_pairs(const std::vector<std::string>& l
                                                const DetectionCallback& progress) {
   if (left_paths.empty() || right_paths.empty()) return Error{"no images given"};
   if (left_paths.size() != right_paths.size()) {
-    return Error{"--left matches " + std::to_string(left_paths.size()) +
-                 " images but --right matches " + std::to_string(right_paths.size()) +
+    return Error{std::to_string(left_paths.size()) + " left images but " +
+                 std::to_string(right_paths.size()) + " right images" +
                  "; every left image needs the right image taken at the same moment (pairs "
                  "are matched in sorted name order): remove the unpaired images"};
   }

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
+#include "telear/core/number_list.hpp"
 #include "telear/vision/charuco_board.hpp"
 
 namespace telear::vision {
@@ -30,13 +31,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
 
 std::optional<int> parse_int(const std::string& text) {
   int value = 0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size()) return std::nullopt;
-  return value;
-}
-
-std::optional<double> parse_double(const std::string& text) {
-  double value = 0.0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || ec != std::errc() || ptr != text.data() + text.size()) return std::nullopt;
   return value;
@@ -122,13 +116,13 @@ Result<CalibrationPattern> parse_charuco(const std::vector<std::string>& parts,
   pattern.cols = *sx - 1;
   pattern.rows = *sy - 1;
 
-  const std::optional<double> square = parse_double(parts[2]);
-  if (!square || !std::isfinite(*square) || *square <= 0.0) {
+  const Result<double> square = core::parse_number(parts[2], "square size");
+  if (!square || *square <= 0.0) {
     return Error{where + "square size '" + parts[2] +
                  "' is not a positive number (the side of a square in metres, e.g. 0.04)"};
   }
-  const std::optional<double> marker = parse_double(parts[3]);
-  if (!marker || !std::isfinite(*marker) || *marker <= 0.0) {
+  const Result<double> marker = core::parse_number(parts[3], "marker size");
+  if (!marker || *marker <= 0.0) {
     return Error{where + "marker size '" + parts[3] +
                  "' is not a positive number (the side of a marker in metres, e.g. 0.03)"};
   }
@@ -206,8 +200,8 @@ Result<CalibrationPattern> parse_calibration_pattern(const std::string& spec) {
                       : "a circle grid needs 2 to 200 circles per row and 3 to 200 rows")};
   }
 
-  const std::optional<double> spacing = parse_double(parts[2]);
-  if (!spacing || !std::isfinite(*spacing) || *spacing <= 0.0) {
+  const Result<double> spacing = core::parse_number(parts[2], "spacing");
+  if (!spacing || *spacing <= 0.0) {
     return Error{where + "spacing '" + parts[2] +
                  "' is not a positive number (the square side or circle spacing in metres, "
                  "e.g. 0.025)"};

@@ -7,6 +7,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "telear/core/angles.hpp"
+#include "telear/core/image_size.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/calibration_images.hpp"
@@ -232,7 +233,7 @@ std::string calibration_summary(const CalibrationReport& report) {
   const bool stereo = report.stereo.has_value();
   std::string out;
   out += "pattern " + report.pattern.spec() + ", images " +
-         std::to_string(report.image_size.width) + "x" + std::to_string(report.image_size.height) +
+         core::to_string(core::ImageSize{report.image_size.width, report.image_size.height}) +
          ": " + std::to_string(report.views_given) + (stereo ? " pairs" : " images") + " given, " +
          std::to_string(views_used(report)) + " used, " + std::to_string(views_rejected(report)) +
          " rejected\n";

@@ -1,5 +1,6 @@
 #include "telear/vision/camera_file.hpp"
 
+#include "telear/core/image_size.hpp"
 #include "telear/core/yaml_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -18,28 +19,17 @@
 namespace telear::vision {
 namespace {
 
-// Thrown inside this file only; parse_*() turns it into a Result (no exception leaves it).
-struct ParseError {
-  std::string message;
-};
-
 std::string join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
 }
 
-double scalar(const YAML::Node& node, const std::string& what) {
-  auto value = core::yaml_number(node, what);
-  if (!value) throw ParseError{value.error().message};
-  return *value;
-}
-
-int integer(const YAML::Node& node, const std::string& what) {
-  if (!node) throw ParseError{what + ": missing"};
-  if (!node.IsScalar()) throw ParseError{what + ": must be an integer"};
+int integer_field(const YAML::Node& node, const std::string& what) {
+  if (!node) throw core::YamlFieldError{what + ": missing"};
+  if (!node.IsScalar()) throw core::YamlFieldError{what + ": must be an integer"};
   try {
     return node.as<int>();
   } catch (const YAML::Exception&) {
-    throw ParseError{what + ": must be an integer, got '" + node.Scalar() + "'"};
+    throw core::YamlFieldError{what + ": must be an integer, got '" + node.Scalar() + "'"};
   }
 }
 
@@ -52,7 +42,7 @@ struct Matrix {
 // An OpenCV / ROS matrix {rows, cols, data: [...]} (dt, when present, is not needed: the
 // values are read as doubles), or a plain list of numbers (rows = 1).
 Matrix matrix(const YAML::Node& node, const std::string& what) {
-  if (!node) throw ParseError{what + ": missing"};
+  if (!node) throw core::YamlFieldError{what + ": missing"};
   Matrix m;
   YAML::Node data;
   if (node.IsSequence()) {
@@ -60,25 +50,25 @@ Matrix matrix(const YAML::Node& node, const std::string& what) {
     m.rows = 1;
     m.cols = static_cast<int>(node.size());
   } else if (node.IsMap()) {
-    m.rows = integer(node["rows"], what + ".rows");
-    m.cols = integer(node["cols"], what + ".cols");
+    m.rows = integer_field(node["rows"], what + ".rows");
+    m.cols = integer_field(node["cols"], what + ".cols");
     if (m.rows <= 0 || m.cols <= 0 || m.rows > 64 || m.cols > 64) {
-      throw ParseError{what + ": rows and cols must be in [1, 64], got " + std::to_string(m.rows) +
-                       "x" + std::to_string(m.cols)};
+      throw core::YamlFieldError{what + ": rows and cols must be in [1, 64], got " +
+                                 std::to_string(m.rows) + "x" + std::to_string(m.cols)};
     }
     data = node["data"];
-    if (!data) throw ParseError{what + ".data: missing"};
-    if (!data.IsSequence()) throw ParseError{what + ".data: must be a list of numbers"};
+    if (!data) throw core::YamlFieldError{what + ".data: missing"};
+    if (!data.IsSequence()) throw core::YamlFieldError{what + ".data: must be a list of numbers"};
     if (data.size() != static_cast<size_t>(m.rows * m.cols)) {
-      throw ParseError{what + ".data: expected " + std::to_string(m.rows * m.cols) + " numbers (" +
-                       std::to_string(m.rows) + "x" + std::to_string(m.cols) + "), got " +
-                       std::to_string(data.size())};
+      throw core::YamlFieldError{what + ".data: expected " + std::to_string(m.rows * m.cols) +
+                                 " numbers (" + std::to_string(m.rows) + "x" +
+                                 std::to_string(m.cols) + "), got " + std::to_string(data.size())};
     }
   } else {
-    throw ParseError{what + ": must be a matrix {rows, cols, data} or a list of numbers"};
+    throw core::YamlFieldError{what + ": must be a matrix {rows, cols, data} or a list of numbers"};
   }
   for (size_t i = 0; i < data.size(); ++i) {
-    m.data.push_back(scalar(data[i], what + ".data[" + std::to_string(i) + "]"));
+    m.data.push_back(core::number_or_throw(data[i], what + ".data[" + std::to_string(i) + "]"));
   }
   return m;
 }
@@ -100,11 +90,11 @@ Eigen::Matrix3d rotation(const Eigen::Matrix3d& R, const std::string& what,
                          const std::string& part) {
   const double orthonormality = (R * R.transpose() - Eigen::Matrix3d::Identity()).norm();
   if (!(orthonormality <= 1e-4)) {
-    throw ParseError{what + ": " + part +
-                     " is not orthonormal (|R R^T - I| = " + format_number(orthonormality) + ")"};
+    throw core::YamlFieldError{what + ": " + part + " is not orthonormal (|R R^T - I| = " +
+                               format_number(orthonormality) + ")"};
   }
   if (R.determinant() < 0.0) {
-    throw ParseError{what + ": " + part + " is a reflection (determinant -1)"};
+    throw core::YamlFieldError{what + ": " + part + " is a reflection (determinant -1)"};
   }
   return Eigen::Quaterniond(R).normalized().toRotationMatrix();
 }
@@ -113,7 +103,7 @@ Eigen::Matrix3d rotation(const Eigen::Matrix3d& R, const std::string& what,
 Eigen::Matrix3d matrix3(const YAML::Node& node, const std::string& what) {
   const Matrix m = matrix(node, what);
   if (m.data.size() != 9 || (m.rows != 3 && m.rows != 1)) {
-    throw ParseError{what + ": expected a 3x3 matrix, got " + format_shape(m)};
+    throw core::YamlFieldError{what + ": expected a 3x3 matrix, got " + format_shape(m)};
   }
   Eigen::Matrix3d M;
   for (int r = 0; r < 3; ++r) {
@@ -125,14 +115,14 @@ Eigen::Matrix3d matrix3(const YAML::Node& node, const std::string& what) {
 Eigen::Isometry3d rigid_transform(const YAML::Node& node, const std::string& what) {
   const Matrix m = matrix(node, what);
   if (m.data.size() != 16 || (m.rows != 4 && m.rows != 1)) {
-    throw ParseError{what + ": expected a 4x4 matrix, got " + format_shape(m)};
+    throw core::YamlFieldError{what + ": expected a 4x4 matrix, got " + format_shape(m)};
   }
   Eigen::Matrix4d T;
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) T(r, c) = m.data[static_cast<size_t>(4 * r + c)];
   }
   if ((T.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) {
-    throw ParseError{what + ": the last row must be 0 0 0 1"};
+    throw core::YamlFieldError{what + ": the last row must be 0 0 0 1"};
   }
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = rotation(T.topLeftCorner<3, 3>(), what, "the rotation part");
@@ -150,7 +140,8 @@ Distortion distortion(const YAML::Node& map, const std::string& prefix) {
   if (const YAML::Node node = map["distortion_model"]) {
     const std::string name = node.IsScalar() ? node.Scalar() : "";
     auto parsed = parse_distortion_model(name);
-    if (!parsed) throw ParseError{join(prefix, "distortion_model") + ": " + parsed.error().message};
+    if (!parsed)
+      throw core::YamlFieldError{join(prefix, "distortion_model") + ": " + parsed.error().message};
     model = *parsed;
   }
   const YAML::Node node = map["distortion_coefficients"];
@@ -161,34 +152,36 @@ Distortion distortion(const YAML::Node& map, const std::string& prefix) {
   }
   const Matrix m = matrix(node, what);
   if (m.rows != 1 && m.cols != 1) {
-    throw ParseError{what + ": expected a vector (1xN or Nx1), got " + format_shape(m)};
+    throw core::YamlFieldError{what + ": expected a vector (1xN or Nx1), got " + format_shape(m)};
   }
   const size_t n = m.data.size();
   if (model == DistortionModel::equidistant) {
     if (n != 4) {
-      throw ParseError{what + ": equidistant takes 4 coefficients (k1, k2, k3, k4), got " +
-                       std::to_string(n)};
+      throw core::YamlFieldError{
+          what + ": equidistant takes 4 coefficients (k1, k2, k3, k4), got " + std::to_string(n)};
     }
     return *Distortion::from_coefficients(model, m.data);
   }
   if (n != 4 && n != 5 && n != 8 && n != 12 && n != 14) {
-    throw ParseError{what + ": expected 4, 5, 8, 12 or 14 coefficients, got " + std::to_string(n)};
+    throw core::YamlFieldError{what + ": expected 4, 5, 8, 12 or 14 coefficients, got " +
+                               std::to_string(n)};
   }
   const size_t used = model == DistortionModel::rational_polynomial ? 8 : 5;
   if (model == DistortionModel::rational_polynomial && n < 8) {
-    throw ParseError{what +
-                     ": rational_polynomial takes 8 coefficients (k1, k2, p1, p2, k3, k4, "
-                     "k5, k6), got " +
-                     std::to_string(n)};
+    throw core::YamlFieldError{
+        what +
+        ": rational_polynomial takes 8 coefficients (k1, k2, p1, p2, k3, k4, "
+        "k5, k6), got " +
+        std::to_string(n)};
   }
   for (size_t i = used; i < n; ++i) {
     if (m.data[i] != 0.0) {
-      throw ParseError{what + ": coefficient " + std::to_string(i) + " is not zero; " +
-                       distortion_model_name(model) +
-                       (model == DistortionModel::plumb_bob
-                            ? " models k1, k2, p1, p2, k3 only (set distortion_model: "
-                              "rational_polynomial for k4..k6)"
-                            : " models k1, k2, p1, p2, k3, k4, k5, k6 only")};
+      throw core::YamlFieldError{what + ": coefficient " + std::to_string(i) + " is not zero; " +
+                                 distortion_model_name(model) +
+                                 (model == DistortionModel::plumb_bob
+                                      ? " models k1, k2, p1, p2, k3 only (set distortion_model: "
+                                        "rational_polynomial for k4..k6)"
+                                      : " models k1, k2, p1, p2, k3, k4, k5, k6 only")};
     }
   }
   std::vector<double> d(m.data.begin(), m.data.begin() + static_cast<long>(std::min(n, used)));
@@ -204,27 +197,28 @@ std::optional<Rectification> rectification(const YAML::Node& map, const std::str
   const std::string r_what = join(prefix, "rectification_matrix");
   const std::string p_what = join(prefix, "projection_matrix");
   if (!r_node || !p_node) {
-    throw ParseError{(r_node ? p_what : r_what) +
-                     ": missing (a ROS camera_info file gives rectification_matrix and "
-                     "projection_matrix together)"};
+    throw core::YamlFieldError{(r_node ? p_what : r_what) +
+                               ": missing (a ROS camera_info file gives rectification_matrix and "
+                               "projection_matrix together)"};
   }
   Rectification rect;
   rect.R = rotation(matrix3(r_node, r_what), r_what, "the matrix");
   const Matrix m = matrix(p_node, p_what);
   if (m.data.size() != 12 || (m.rows != 3 && m.rows != 1)) {
-    throw ParseError{p_what + ": expected a 3x4 matrix, got " + format_shape(m)};
+    throw core::YamlFieldError{p_what + ": expected a 3x4 matrix, got " + format_shape(m)};
   }
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 4; ++c) rect.P(r, c) = m.data[static_cast<size_t>(4 * r + c)];
   }
   if ((rect.P.row(2) - Eigen::RowVector4d(0, 0, 1, 0)).cwiseAbs().maxCoeff() > 1e-12) {
-    throw ParseError{p_what + ": the last row must be 0 0 1 0, got " + format_number(rect.P(2, 0)) +
-                     " " + format_number(rect.P(2, 1)) + " " + format_number(rect.P(2, 2)) + " " +
-                     format_number(rect.P(2, 3))};
+    throw core::YamlFieldError{p_what + ": the last row must be 0 0 1 0, got " +
+                               format_number(rect.P(2, 0)) + " " + format_number(rect.P(2, 1)) +
+                               " " + format_number(rect.P(2, 2)) + " " +
+                               format_number(rect.P(2, 3))};
   }
-  if (rect.P(1, 0) != 0.0) throw ParseError{p_what + ": [1][0] must be 0"};
-  if (!(rect.P(0, 0) > 0.0)) throw ParseError{p_what + ": fx' ([0][0]) must be positive"};
-  if (!(rect.P(1, 1) > 0.0)) throw ParseError{p_what + ": fy' ([1][1]) must be positive"};
+  if (rect.P(1, 0) != 0.0) throw core::YamlFieldError{p_what + ": [1][0] must be 0"};
+  if (!(rect.P(0, 0) > 0.0)) throw core::YamlFieldError{p_what + ": fx' ([0][0]) must be positive"};
+  if (!(rect.P(1, 1) > 0.0)) throw core::YamlFieldError{p_what + ": fy' ([1][1]) must be positive"};
   return rect;
 }
 
@@ -237,27 +231,28 @@ struct ParsedCamera {
 
 ParsedCamera camera(const YAML::Node& map, const std::string& prefix) {
   if (!map.IsMap()) {
-    throw ParseError{(prefix.empty() ? std::string("the file") : prefix) +
-                     ": must be a map of image_width, image_height, camera_matrix, ..."};
+    throw core::YamlFieldError{(prefix.empty() ? std::string("the file") : prefix) +
+                               ": must be a map of image_width, image_height, camera_matrix, ..."};
   }
   ParsedCamera parsed;
   CameraModel& c = parsed.camera;
-  c.width = integer(map["image_width"], join(prefix, "image_width"));
-  c.height = integer(map["image_height"], join(prefix, "image_height"));
+  c.width = integer_field(map["image_width"], join(prefix, "image_width"));
+  c.height = integer_field(map["image_height"], join(prefix, "image_height"));
 
   const std::string k_what = join(prefix, "camera_matrix");
   const Matrix K = matrix(map["camera_matrix"], k_what);
   if (K.data.size() != 9 || (K.rows != 3 && K.rows != 1)) {
-    throw ParseError{k_what + ": expected a 3x3 matrix, got " + format_shape(K)};
+    throw core::YamlFieldError{k_what + ": expected a 3x3 matrix, got " + format_shape(K)};
   }
   const std::vector<double>& k = K.data;
   if (k[3] != 0.0 || k[6] != 0.0 || k[7] != 0.0 || std::abs(k[8] - 1.0) > 1e-12) {
-    throw ParseError{k_what +
-                     ": must be [fx s cx; 0 fy cy; 0 0 1] ([1][0], [2][0], [2][1] zero and "
-                     "[2][2] one)"};
+    throw core::YamlFieldError{
+        k_what +
+        ": must be [fx s cx; 0 fy cy; 0 0 1] ([1][0], [2][0], [2][1] zero and "
+        "[2][2] one)"};
   }
-  if (!(k[0] > 0.0)) throw ParseError{k_what + ": fx ([0][0]) must be positive"};
-  if (!(k[4] > 0.0)) throw ParseError{k_what + ": fy ([1][1]) must be positive"};
+  if (!(k[0] > 0.0)) throw core::YamlFieldError{k_what + ": fx ([0][0]) must be positive"};
+  if (!(k[4] > 0.0)) throw core::YamlFieldError{k_what + ": fy ([1][1]) must be positive"};
   c.fx = k[0];
   c.alpha_c = k[1] / k[0];
   c.cx = k[2];
@@ -273,7 +268,7 @@ ParsedCamera camera(const YAML::Node& map, const std::string& prefix) {
     parsed.has_pose = true;
   }
   if (Status valid = validate_camera(c); !valid) {
-    throw ParseError{(prefix.empty() ? "" : prefix + ": ") + valid.error().message};
+    throw core::YamlFieldError{(prefix.empty() ? "" : prefix + ": ") + valid.error().message};
   }
   return parsed;
 }
@@ -330,13 +325,13 @@ Status write_text(const std::string& text, const std::string& path) {
 // A stereo calibration file's R and T (X_R = R X_L + T, stereo_calibration.hpp), when given.
 std::optional<Eigen::Isometry3d> stereo_geometry(const YAML::Node& root) {
   if (!root["R"] && !root["T"]) return std::nullopt;
-  if (!root["R"]) throw ParseError{"R: missing (a stereo file's geometry needs R and T)"};
-  if (!root["T"]) throw ParseError{"T: missing (a stereo file's geometry needs R and T)"};
+  if (!root["R"]) throw core::YamlFieldError{"R: missing (a stereo file's geometry needs R and T)"};
+  if (!root["T"]) throw core::YamlFieldError{"T: missing (a stereo file's geometry needs R and T)"};
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = rotation(matrix3(root["R"], "R"), "R", "the matrix");
   const Matrix t = matrix(root["T"], "T");
   if (t.data.size() != 3 || (t.rows != 1 && t.cols != 1)) {
-    throw ParseError{"T: expected a vector of 3 values, got " + format_shape(t)};
+    throw core::YamlFieldError{"T: expected a vector of 3 values, got " + format_shape(t)};
   }
   T.translation() = Eigen::Vector3d(t.data[0], t.data[1], t.data[2]);
   return T;
@@ -382,13 +377,15 @@ Result<CameraFile> parse_camera_yaml(const std::string& text, const std::string&
   }
   const auto loaded = core::load_yaml(strip_opencv_directive(yaml), where);
   if (!loaded) return loaded.error();
-  try {
+  return core::catch_yaml_errors<CameraFile>(where, [&] {
     const YAML::Node& root = *loaded;
-    if (!root.IsMap()) throw ParseError{"the file must be a YAML map"};
+    if (!root.IsMap()) throw core::YamlFieldError{"the file must be a YAML map"};
     CameraFile file;
     if (root["left"] || root["right"]) {
-      if (!root["left"]) throw ParseError{"left: missing (a stereo file needs left and right)"};
-      if (!root["right"]) throw ParseError{"right: missing (a stereo file needs left and right)"};
+      if (!root["left"])
+        throw core::YamlFieldError{"left: missing (a stereo file needs left and right)"};
+      if (!root["right"])
+        throw core::YamlFieldError{"right: missing (a stereo file needs left and right)"};
       set_left(file, camera(root["left"], "left"));
       set_right(file, camera(root["right"], "right"));
       file.T_right_left = stereo_geometry(root);
@@ -396,11 +393,7 @@ Result<CameraFile> parse_camera_yaml(const std::string& text, const std::string&
       set_left(file, camera(root, ""));
     }
     return file;
-  } catch (const ParseError& e) {
-    return Error{where + e.message};
-  } catch (const YAML::Exception& e) {
-    return Error{where + core::describe_yaml_error(e)};
-  }
+  });
 }
 
 Result<CameraFile> load_camera_file(const std::string& path) {
@@ -471,9 +464,10 @@ Result<CameraFile> load_ros_stereo_pair(const std::string& left_path,
   const CameraModel& l = left->left;
   const CameraModel& r = right->left;
   if (l.width != r.width || l.height != r.height) {
-    return Error{where + "the two files disagree in image size: left " + std::to_string(l.width) +
-                 "x" + std::to_string(l.height) + ", right " + std::to_string(r.width) + "x" +
-                 std::to_string(r.height) + " (one rectified pair has one image size)"};
+    return Error{where + "the two files disagree in image size: left " +
+                 core::to_string(core::ImageSize{l.width, l.height}) + ", right " +
+                 core::to_string(core::ImageSize{r.width, r.height}) +
+                 " (one rectified pair has one image size)"};
   }
   if (l.kc.model != r.kc.model) {
     return Error{where + "the two files disagree in distortion_model: left " +

@@ -19,44 +19,39 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Thrown inside this file only; the entry points turn it into a Result.
-struct ParseError {
-  std::string message;
-};
-
 Eigen::VectorXd joint_vector(const YAML::Node& node, const std::string& what) {
-  if (!node) throw ParseError{what + ": missing (joint values, rad)"};
-  auto values = core::yaml_numbers(node, what);
-  if (!values) throw ParseError{values.error().message};
-  if (values->empty()) throw ParseError{what + ": empty"};
-  return Eigen::Map<const Eigen::VectorXd>(values->data(),
-                                           static_cast<Eigen::Index>(values->size()));
+  if (!node) throw core::YamlFieldError{what + ": missing (joint values, rad)"};
+  const std::vector<double> values = core::numbers_or_throw(node, what);
+  if (values.empty()) throw core::YamlFieldError{what + ": empty"};
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-std::int64_t integer(const YAML::Node& node, const std::string& what) {
-  if (!node) throw ParseError{what + ": missing"};
-  auto value = core::yaml_number(node, what);
-  if (!value) throw ParseError{value.error().message};
-  if (*value != std::floor(*value) || std::fabs(*value) > 9.0e18) {
-    throw ParseError{what + ": must be a whole number, got " + node.Scalar()};
+std::int64_t whole_number(const YAML::Node& node, const std::string& what) {
+  if (!node) throw core::YamlFieldError{what + ": missing"};
+  const double value = core::number_or_throw(node, what);
+  if (value != std::floor(value) || std::fabs(value) > 9.0e18) {
+    throw core::YamlFieldError{what + ": must be a whole number, got " + node.Scalar()};
   }
-  return static_cast<std::int64_t>(*value);
+  return static_cast<std::int64_t>(value);
 }
 
 std::string text(const YAML::Node& node, const std::string& what) {
   if (!node || node.IsNull()) return {};
-  if (!node.IsScalar()) throw ParseError{what + ": must be a string"};
+  if (!node.IsScalar()) throw core::YamlFieldError{what + ": must be a string"};
   return node.Scalar();
 }
 
 // A path recorded in the manifest must stay inside the folder: relative, no "..".
 std::string relative_path(const YAML::Node& node, const std::string& what) {
   const std::string path = text(node, what);
-  if (path.empty()) throw ParseError{what + ": missing (an image path relative to the folder)"};
+  if (path.empty())
+    throw core::YamlFieldError{what + ": missing (an image path relative to the folder)"};
   const fs::path p(path);
-  if (p.is_absolute()) throw ParseError{what + ": '" + path + "' must be relative to the folder"};
+  if (p.is_absolute())
+    throw core::YamlFieldError{what + ": '" + path + "' must be relative to the folder"};
   for (const fs::path& part : p) {
-    if (part == "..") throw ParseError{what + ": '" + path + "' leaves the folder ('..')"};
+    if (part == "..")
+      throw core::YamlFieldError{what + ": '" + path + "' leaves the folder ('..')"};
   }
   return path;
 }
@@ -78,19 +73,21 @@ std::string pose_name(std::size_t p) {
 Result<CaptureSet> parse_capture_manifest(const std::string& manifest, const std::string& source,
                                           const CaptureReadOptions& options) {
   const std::string where = "capture '" + source + "': ";
-  CaptureSet capture;
   const auto loaded = core::load_yaml(manifest, where);
   if (!loaded) return loaded.error();
-  try {
+  return core::catch_yaml_errors<CaptureSet>(where, [&] {
+    CaptureSet capture;
     const YAML::Node& root = *loaded;
-    if (!root.IsMap()) throw ParseError{"the manifest must be a YAML map (docs/capture.md)"};
+    if (!root.IsMap())
+      throw core::YamlFieldError{"the manifest must be a YAML map (docs/capture.md)"};
     const YAML::Node version = root["telear_capture"];
     if (!version) {
-      throw ParseError{"telear_capture: missing (the format version, 1); is this a capture.yaml?"};
+      throw core::YamlFieldError{
+          "telear_capture: missing (the format version, 1); is this a capture.yaml?"};
     }
-    if (integer(version, "telear_capture") != 1) {
-      throw ParseError{"telear_capture: unsupported version " + version.Scalar() +
-                       " (this telear reads 1)"};
+    if (whole_number(version, "telear_capture") != 1) {
+      throw core::YamlFieldError{"telear_capture: unsupported version " + version.Scalar() +
+                                 " (this telear reads 1)"};
     }
     capture.robot = text(root["robot"], "robot");
     capture.tip_link = text(root["tip_link"], "tip_link");
@@ -98,49 +95,52 @@ Result<CaptureSet> parse_capture_manifest(const std::string& manifest, const std
     if (root["cameras"]) capture.camera_file = relative_path(root["cameras"], "cameras");
     const YAML::Node poses = root["poses"];
     if (!poses || !poses.IsSequence() || poses.size() == 0) {
-      throw ParseError{"poses: missing or empty; capture at least one pose"};
+      throw core::YamlFieldError{"poses: missing or empty; capture at least one pose"};
     }
     for (std::size_t p = 0; p < poses.size(); ++p) {
       const std::string at = pose_name(p);
       const YAML::Node entry = poses[p];
-      if (!entry.IsMap()) throw ParseError{at + ": must be a map with q, frames"};
+      if (!entry.IsMap()) throw core::YamlFieldError{at + ": must be a map with q, frames"};
       CapturedPose pose;
       pose.q = joint_vector(entry["q"], at + ".q");
       pose.q_commanded =
           entry["q_commanded"] ? joint_vector(entry["q_commanded"], at + ".q_commanded") : pose.q;
       if (pose.q_commanded.size() != pose.q.size()) {
-        throw ParseError{at + ".q_commanded: " + std::to_string(pose.q_commanded.size()) +
-                         " joint values, but q has " + std::to_string(pose.q.size())};
+        throw core::YamlFieldError{at + ".q_commanded: " + std::to_string(pose.q_commanded.size()) +
+                                   " joint values, but q has " + std::to_string(pose.q.size())};
       }
       if (p > 0 && pose.q.size() != capture.poses[0].q.size()) {
-        throw ParseError{at + ".q: " + std::to_string(pose.q.size()) +
-                         " joint values, but poses[0] has " +
-                         std::to_string(capture.poses[0].q.size())};
+        throw core::YamlFieldError{at + ".q: " + std::to_string(pose.q.size()) +
+                                   " joint values, but poses[0] has " +
+                                   std::to_string(capture.poses[0].q.size())};
       }
       pose.joint_time_ns =
-          entry["joint_time_ns"] ? integer(entry["joint_time_ns"], at + ".joint_time_ns") : 0;
+          entry["joint_time_ns"] ? whole_number(entry["joint_time_ns"], at + ".joint_time_ns") : 0;
       const YAML::Node frames = entry["frames"];
       if (!frames || !frames.IsSequence() || frames.size() == 0) {
-        throw ParseError{at + ".frames: missing or empty; recapture the pose or remove it"};
+        throw core::YamlFieldError{at +
+                                   ".frames: missing or empty; recapture the pose or remove it"};
       }
       for (std::size_t f = 0; f < frames.size(); ++f) {
         const std::string fat = at + ".frames[" + std::to_string(f) + "]";
         const YAML::Node node = frames[f];
-        if (!node.IsMap()) throw ParseError{fat + ": must be a map with left, right"};
+        if (!node.IsMap()) throw core::YamlFieldError{fat + ": must be a map with left, right"};
         CapturedFrame frame;
-        const std::int64_t id = node["frame_id"] ? integer(node["frame_id"], fat + ".frame_id") : 0;
-        if (id < 0) throw ParseError{fat + ".frame_id: must not be negative"};
+        const std::int64_t id =
+            node["frame_id"] ? whole_number(node["frame_id"], fat + ".frame_id") : 0;
+        if (id < 0) throw core::YamlFieldError{fat + ".frame_id: must not be negative"};
         frame.frame_id = static_cast<std::uint64_t>(id);
         frame.left_time_ns =
-            node["left_time_ns"] ? integer(node["left_time_ns"], fat + ".left_time_ns") : 0;
+            node["left_time_ns"] ? whole_number(node["left_time_ns"], fat + ".left_time_ns") : 0;
         frame.right_time_ns =
-            node["right_time_ns"] ? integer(node["right_time_ns"], fat + ".right_time_ns") : 0;
+            node["right_time_ns"] ? whole_number(node["right_time_ns"], fat + ".right_time_ns") : 0;
         const std::int64_t skew = std::llabs(frame.left_time_ns - frame.right_time_ns);
         if (skew > options.max_sync_skew_ns) {
-          throw ParseError{fat + ": unsynchronized: the eyes were exposed " +
-                           core::format_number(skew * 1e-6, "%.1f") + " ms apart (at most " +
-                           core::format_number(options.max_sync_skew_ns * 1e-6, "%.1f") +
-                           " ms); synchronize the cameras or recapture the pose"};
+          throw core::YamlFieldError{fat + ": unsynchronized: the eyes were exposed " +
+                                     core::format_number(skew * 1e-6, "%.1f") +
+                                     " ms apart (at most " +
+                                     core::format_number(options.max_sync_skew_ns * 1e-6, "%.1f") +
+                                     " ms); synchronize the cameras or recapture the pose"};
         }
         frame.left_image = relative_path(node["left"], fat + ".left");
         frame.right_image = relative_path(node["right"], fat + ".right");
@@ -148,12 +148,8 @@ Result<CaptureSet> parse_capture_manifest(const std::string& manifest, const std
       }
       capture.poses.push_back(std::move(pose));
     }
-  } catch (const ParseError& e) {
-    return Error{where + e.message};
-  } catch (const YAML::Exception& e) {
-    return Error{where + core::describe_yaml_error(e)};
-  }
-  return capture;
+    return capture;
+  });
 }
 
 std::string capture_manifest_yaml(const CaptureSet& capture) {

@@ -8,12 +8,10 @@
 #include "telear/vision/camera_file.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 
+#include "vision_text.hpp"
+
 namespace telear::vision {
 namespace {
-
-std::string fixed(double value, int decimals) {
-  return core::format_fixed(value, decimals);
-}
 
 std::string vector3(const Eigen::Vector3d& v, int decimals) {
   // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "[" + string.
@@ -54,7 +52,7 @@ Result<CaptureRegistration> register_captures(const core::RobotModel& model,
   if (out.camera_file.empty()) {
     if (out.capture.camera_file.empty()) {
       return Error{"capture '" + directory +
-                   "' holds no camera file: give the stereo calibration with --rig FILE"};
+                   "' holds no camera file: give the stereo calibration (a camera file)"};
     }
     out.camera_file = (std::filesystem::path(directory) / out.capture.camera_file).string();
   }
@@ -62,8 +60,8 @@ Result<CaptureRegistration> register_captures(const core::RobotModel& model,
   if (!cameras) return cameras.error();
   if (!cameras->is_stereo()) {
     return Error{"'" + out.camera_file +
-                 "' is a mono camera file; registration needs a stereo pair (the output of "
-                 "`telear calibrate --left ... --right ...`)"};
+                 "' is a mono camera file; registration needs a stereo pair (the left and right "
+                 "cameras calibrated together)"};
   }
   auto T_right_left = stereo_pair_geometry(out.camera_file, *cameras);
   if (!T_right_left) return T_right_left.error();
@@ -76,7 +74,7 @@ Result<CaptureRegistration> register_captures(const core::RobotModel& model,
     auto recorded = parse_registration_target(out.capture.target);
     if (!recorded) {
       return Error{"capture '" + directory + "': " + recorded.error().message +
-                   " (give the target with --target SPEC)"};
+                   " (give the registration target)"};
     }
     chosen = *recorded;
   }

@@ -16,6 +16,8 @@
 #include "telear/core/number_format.hpp"
 #include "telear/vision/opencv_pose.hpp"
 
+#include "vision_text.hpp"
+
 namespace telear::vision {
 namespace {
 
@@ -24,10 +26,6 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 constexpr int kMaxRounds = 3;
 // Two rotation axes closer than this are one axis for the degeneracy check (deg).
 constexpr double kParallelAxesDeg = 10.0;
-
-std::string fixed(double value, int decimals) {
-  return core::format_fixed(value, decimals);
-}
 
 // exp(delta) * T: rotate by the rotation vector delta[0..2] about the origin of the frame T
 // maps into, then translate by delta[3..5]. The solver's parameters are such perturbations of

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <opencv2/calib3d.hpp>
 
+#include "telear/core/image_size.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/vision/opencv_camera.hpp"
 #include "telear/vision/opencv_pose.hpp"
@@ -185,8 +186,9 @@ std::string too_few_views_message(std::size_t usable, int needed, const std::str
 Status check_views(const std::vector<PatternView>& views, const CalibrationPattern& pattern,
                    cv::Size image_size) {
   if (image_size.width <= 0 || image_size.height <= 0) {
-    return Error{"image size " + std::to_string(image_size.width) + "x" +
-                 std::to_string(image_size.height) + " is not positive"};
+    return Error{"image size " +
+                 core::to_string(core::ImageSize{image_size.width, image_size.height}) +
+                 " is not positive"};
   }
   for (const PatternView& view : views) {
     if (!view.object_points.empty()) {

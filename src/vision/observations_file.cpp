@@ -15,32 +15,16 @@
 namespace telear::vision {
 namespace {
 
-// Thrown inside this file only; parse_*() turns it into a Result (no exception leaves it).
-struct ParseError {
-  std::string message;
-};
-
-double scalar(const YAML::Node& node, const std::string& what) {
-  auto value = core::yaml_number(node, what);
-  if (!value) throw ParseError{value.error().message};
-  return *value;
-}
-
-std::vector<double> numbers(const YAML::Node& node, const std::string& what) {
-  auto values = core::yaml_numbers(node, what);
-  if (!values) throw ParseError{values.error().message};
-  return *values;
-}
-
 std::vector<Eigen::Vector2d> pixels(const YAML::Node& node, const std::string& what) {
   std::vector<Eigen::Vector2d> result;
   if (!node || node.IsNull()) return result;
-  if (!node.IsSequence()) throw ParseError{what + ": must be a list of [u, v] pixels"};
+  if (!node.IsSequence()) throw core::YamlFieldError{what + ": must be a list of [u, v] pixels"};
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string item = what + "[" + std::to_string(i) + "]";
-    const std::vector<double> uv = numbers(node[i], item);
+    const std::vector<double> uv = core::numbers_or_throw(node[i], item);
     if (uv.size() != 2) {
-      throw ParseError{item + ": a pixel is [u, v], got " + std::to_string(uv.size()) + " numbers"};
+      throw core::YamlFieldError{item + ": a pixel is [u, v], got " + std::to_string(uv.size()) +
+                                 " numbers"};
     }
     result.emplace_back(uv[0], uv[1]);
   }
@@ -104,47 +88,50 @@ Status validate_observations(const RegistrationObservations& observations,
 Result<RegistrationObservations> parse_observations_yaml(const std::string& text,
                                                          const std::string& source) {
   const std::string where = "observations '" + source + "': ";
-  RegistrationObservations observations;
   const auto loaded = core::load_yaml(text, where);
   if (!loaded) return loaded.error();
-  try {
+  auto parsed = core::catch_yaml_errors<RegistrationObservations>(where, [&] {
+    RegistrationObservations observations;
     const YAML::Node& root = *loaded;
-    if (!root.IsMap()) throw ParseError{"the file must be a YAML map (docs/registration.md)"};
+    if (!root.IsMap())
+      throw core::YamlFieldError{"the file must be a YAML map (docs/registration.md)"};
     const YAML::Node version = root["telear_observations"];
     if (!version) {
-      throw ParseError{
+      throw core::YamlFieldError{
           "telear_observations: missing (the format version, 1); is this an "
           "observations file?"};
     }
-    if (scalar(version, "telear_observations") != 1.0) {
-      throw ParseError{"telear_observations: unsupported version " + version.Scalar() +
-                       " (this telear reads 1)"};
+    if (core::number_or_throw(version, "telear_observations") != 1.0) {
+      throw core::YamlFieldError{"telear_observations: unsupported version " + version.Scalar() +
+                                 " (this telear reads 1)"};
     }
     if (const YAML::Node robot = root["robot"]) {
-      if (!robot.IsScalar()) throw ParseError{"robot: must be a name"};
+      if (!robot.IsScalar()) throw core::YamlFieldError{"robot: must be a name"};
       observations.robot = robot.Scalar();
     }
     const YAML::Node points = root["point_in_flange"];
-    if (!points) throw ParseError{"point_in_flange: missing (the points' flange coordinates, m)"};
-    if (!points.IsSequence()) throw ParseError{"point_in_flange: must be a list of [x, y, z]"};
+    if (!points)
+      throw core::YamlFieldError{"point_in_flange: missing (the points' flange coordinates, m)"};
+    if (!points.IsSequence())
+      throw core::YamlFieldError{"point_in_flange: must be a list of [x, y, z]"};
     for (std::size_t i = 0; i < points.size(); ++i) {
       const std::string item = "point_in_flange[" + std::to_string(i) + "]";
-      const std::vector<double> xyz = numbers(points[i], item);
+      const std::vector<double> xyz = core::numbers_or_throw(points[i], item);
       if (xyz.size() != 3) {
-        throw ParseError{item + ": a point is [x, y, z], got " + std::to_string(xyz.size()) +
-                         " numbers"};
+        throw core::YamlFieldError{item + ": a point is [x, y, z], got " +
+                                   std::to_string(xyz.size()) + " numbers"};
       }
       observations.point_in_flange.emplace_back(xyz[0], xyz[1], xyz[2]);
     }
     const YAML::Node configurations = root["configurations"];
-    if (!configurations) throw ParseError{"configurations: missing"};
-    if (!configurations.IsSequence()) throw ParseError{"configurations: must be a list"};
+    if (!configurations) throw core::YamlFieldError{"configurations: missing"};
+    if (!configurations.IsSequence()) throw core::YamlFieldError{"configurations: must be a list"};
     for (std::size_t c = 0; c < configurations.size(); ++c) {
       const std::string at = "configurations[" + std::to_string(c) + "]";
       const YAML::Node entry = configurations[c];
-      if (!entry.IsMap()) throw ParseError{at + ": must be a map with q, left, right"};
-      if (!entry["q"]) throw ParseError{at + ".q: missing (joint values, rad)"};
-      const std::vector<double> q = numbers(entry["q"], at + ".q");
+      if (!entry.IsMap()) throw core::YamlFieldError{at + ": must be a map with q, left, right"};
+      if (!entry["q"]) throw core::YamlFieldError{at + ".q: missing (joint values, rad)"};
+      const std::vector<double> q = core::numbers_or_throw(entry["q"], at + ".q");
       ObservedConfiguration configuration;
       configuration.q =
           Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size()));
@@ -152,13 +139,11 @@ Result<RegistrationObservations> parse_observations_yaml(const std::string& text
       configuration.right_pixels = pixels(entry["right"], at + ".right");
       observations.configurations.push_back(std::move(configuration));
     }
-  } catch (const ParseError& e) {
-    return Error{where + e.message};
-  } catch (const YAML::Exception& e) {
-    return Error{where + core::describe_yaml_error(e)};
-  }
-  if (Status status = validate_observations(observations, source); !status) return status.error();
-  return observations;
+    return observations;
+  });
+  if (!parsed) return parsed;
+  if (Status status = validate_observations(*parsed, source); !status) return status.error();
+  return parsed;
 }
 
 Result<RegistrationObservations> load_observations_file(const std::string& path) {

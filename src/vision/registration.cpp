@@ -346,8 +346,15 @@ std::string residual_line(const std::string& label, const EyeResiduals& r) {
 
 std::string centre_text(const Eigen::Isometry3d& T_cam_base) {
   const Eigen::Vector3d c = T_cam_base.inverse().translation();
-  return "[" + core::format_fixed(c.x(), 4) + ", " + core::format_fixed(c.y(), 4) + ", " +
-         core::format_fixed(c.z(), 4) + "]";
+  // Appended piece by piece: GCC 12 warns (-Wrestrict) on a "literal" + string chain here.
+  std::string text = "[";
+  text += core::format_fixed(c.x(), 4);
+  text += ", ";
+  text += core::format_fixed(c.y(), 4);
+  text += ", ";
+  text += core::format_fixed(c.z(), 4);
+  text += ']';
+  return text;
 }
 
 }  // namespace

@@ -11,19 +11,17 @@
 #include <sstream>
 
 #include "telear/core/number_format.hpp"
+#include "telear/core/number_list.hpp"
 #include "telear/vision/aruco_dictionary.hpp"
 #include "telear/vision/charuco_board.hpp"
 #include "telear/vision/marker_detection.hpp"
 
+#include "vision_text.hpp"
+
 namespace telear::vision {
 namespace {
 
-std::string upper(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return text;
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
+std::vector<std::string> split_fields(const std::string& text, char separator) {
   std::vector<std::string> parts;
   std::string part;
   std::istringstream in(text);
@@ -32,7 +30,7 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-bool parse_int(const std::string& text, int& value) {
+bool parse_int_into(const std::string& text, int& value) {
   try {
     std::size_t used = 0;
     value = std::stoi(text, &used);
@@ -43,13 +41,10 @@ bool parse_int(const std::string& text, int& value) {
 }
 
 bool parse_positive(const std::string& text, double& value) {
-  try {
-    std::size_t used = 0;
-    value = std::stod(text, &used);
-    return used == text.size() && std::isfinite(value) && value > 0.0;
-  } catch (const std::exception&) {
-    return false;
-  }
+  const Result<double> number = core::parse_number(text, "");
+  if (!number || *number <= 0.0) return false;
+  value = *number;
+  return true;
 }
 
 cv::Ptr<cv::aruco::CharucoBoard> charuco_board(const RegistrationTarget& t) {
@@ -223,7 +218,7 @@ Eigen::Vector2d RegistrationTarget::printed_size_m() const {
 }
 
 Result<RegistrationTarget> parse_registration_target(const std::string& spec) {
-  const std::vector<std::string> f = split(spec, ':');
+  const std::vector<std::string> f = split_fields(spec, ':');
   const std::string quoted = "target '" + spec + "': ";
   const std::string kinds =
       "expected aruco:DICT:ID:SIDE_M, apriltag:FAMILY:ID:SIDE_M or "
@@ -248,7 +243,7 @@ Result<RegistrationTarget> parse_registration_target(const std::string& spec) {
                            opencv_aruco_dictionary_list() + ")"};
     }
     const int size = aruco_dictionary_size(t.dictionary);
-    if (!parse_int(f[2], t.id) || t.id < 0 || t.id >= size) {
+    if (!parse_int_into(f[2], t.id) || t.id < 0 || t.id >= size) {
       return Error{quoted + "id '" + f[2] + "' must be an integer in 0.." +
                    std::to_string(size - 1) + " (" + t.dictionary + ")"};
     }
@@ -262,9 +257,9 @@ Result<RegistrationTarget> parse_registration_target(const std::string& spec) {
     return Error{quoted + "expected 5 fields charuco:XxY:SQUARE_M:MARKER_M:DICT, got " +
                  std::to_string(f.size())};
   }
-  const std::vector<std::string> squares = split(upper(f[1]), 'X');
-  if (squares.size() != 2 || !parse_int(squares[0], t.squares_x) ||
-      !parse_int(squares[1], t.squares_y) || t.squares_x < 2 || t.squares_y < 2 ||
+  const std::vector<std::string> squares = split_fields(upper(f[1]), 'X');
+  if (squares.size() != 2 || !parse_int_into(squares[0], t.squares_x) ||
+      !parse_int_into(squares[1], t.squares_y) || t.squares_x < 2 || t.squares_y < 2 ||
       t.squares_x > 100 || t.squares_y > 100) {
     return Error{quoted + "squares '" + f[1] + "' must be XxY with X and Y in 2..100 (e.g. 5x5)"};
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include "telear/core/image_size.hpp"
+
 namespace telear::vision {
 namespace {
 
@@ -36,8 +38,9 @@ core::Image make_image(int width, int height, int k, int disparity, double sigma
 Result<std::unique_ptr<SyntheticSource>> SyntheticSource::create(
     const SyntheticSourceOptions& options) {
   if (options.width < 16 || options.height < 16 || options.width > 8192 || options.height > 8192) {
-    return Error{"synthetic source: size " + std::to_string(options.width) + "x" +
-                 std::to_string(options.height) + " is outside 16x16 .. 8192x8192"};
+    return Error{"synthetic source: size " +
+                 core::to_string(core::ImageSize{options.width, options.height}) +
+                 " is outside 16x16 .. 8192x8192"};
   }
   if (!(options.fps > 0.0 && options.fps <= 10000.0)) {
     return Error{"synthetic source: fps must be in (0, 10000]"};

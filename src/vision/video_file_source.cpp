@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <opencv2/videoio.hpp>
 
+#include "telear/core/image_size.hpp"
 #include "telear/vision/opencv_frame.hpp"
 
 namespace telear::vision {
@@ -46,9 +47,9 @@ Result<std::unique_ptr<VideoFileSource>> VideoFileSource::open(
     source->height_ = options.height;
   } else {
     if (lw != rw || lh != rh) {
-      return Error{"video files: left '" + options.left_path + "' is " + std::to_string(lw) + "x" +
-                   std::to_string(lh) + " but right '" + options.right_path + "' is " +
-                   std::to_string(rw) + "x" + std::to_string(rh) +
+      return Error{"video files: left '" + options.left_path + "' is " +
+                   core::to_string(core::ImageSize{lw, lh}) + " but right '" + options.right_path +
+                   "' is " + core::to_string(core::ImageSize{rw, rh}) +
                    " (give a resolution to scale both)"};
     }
     source->width_ = lw;

@@ -22,7 +22,7 @@
 #include "telear/console/ui_state.hpp"
 #include "telear/core/image.hpp"
 #include "telear/core/result.hpp"
-#include "telear/session/embedded_servers.hpp"
+#include "telear/lab/embedded_servers.hpp"
 #include "telear/session/session.hpp"
 
 namespace telear::console {
@@ -46,7 +46,7 @@ class ConsoleApp {
 
   session::Session& session() { return *session_; }
   UiState& ui() { return ui_; }
-  session::EmbeddedServers* servers() { return servers_.get(); }
+  lab::EmbeddedServers* servers() { return servers_.get(); }
   const ScriptRunner& script() const { return script_; }
   int frames_drawn() const { return frames_; }
   // The console's last drawn image (the whole window), RGB, top row first.
@@ -60,7 +60,7 @@ class ConsoleApp {
   void rebuild_session();
 
   std::unique_ptr<Impl> impl_;
-  std::unique_ptr<session::EmbeddedServers> servers_;
+  std::unique_ptr<lab::EmbeddedServers> servers_;
   std::unique_ptr<session::Session> session_;
   UiState ui_;
   ScriptRunner script_;

@@ -86,6 +86,10 @@ struct AnalyticIkResult {
 // each pair, e.g. "lun", "l", "un", "" (all).
 Status check_ik_config(std::string_view config);
 
+// true when the solution `label` ("lun") has every letter of `config` ("l", "un", ""): the one
+// selection rule of the closed-form solvers (PUMA and UR).
+bool ik_config_matches(std::string_view label, std::string_view config);
+
 // All 8 solutions in the order lun, luf, ldn, ldf, run, ruf, rdn, rdf, or those matching
 // `config` (full or partial; must pass check_ik_config). Unreachable: no solutions, status
 // kUnreachable and a message saying why. Singular (wrist q5 ~ 0, elbow stretched/folded,

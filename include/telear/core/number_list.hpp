@@ -1,7 +1,8 @@
 #pragma once
-// Numbers written on one line, as an operator types them ("0.1,2,-3" for --q, --pose, --T,
-// --cameras): one parser, so every option refuses an empty item, trailing junk or a
-// non-finite value with the same message naming the option and the item.
+// Numbers written as text, as an operator types them: one number ("2.5" for a script's
+// value, a console field) or a list on one line ("0.1,2,-3" for --q, --pose, --T, --cameras).
+// One strict reading for both, so every field refuses an empty item, trailing junk ("2abc")
+// or a non-finite value with the same message naming the field (and the item).
 
 #include <Eigen/Core>
 #include <string>
@@ -10,6 +11,11 @@
 #include "telear/core/result.hpp"
 
 namespace telear::core {
+
+// The whole of `text` as one finite number: "2.5" -> 2.5. No blanks around it. Errors:
+// "angle: '2abc' is not a number", "angle: 'inf' is not a finite number" (`what` names the
+// field).
+Result<double> parse_number(const std::string& text, const std::string& what);
 
 // "0.1,2,-3" -> {0.1, 2, -3}; blanks around an item are ignored. Errors: "--q: item 2 is
 // empty in '1,,2'", "--q: item 2 ('2x') is not a number", "... is not a finite number",

@@ -19,10 +19,6 @@
 
 namespace telear::net {
 
-// The token from a token file: its first line, surrounding white space trimmed. Fails when
-// the file cannot be read or the token is empty.
-Result<std::string> load_token_file(const std::string& path);
-
 // true when a and b are equal; the time taken depends on the lengths only.
 bool constant_time_equal(const std::string& a, const std::string& b);
 

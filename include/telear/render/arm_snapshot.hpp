@@ -35,7 +35,7 @@ std::vector<SnapshotEye> whole_arm_view(const core::RobotModel& model, const Eig
 // whole-arm view (two eyes for "both"; "right" names the single eye right); else a camera file
 // (mono or stereo) or "left.yaml,right.yaml", whose cameras must be registered (T_cam_base).
 // `eye`: "", "left", "right" or "both" ("": every camera of the file). Errors name the option
-// and the file: "--eye both needs a stereo camera file; 'c.yaml' holds one camera".
+// and the file: "eye both needs a stereo camera file; 'c.yaml' holds one camera".
 Result<std::vector<SnapshotEye>> snapshot_eyes(const std::string& camera, const std::string& eye,
                                                const core::RobotModel& model,
                                                const Eigen::VectorXd& q, int default_width,
@@ -50,7 +50,7 @@ std::string snapshot_eye_path(const std::string& output, const std::string& eye)
 
 // What must hold before any GL work: each background (one for every eye, or one per eye) has
 // its eye's image size, and a composed stereo layout has two eyes of one size. Errors name
-// the sizes ("--background image is 320x240 but the left camera's image is 640x480").
+// the sizes ("background image is 320x240 but the left camera's image is 640x480").
 Status check_snapshot_inputs(const std::vector<SnapshotEye>& eyes,
                              const std::vector<core::Image>& backgrounds, StereoLayout layout);
 

@@ -1,7 +1,7 @@
 #pragma once
 // A calibration image set from the simulated stereo rig (docs/simulation.md, "Stereo rig"):
 // what `telear sim capture` writes, and the first step of the demo's calibration pipeline
-// (include/telear/session/calibration_pipeline.hpp).
+// (include/telear/lab/calibration_pipeline.hpp).
 //
 // Writes DIR/left_NN.png and DIR/right_NN.png (NN = 00, 01, ...) with the target at varied,
 // well-conditioned poses (include/telear/sim/calibration_targets.hpp), rendered per eye with

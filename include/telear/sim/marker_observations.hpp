@@ -1,7 +1,7 @@
 #pragma once
 // Registration observations from the simulated robot and stereo rig (docs/registration.md):
 // what `telear sim observations` writes, and a step of the demo's calibration pipeline
-// (include/telear/session/calibration_pipeline.hpp).
+// (include/telear/lab/calibration_pipeline.hpp).
 //
 // Draws seeded random in-limit joint configurations and keeps those at which the gripper's
 // ArUco marker (include/telear/sim/calibration_targets.hpp) faces both cameras -- its face

@@ -1,14 +1,14 @@
-#include "telear/session/vision_source.hpp"
+#include "telear/lab/vision_source.hpp"
 
 #include <utility>
 
-#include "telear/net/bearer_auth.hpp"
+#include "telear/net/token_file.hpp"
 #include "telear/sim/sim_rig_source.hpp"
 #include "telear/vision/camera_source.hpp"
 #include "telear/vision/synthetic_source.hpp"
 #include "telear/vision/video_file_source.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 namespace {
 
 Status open_sim(const VisionSourceOptions& options, VisionSource& opened) {
@@ -18,8 +18,10 @@ Status open_sim(const VisionSourceOptions& options, VisionSource& opened) {
   sim.supersample = options.supersample;
   sim.noise_sigma = options.noise;
   if (options.size) {
-    opened.warnings.push_back(
-        "--resolution is ignored for --source sim (the rig file sets the cameras' size); "
+    // Constructed in place from the literal: a moved temporary std::string here trips GCC 12's
+    // -Warray-bounds false positive once the unity build inlines it.
+    opened.warnings.emplace_back(
+        "the size is ignored for the sim source (the rig file sets the cameras' size); "
         "clients may ask for a scaled stream");
   }
   if (!options.robot_server.empty()) {
@@ -50,14 +52,14 @@ Status open_sim(const VisionSourceOptions& options, VisionSource& opened) {
 
 Result<VisionSource> open_vision_source(const VisionSourceOptions& options) {
   if (!options.robot_server.empty() && options.kind != "sim") {
-    return Error{"--robot-server is for --source sim (the simulated rig follows the robot)"};
+    return Error{"robot_server is for the sim source (the simulated rig follows the robot)"};
   }
   VisionSource opened;
   if (options.kind == "sim") {
     if (Status s = open_sim(options, opened); !s) return s.error();
   } else if (options.kind == "files") {
     if (options.left.empty() || options.right.empty()) {
-      return Error{"--source files needs --left FILE and --right FILE"};
+      return Error{"the files source needs a left and a right file"};
     }
     vision::VideoFileSourceOptions files{options.left, options.right, options.fps, 0, 0};
     if (options.size) files.width = options.size->width, files.height = options.size->height;
@@ -83,9 +85,9 @@ Result<VisionSource> open_vision_source(const VisionSourceOptions& options) {
     if (!created) return created.error();
     opened.source = std::move(*created);
   } else {
-    return Error{"--source '" + options.kind + "' is not one of sim, files, v4l2, synthetic"};
+    return Error{"source '" + options.kind + "' is not one of sim, files, v4l2, synthetic"};
   }
   return opened;
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -1,4 +1,4 @@
-#include "telear/session/demo_report.hpp"
+#include "telear/lab/demo_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "telear/session/plan_collision.hpp"
 #include "telear/vision/calibration_file.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 namespace {
 
 using net::percentile;
@@ -119,7 +119,7 @@ std::string demo_report_json(const DemoFacts& facts) {
   tracking["waypoints"] = facts.waypoints;
   report["execution"] = tracking;
   nlohmann::json switches = nlohmann::json::array();
-  for (const ModeSwitch& s : facts.switches) {
+  for (const session::ModeSwitch& s : facts.switches) {
     switches.push_back(
         {{"from", to_string(s.from)}, {"to", to_string(s.to)}, {"reason", s.reason}});
   }
@@ -203,8 +203,9 @@ std::string demo_report_markdown(const DemoFacts& facts) {
   }
   md += ")";
   if (facts.first_rehearsal_check && facts.final_plan_check) {
-    md += "\n- collision: the first rehearsal, " + collision_summary(*facts.first_rehearsal_check) +
-          "; the executed plan, " + collision_summary(*facts.final_plan_check);
+    md += "\n- collision: the first rehearsal, " +
+          session::collision_summary(*facts.first_rehearsal_check) + "; the executed plan, " +
+          session::collision_summary(*facts.final_plan_check);
   }
   md += "\n- display: " + std::to_string(facts.ar_to_vr) + " AR -> VR and " +
         std::to_string(facts.vr_to_ar) + " VR -> AR switches (injected delay " +
@@ -218,4 +219,4 @@ Status write_demo_report(const DemoFacts& facts, const std::string& out_dir) {
                                          {out_dir + "/report.md", demo_report_markdown(facts)}});
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -1,16 +1,17 @@
-#include "telear/session/session_recorder.hpp"
+#include "telear/lab/session_recorder.hpp"
 
 #include <spdlog/spdlog.h>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <thread>
 
+#include "telear/lab/view_input.hpp"
 #include "telear/render/image_io.hpp"
-#include "telear/session/view_input.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
-SessionRecorder::SessionRecorder(Session& session, render::ArView& view, RecorderOptions options)
+SessionRecorder::SessionRecorder(session::Session& session, render::ArView& view,
+                                 RecorderOptions options)
     : session_(session),
       view_(view),
       options_(std::move(options)),
@@ -55,16 +56,16 @@ void SessionRecorder::tick() {
   const double dt = last_ ? std::chrono::duration<double>(now - *last_).count() : period;
   last_ = now;
   session_.update(dt);
-  const SessionView& v = session_.view();
+  const session::SessionView& v = session_.view();
   if (v.frame && v.frame->frame_id != last_frame_id_) {
     last_frame_id_ = v.frame->frame_id;
     recording_.latency.add(v.frame->latency);
     ++recording_.frames_shown;
   }
-  const SessionStats stats = session_.stats();
+  const session::SessionStats stats = session_.stats();
   if (stats.residual_checks != residual_checks_) {
     residual_checks_ = stats.residual_checks;
-    const EyeResidual* eyes[2] = {&stats.residual.left, &stats.residual.right};
+    const session::EyeResidual* eyes[2] = {&stats.residual.left, &stats.residual.right};
     ResidualSeries& r = recording_.residuals;
     for (int i = 0; i < 2; ++i) {
       if (eyes[i]->valid()) {
@@ -97,4 +98,4 @@ Result<std::string> SessionRecorder::key_frame(const std::string& name) {
   return path;
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

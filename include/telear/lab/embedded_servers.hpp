@@ -23,7 +23,7 @@
 #include "telear/sim/sim_robot_driver.hpp"
 #include "telear/vision/camera_model.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 struct EmbeddedServersOptions {
   std::string rig;               // empty: sim::default_rig_file()
@@ -79,4 +79,4 @@ class EmbeddedServers {
   vision::StereoCameraModel rig_cameras_;
 };
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -28,7 +28,7 @@
 #include "telear/core/result.hpp"
 #include "telear/core/robot_model.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 struct GraspRequest {
   std::vector<Eigen::Vector3d> grip_positions_base_m;        // the task's gripper-centre positions
@@ -61,4 +61,4 @@ struct GraspChoice {
 // least tilted one's first contact and where).
 Result<GraspChoice> choose_grasp(const core::RobotModel& model, const GraspRequest& request);
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -22,7 +22,7 @@
 #include "telear/net/robot_client.hpp"
 #include "telear/vision/stereo_source.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 struct VisionSourceOptions {
   std::string kind = "sim";  // sim | files | v4l2 | synthetic
@@ -46,8 +46,9 @@ struct VisionSource {
   std::vector<std::string> warnings;
 };
 
-// Errors: an unknown kind, --robot-server for another source than sim, missing --left or
-// --right, the rig, a file or a camera that cannot be opened (naming it), a token file.
+// Errors (naming the field, not a command-line option): an unknown kind, a robot server for
+// another source than sim, a missing left or right file, the rig, a file or a camera that
+// cannot be opened (naming it), a token file.
 Result<VisionSource> open_vision_source(const VisionSourceOptions& options);
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -1,4 +1,4 @@
-#include "telear/session/embedded_servers.hpp"
+#include "telear/lab/embedded_servers.hpp"
 
 #include <filesystem>
 #include <system_error>
@@ -10,7 +10,7 @@
 #include "telear/sim/sim_rig_source.hpp"
 #include "telear/sim/stereo_rig.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 Status serve_robot(EmbeddedServersOptions& options, const core::RobotDescription& description) {
   options.urdf = core::urdf_text_for_clients(description);
@@ -107,4 +107,4 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   return servers;
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -1,11 +1,11 @@
-#include "telear/session/view_input.hpp"
+#include "telear/lab/view_input.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
-render::ArViewInput ar_view_input(const SessionView& view) {
+render::ArViewInput ar_view_input(const session::SessionView& view) {
   render::ArViewInput input;
-  input.mode =
-      view.display.mode == DisplayMode::kAR ? render::ViewMode::kAr : render::ViewMode::kVr;
+  input.mode = view.display.mode == session::DisplayMode::kAR ? render::ViewMode::kAr
+                                                              : render::ViewMode::kVr;
   input.stale = view.display.frame_stale;
   if (view.frame) {
     input.left = &view.frame->left;
@@ -21,4 +21,4 @@ render::ArViewInput ar_view_input(const SessionView& view) {
   return input;
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

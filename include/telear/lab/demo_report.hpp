@@ -27,12 +27,12 @@
 
 #include "telear/core/result.hpp"
 #include "telear/geometry/trajectory_collision.hpp"
+#include "telear/lab/session_recorder.hpp"
 #include "telear/net/command_bytes.hpp"
 #include "telear/session/display_mode.hpp"
 #include "telear/session/execution_monitor.hpp"
-#include "telear/session/session_recorder.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 struct DemoFacts {
   std::string robot;  // the robot file's name (puma560, ur6, arm7)
@@ -52,13 +52,13 @@ struct DemoFacts {
   net::CommandBytes bytes;                // the 100 Hz samples and jogs of the same motion
   std::string previewed_hash, executed_hash;
   std::string execution_result;
-  std::optional<TrackingStatus> tracking;  // when the session monitored the execution
+  std::optional<session::TrackingStatus> tracking;  // when the session monitored the execution
   double tolerance_rad = 0.0;
   double plan_duration_s = 0.0;
   int waypoints = 0;
   int ar_to_vr = 0;
   int vr_to_ar = 0;
-  std::vector<ModeSwitch> switches;
+  std::vector<session::ModeSwitch> switches;
   int injected_delay_ms = 0;
   double seconds = 0.0;  // the whole demo so far
   // The collision checks of the first rehearsal (into the table) and of the executed plan,
@@ -72,4 +72,4 @@ std::string demo_report_markdown(const DemoFacts& facts);
 // OUT/report.json and OUT/report.md, all or nothing.
 Status write_demo_report(const DemoFacts& facts, const std::string& out_dir);
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -1,4 +1,4 @@
-#include "telear/session/demo_workflow.hpp"
+#include "telear/lab/demo_workflow.hpp"
 
 #include <chrono>
 #include <filesystem>
@@ -7,20 +7,21 @@
 
 #include "telear/core/angles.hpp"
 #include "telear/core/arm_body.hpp"
+#include "telear/core/image_size.hpp"
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
+#include "telear/lab/calibration_pipeline.hpp"
+#include "telear/lab/demo_report.hpp"
+#include "telear/lab/embedded_servers.hpp"
+#include "telear/lab/session_recorder.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
-#include "telear/session/calibration_pipeline.hpp"
-#include "telear/session/demo_report.hpp"
-#include "telear/session/embedded_servers.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/session/session.hpp"
-#include "telear/session/session_recorder.hpp"
 #include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/accuracy_check.hpp"
 #include "telear/vision/calibration_file.hpp"
@@ -30,14 +31,12 @@
 #include "telear/vision/overlay_accuracy.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 
-namespace telear::session {
+#include "seconds.hpp"
+
+namespace telear::lab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The operator's jog before capturing, simulated: the first configuration at which the
 // calibration pipeline's rendered images showed the marker to both cameras.
@@ -82,9 +81,9 @@ Result<ServerRegistration> register_through_servers(
   vision_options.jpeg_quality = 100;  // the least loss the stream offers
   net::VisionClient vision(vision_options);
   vision.start();
-  // A 1 s heartbeat as the Session asks for: this machine also renders both cameras.
+  // A 1 s heartbeat as the session::Session asks for: this machine also renders both cameras.
   if (Status s = robot.acquire_lease(1.0); !s) return Error{"capture: lease: " + s.error().message};
-  RegistrationCaptureOptions capture;
+  session::RegistrationCaptureOptions capture;
   capture.directory = directory;
   capture.auto_poses = options.registration_poses;
   capture.frames_per_pose = options.registration_frames;
@@ -95,7 +94,7 @@ Result<ServerRegistration> register_through_servers(
   capture.body = body;
   capture.workspace = workspace;
   capture.finish_pose = finish;
-  auto captured = capture_for_registration(model, robot, vision, capture);
+  auto captured = session::capture_for_registration(model, robot, vision, capture);
   (void)robot.release_lease();
   if (!captured) return captured.error();
   const double capture_s = seconds_since(start);
@@ -175,15 +174,15 @@ Result<ServerRegistration> register_through_servers(
 
 Status DemoOptions::validate() const {
   if (delay_ms < 0 || delay_ms > 5000) {
-    return Error{"--delay-ms " + std::to_string(delay_ms) + " is outside 0..5000"};
+    return Error{"delay_ms " + std::to_string(delay_ms) + " is outside 0..5000"};
   }
-  if (!(fps >= 1 && fps <= 60)) return Error{"--fps must be in 1..60"};
-  if (!(camera_fps > 0 && camera_fps <= 120)) return Error{"--camera-fps must be in (0, 120]"};
+  if (!(fps >= 1 && fps <= 60)) return Error{"fps must be in 1..60"};
+  if (!(camera_fps > 0 && camera_fps <= 120)) return Error{"camera_fps must be in (0, 120]"};
   if (width < 64 || height < 48 || width > 1920 || height > 1080) {
-    return Error{"the resolution " + std::to_string(width) + "x" + std::to_string(height) +
+    return Error{"the resolution " + core::to_string(core::ImageSize{width, height}) +
                  " is outside 64x48 .. 1920x1080"};
   }
-  if (out_dir.empty()) return Error{"--out: give the folder to write the report to"};
+  if (out_dir.empty()) return Error{"out_dir: give the folder to write the report to"};
   if (registration_poses < 4 || registration_poses > 200) {
     return Error{"the registration poses " + std::to_string(registration_poses) +
                  " are outside 4..200"};
@@ -209,9 +208,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   if (Status s = options.validate(); !s) return s.error();
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
-  if (ec) return Error{"cannot create --out '" + options.out_dir + "': " + ec.message()};
-  const std::string resolution =
-      std::to_string(options.width) + "x" + std::to_string(options.height);
+  if (ec)
+    return Error{"cannot create the output folder '" + options.out_dir + "': " + ec.message()};
+  const std::string resolution = core::to_string(core::ImageSize{options.width, options.height});
 
   step(1, "calibrating the simulated stereo rig");
   CalibrationPipelineOptions pipeline;
@@ -290,12 +289,12 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
        (*servers)->vision_address());
 
   step(3, "connecting the session and taking the lease");
-  SessionOptions session_options;
+  session::SessionOptions session_options;
   session_options.robot.address = (*servers)->robot_address();
   session_options.robot.token = (*servers)->token();
   session_options.robot.client_name = "telear-demo";
   session_options.vision.client_name = "telear-demo";
-  session_options.lease_heartbeat_s = 1.0;  // see SessionOptions::lease_heartbeat_s
+  session_options.lease_heartbeat_s = 1.0;  // see session::SessionOptions::lease_heartbeat_s
   session_options.vision.address = (*servers)->vision_address();
   session_options.vision.width = options.width;
   session_options.vision.height = options.height;
@@ -307,7 +306,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   session_options.cameras = cameras;
   // The marker from the robot's marker file, the box from the operator's workspace file (the
   // same scene the simulated rig renders).
-  session_options.marker = GripperMarker{marker->id, marker->corners_flange()};
+  session_options.marker = session::GripperMarker{marker->id, marker->corners_flange()};
   const core::WorkspaceObject* graspable = workspace->first_graspable();
   if (!graspable) return Error{"the workspace " + workspace->source + " has nothing to pick"};
   const Eigen::Vector3d box = graspable->T_base_object.translation();
@@ -316,9 +315,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   // run_demo_task first rehearses into the table (docs/demo.md, "Collision check").
   session_options.description = robot->description;
   session_options.workspace = *workspace;
-  auto session_or = Session::create(model, session_options);
+  auto session_or = session::Session::create(model, session_options);
   if (!session_or) return session_or.error();
-  Session& session = **session_or;
+  session::Session& session = **session_or;
   session.connect();
 
   auto context = render::create_headless_context();
@@ -365,7 +364,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   facts.executed_hash = outcome->executed_hash;
   facts.bytes = outcome->bytes;
   facts.execution_result = outcome->execution_result;
-  if (const ExecutionMonitor* monitor = session.monitor()) {
+  if (const session::ExecutionMonitor* monitor = session.monitor()) {
     facts.tracking = monitor->status();
     facts.tolerance_rad = monitor->options().tolerance;
   }
@@ -395,4 +394,4 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   return result;
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -6,9 +6,9 @@
 #include "telear/render/ar_view.hpp"
 #include "telear/session/session.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 // The returned input points into `view.frame`: keep `view` alive while rendering it.
-render::ArViewInput ar_view_input(const SessionView& view);
+render::ArViewInput ar_view_input(const session::SessionView& view);
 
-}  // namespace telear::session
+}  // namespace telear::lab

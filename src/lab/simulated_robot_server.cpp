@@ -1,11 +1,11 @@
-#include "telear/session/simulated_robot_server.hpp"
+#include "telear/lab/simulated_robot_server.hpp"
 
 #include <algorithm>
 #include <utility>
 
 #include "telear/sim/sim_robot_driver.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 Result<std::unique_ptr<net::RobotServer>> start_simulated_robot_server(
     const core::RobotDescription& description, SimulatedRobotServerOptions options) {
@@ -26,4 +26,4 @@ Result<std::unique_ptr<net::RobotServer>> start_simulated_robot_server(
   return net::RobotServer::create(std::move(driver).value(), server);
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -13,7 +13,7 @@
 #include "telear/core/robot_description.hpp"
 #include "telear/net/robot_server.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 struct SimulatedRobotServerOptions {
   net::RobotServerOptions server;  // address, token, observers, TLS, workspace, safety margin
@@ -30,4 +30,4 @@ struct SimulatedRobotServerOptions {
 Result<std::unique_ptr<net::RobotServer>> start_simulated_robot_server(
     const core::RobotDescription& description, SimulatedRobotServerOptions options);
 
-}  // namespace telear::session
+}  // namespace telear::lab

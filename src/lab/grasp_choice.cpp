@@ -1,4 +1,4 @@
-#include "telear/session/grasp_choice.hpp"
+#include "telear/lab/grasp_choice.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/number_format.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 namespace {
 
 struct Candidate {
@@ -71,8 +71,15 @@ Result<GraspChoice> choose_grasp(const core::RobotModel& model, const GraspReque
   const Eigen::Vector3d& first = request.grip_positions_base_m.front();
   const Eigen::Vector3d to_camera = (request.camera_base_m - first).normalized();
   const auto where = [](const Eigen::Vector3d& p) {
-    return "[" + core::format_number(p.x(), "%.3f") + ", " + core::format_number(p.y(), "%.3f") +
-           ", " + core::format_number(p.z(), "%.3f") + "] m (base frame)";
+    // Appended piece by piece: GCC 12 warns (-Wrestrict) on a "literal" + string chain here.
+    std::string text = "[";
+    text += core::format_number(p.x(), "%.3f");
+    text += ", ";
+    text += core::format_number(p.y(), "%.3f");
+    text += ", ";
+    text += core::format_number(p.z(), "%.3f");
+    text += "] m (base frame)";
+    return text;
   };
   std::string first_contact;  // of the best candidate that reached every position
   for (const Candidate& c : candidates_by_score(to_camera)) {
@@ -107,4 +114,4 @@ Result<GraspChoice> choose_grasp(const core::RobotModel& model, const GraspReque
                where(first) + " within the joint limits; move it closer to the robot"};
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

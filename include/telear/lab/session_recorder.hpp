@@ -1,6 +1,6 @@
 #pragma once
-// What the demo records while it drives a Session (docs/demo.md): one display tick at a time
-// (session update, AR view, one video frame), the per-stage video latency of every new frame
+// What the demo records while it drives a session::Session (docs/demo.md): one display tick at a
+// time (session update, AR view, one video frame), the per-stage video latency of every new frame
 // shown, the live marker residual of every registration check per eye, the composed stereo
 // view as an MP4, and named key frames (PNG).
 //
@@ -29,7 +29,7 @@ namespace cv {
 class VideoWriter;
 }  // namespace cv
 
-namespace telear::session {
+namespace telear::lab {
 
 // Per eye (0 left, 1 right): one entry per registration check that found the marker.
 struct ResidualSeries {
@@ -59,7 +59,7 @@ struct RecorderOptions {
 
 class SessionRecorder {
  public:
-  SessionRecorder(Session& session, render::ArView& view, RecorderOptions options);
+  SessionRecorder(session::Session& session, render::ArView& view, RecorderOptions options);
   ~SessionRecorder();
   SessionRecorder(const SessionRecorder&) = delete;
   SessionRecorder& operator=(const SessionRecorder&) = delete;
@@ -79,7 +79,7 @@ class SessionRecorder {
   const Recording& recording() const { return recording_; }
 
  private:
-  Session& session_;
+  session::Session& session_;
   render::ArView& view_;
   RecorderOptions options_;
   std::unique_ptr<cv::VideoWriter> writer_;  // opencv_videoio, linked privately
@@ -90,4 +90,4 @@ class SessionRecorder {
   core::Image last_image_;
 };
 
-}  // namespace telear::session
+}  // namespace telear::lab

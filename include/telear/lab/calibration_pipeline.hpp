@@ -27,7 +27,7 @@
 #include "telear/core/result.hpp"
 #include "telear/geometry/robot_geometry.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 struct CalibrationPipelineOptions {
   std::string rig_file;                // sim::load_stereo_rig's YAML (the TRUE cameras)
@@ -78,4 +78,4 @@ struct CalibrationPipelineResult {
 Result<CalibrationPipelineResult> run_calibration_pipeline(
     const CalibrationPipelineOptions& options);
 
-}  // namespace telear::session
+}  // namespace telear::lab

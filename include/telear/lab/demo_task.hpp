@@ -1,10 +1,10 @@
 #pragma once
-// The demo's task on a connected Session (docs/demo.md, steps 3-6): take the lease, rehearse a
-// pick-and-place on the ghost into a plan, preview it, then validate, execute and monitor it
-// with a window of injected video delay, recording every display tick and the key frames
-// through a SessionRecorder (include/telear/session/session_recorder.hpp).
+// The demo's task on a connected session::Session (docs/demo.md, steps 3-6): take the lease,
+// rehearse a pick-and-place on the ghost into a plan, preview it, then validate, execute and
+// monitor it with a window of injected video delay, recording every display tick and the key frames
+// through a SessionRecorder (include/telear/lab/session_recorder.hpp).
 //
-// With a collision-checking session (SessionOptions::description and workspace) a first
+// With a collision-checking session (session::SessionOptions::description and workspace) a first
 // rehearsal goes wrong on purpose: from above the box the gripper is lowered 5 cm into the
 // table top, 0.1 m along -y of the box; validation fails naming the contact, the preview is
 // stopped just after the contact starts (the links in contact are drawn red: key frame
@@ -14,7 +14,7 @@
 //
 // The task: approach 0.12 m above the box, grasp (close the gripper, dwell 1.2 s), lift, carry
 // to 0.2 m along -y of the base, place (open, dwell 1.2 s), retreat 0.12 m up; the gripper's
-// rotation is chosen once for all steps (include/telear/session/grasp_choice.hpp). The plan is
+// rotation is chosen once for all steps (include/telear/lab/grasp_choice.hpp). The plan is
 // timed at half the arm's speed and acceleration limits, previewed at 2x; during execution,
 // from 40 % of the plan's duration for 3 s, the video is held back by `delay_ms` (the display
 // switches to VR and back). Key frames: keyframe_1_start, keyframe_2a_collision (with a
@@ -28,12 +28,12 @@
 #include <vector>
 
 #include "telear/core/result.hpp"
+#include "telear/lab/grasp_choice.hpp"
+#include "telear/lab/session_recorder.hpp"
 #include "telear/net/command_bytes.hpp"
-#include "telear/session/grasp_choice.hpp"
 #include "telear/session/session.hpp"
-#include "telear/session/session_recorder.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 // Progress for a terminal: step(n, what) at each numbered step, note(text) for its details.
 struct DemoProgress {
@@ -76,7 +76,7 @@ struct DemoTaskOutcome {
   net::CommandBytes bytes;       // 100 Hz samples (one message) vs 100 Hz jogs of the same motion
   std::string previewed_hash;    // the plan_hash of the trajectory the preview showed
   std::string executed_hash;     // the robot server's hash of the trajectory it ran
-  std::string execution_result;  // Session::last_execution_result()
+  std::string execution_result;  // session::Session::last_execution_result()
   // With a collision-checking session: the first rehearsal's check (into the table) and the
   // executed plan's.
   std::optional<geometry::TrajectoryCheckReport> first_rehearsal_check;
@@ -86,25 +86,26 @@ struct DemoTaskOutcome {
 // The task's steps for these inputs: the box, and the place 0.2 m along -y of it.
 std::vector<TaskStep> demo_task_steps(const DemoTaskInputs& inputs);
 
-// The grasp for the task's steps from where the ghost is (include/telear/session/grasp_choice.hpp).
+// The grasp for the task's steps from where the ghost is (include/telear/lab/grasp_choice.hpp).
 // On a collision-checking session an orientation whose IK branch touches the scene at a step
 // is passed over (contacts of a known depth under the 15 mm the rehearsal lifts excepted), and
 // when every one does the error names the first contact.
-Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInputs& inputs);
+Result<GraspChoice> choose_task_grasp(const session::Session& session,
+                                      const DemoTaskInputs& inputs);
 
 // Rehearses the task on the ghost, from where it is, into the session's plan (cleared first):
 // a "start" waypoint, then each step's pose (raised 5 mm at a time, up to 15 mm, where the
 // ghost touches something or comes within 8 mm of it), its gripper and dwell. `after_step` runs
 // after each step (the demo's recorder ticks and key frame). It needs no server: tests rehearse
 // offline.
-Status rehearse_pick_and_place(Session& session, const DemoTaskInputs& inputs,
+Status rehearse_pick_and_place(session::Session& session, const DemoTaskInputs& inputs,
                                const GraspChoice& grasp, const DemoProgress& progress = {},
                                const std::function<Status(const TaskStep&)>& after_step = {});
 
 // Errors name the phase ("start", "rehearsal: grasp", "preview", "execution") and the
 // session's reason. The step callbacks are numbered 4..6 (the demo's 7 steps).
-Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorder,
+Result<DemoTaskOutcome> run_demo_task(session::Session& session, SessionRecorder& recorder,
                                       const DemoTaskInputs& inputs,
                                       const DemoProgress& progress = {});
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -1,4 +1,4 @@
-#include "telear/session/demo_task.hpp"
+#include "telear/lab/demo_task.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,9 @@
 
 #include "telear/core/number_format.hpp"
 
-namespace telear::session {
+#include "seconds.hpp"
+
+namespace telear::lab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -17,16 +19,12 @@ constexpr double kMaxLift_m = 0.015;  // the most a step is raised off the table
 // A step closer than this to the workspace is raised (touching is not a clearance).
 constexpr double kMinStepClearance_m = 0.008;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 Error phase_error(const std::string& phase, const std::string& message) {
   return Error{phase + ": " + message};
 }
 
 // Waits for the first state and frame, takes the lease, shows a second of video.
-Status start(Session& session, SessionRecorder& recorder, const DemoTaskInputs& inputs) {
+Status start(session::Session& session, SessionRecorder& recorder, const DemoTaskInputs& inputs) {
   const auto wait_start = Clock::now();
   while (!(session.view().real && session.view().frame)) {
     if (seconds_since(wait_start) > inputs.connect_timeout_s) {
@@ -46,7 +44,7 @@ Status start(Session& session, SessionRecorder& recorder, const DemoTaskInputs& 
 // it. Validation must fail on the contact; the preview is stopped just inside it for the key
 // frame, then the plan is discarded. Returns the plan's collision check.
 Result<geometry::TrajectoryCheckReport> rehearse_into_the_table(
-    Session& session, SessionRecorder& recorder, const DemoTaskInputs& inputs,
+    session::Session& session, SessionRecorder& recorder, const DemoTaskInputs& inputs,
     const GraspChoice& grasp, const std::function<void(const std::string&)>& note) {
   const core::RobotModel& model = session.model();
   const Eigen::Vector3d beside = inputs.box_base_m + Eigen::Vector3d(0.0, -0.1, 0.0);
@@ -60,7 +58,7 @@ Result<geometry::TrajectoryCheckReport> rehearse_into_the_table(
     if (Status s = session.add_ghost_waypoint(0.0, label); !s) return s.error();
     recorder.ticks(static_cast<int>(inputs.fps / 3));
   }
-  const ValidationReport validation = session.validate_plan();
+  const session::ValidationReport validation = session.validate_plan();
   note("validation of the first rehearsal: " + validation.summary());
   if (!validation.collision) return Error{"the plan was not checked for collisions"};
   const geometry::TrajectoryCheckReport check = *validation.collision;
@@ -99,14 +97,15 @@ std::vector<TaskStep> demo_task_steps(const DemoTaskInputs& inputs) {
   return pick_and_place_steps(inputs.box_base_m, inputs.box_base_m + inputs.place_offset_m);
 }
 
-Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInputs& inputs) {
+Result<GraspChoice> choose_task_grasp(const session::Session& session,
+                                      const DemoTaskInputs& inputs) {
   GraspRequest request;
   for (const TaskStep& s : demo_task_steps(inputs))
     request.grip_positions_base_m.push_back(s.grip_position_base_m);
   request.grip_in_link_m = inputs.grip_in_link_m;
   request.q_start = session.ghost().q();
   request.camera_base_m = inputs.camera_base_m;
-  const SessionOptions& options = session.options();
+  const session::SessionOptions& options = session.options();
   if (session.checks_collisions() && options.description && options.workspace) {
     // The session's scene, the graspable objects left out as the session does (the fingers
     // close on the box on purpose). Contacts the rehearsal lifts the step out of (a known
@@ -130,7 +129,7 @@ Result<GraspChoice> choose_task_grasp(const Session& session, const DemoTaskInpu
   return choose_grasp(session.model(), request);
 }
 
-Status rehearse_pick_and_place(Session& session, const DemoTaskInputs& inputs,
+Status rehearse_pick_and_place(session::Session& session, const DemoTaskInputs& inputs,
                                const GraspChoice& grasp, const DemoProgress& progress,
                                const std::function<Status(const TaskStep&)>& after_step) {
   const auto note = [&](const std::string& text) {
@@ -149,9 +148,9 @@ Status rehearse_pick_and_place(Session& session, const DemoTaskInputs& inputs,
     // time, as an operator watching the clearance would, within the grasp model's 2 cm
     // capture distance.
     const auto too_close = [&] {
-      const ClearanceState& c = session.ghost_clearance();
-      return c.level == ClearanceState::Level::kContact ||
-             (c.level == ClearanceState::Level::kWithinMargin &&
+      const session::ClearanceState& c = session.ghost_clearance();
+      return c.level == session::ClearanceState::Level::kContact ||
+             (c.level == session::ClearanceState::Level::kWithinMargin &&
               c.workspace.distance_m < kMinStepClearance_m);
     };
     for (double lift = 0.005; too_close() && lift <= kMaxLift_m + 1e-9; lift += 0.005) {
@@ -173,7 +172,7 @@ Status rehearse_pick_and_place(Session& session, const DemoTaskInputs& inputs,
   return Status::Ok();
 }
 
-Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorder,
+Result<DemoTaskOutcome> run_demo_task(session::Session& session, SessionRecorder& recorder,
                                       const DemoTaskInputs& inputs, const DemoProgress& progress) {
   const auto step = [&](int n, const std::string& what) {
     if (progress.step) progress.step(n, what);
@@ -232,7 +231,7 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
 
   // Execution.
   step(6, "validating, executing on the robot and monitoring");
-  const ValidationReport validation = session.validate_plan();
+  const session::ValidationReport validation = session.validate_plan();
   outcome.validation_summary = validation.summary();
   outcome.final_plan_check = validation.collision;
   note("validation: " + outcome.validation_summary);
@@ -257,7 +256,7 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
         return phase_error("execution", k.error().message);
       execution_key = true;
     }
-    if (!vr_key && session.view().display.mode == DisplayMode::kVR) {
+    if (!vr_key && session.view().display.mode == session::DisplayMode::kVR) {
       if (auto k = recorder.key_frame("keyframe_5_vr_while_video_late"); !k)
         return phase_error("execution", k.error().message);
       vr_key = true;
@@ -285,4 +284,4 @@ Result<DemoTaskOutcome> run_demo_task(Session& session, SessionRecorder& recorde
   return outcome;
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -2,14 +2,14 @@
 // `telear demo` as a library call (docs/demo.md): the operator's whole workflow on the
 // embedded simulated robot and stereo rig, headless, in seven numbered steps:
 //
-//   1. calibrate the stereo rig (include/telear/session/calibration_pipeline.hpp, cached)
+//   1. calibrate the stereo rig (include/telear/lab/calibration_pipeline.hpp, cached)
 //   2. start the simulated robot and vision servers on loopback (embedded_servers.hpp), and
 //      register the robot from images captured through them (registration_capture.hpp,
 //      vision/capture_registration.hpp), measured against the simulator's truth; then
 //      restart them at the ready pose for the task (the live view's cheaper rendering)
-//   3. connect a Session, open the AR view and the recorder (session_recorder.hpp)
-//   4-6. the task (include/telear/session/demo_task.hpp)
-//   7. the report (include/telear/session/demo_report.hpp)
+//   3. connect a session::Session, open the AR view and the recorder (session_recorder.hpp)
+//   4-6. the task (include/telear/lab/demo_task.hpp)
+//   7. the report (include/telear/lab/demo_report.hpp)
 //
 // Blocks for the whole run (tens of seconds; minutes when the calibration is not cached) on
 // the calling thread, which gets the headless OpenGL context.
@@ -20,9 +20,9 @@
 
 #include "telear/core/result.hpp"
 #include "telear/geometry/robot_geometry.hpp"
-#include "telear/session/demo_task.hpp"
+#include "telear/lab/demo_task.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 
 struct DemoOptions {
   std::string out_dir = "out/demo";
@@ -63,4 +63,4 @@ struct DemoOutcome {
 
 Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& progress = {});
 
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -1,4 +1,4 @@
-#include "telear/session/calibration_pipeline.hpp"
+#include "telear/lab/calibration_pipeline.hpp"
 
 #include <chrono>
 #include <filesystem>
@@ -22,7 +22,7 @@
 #include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 namespace {
 
 namespace fs = std::filesystem;
@@ -228,4 +228,4 @@ Result<CalibrationPipelineResult> run_calibration_pipeline(
   return result;
 }
 
-}  // namespace telear::session
+}  // namespace telear::lab
