@@ -3,7 +3,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -13,6 +12,7 @@
 #include "cli_runner.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear {
 namespace {
@@ -22,14 +22,6 @@ using test::run_telear;
 using ::testing::HasSubstr;
 
 const std::string kSamples = "/usr/share/doc/opencv-doc/examples/data";
-
-std::string fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("telear_calibrate_cli_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
 
 std::vector<std::string> files_in(const std::string& dir) {
   std::vector<std::string> names;
@@ -49,7 +41,8 @@ class CalibrateCli : public ::testing::Test {
 };
 
 TEST_F(CalibrateCli, StereoSetGivesACameraFileAndAReport) {
-  const std::string dir = fresh_dir("stereo");
+  test_files::TempDir tmp("calibrate_cli_stereo");
+  const std::string dir = tmp.string();
   const auto r =
       run_telear("calibrate --left '" + kSamples + "/left[0-9]*.jpg' --right '" + kSamples +
                  "/right[0-9]*.jpg' --pattern chessboard:9x6:1 -o " + dir +
@@ -87,7 +80,8 @@ TEST_F(CalibrateCli, StereoSetGivesACameraFileAndAReport) {
 }
 
 TEST_F(CalibrateCli, ImagesWithoutThePatternOrCorruptAreSkippedAndSaidSo) {
-  const std::string dir = fresh_dir("skip");
+  test_files::TempDir tmp("calibrate_cli_skip");
+  const std::string dir = tmp.string();
   const std::string images = dir + "/images";
   fs::create_directories(images);
   for (const char* name : {"left01.jpg", "left03.jpg", "left04.jpg", "left05.jpg"}) {
@@ -115,7 +109,8 @@ TEST_F(CalibrateCli, ImagesWithoutThePatternOrCorruptAreSkippedAndSaidSo) {
 }
 
 TEST_F(CalibrateCli, BadInputGetsOneLineThatSaysWhatToDoAndWritesNothing) {
-  const std::string dir = fresh_dir("bad");
+  test_files::TempDir tmp("calibrate_cli_bad");
+  const std::string dir = tmp.string();
   const std::string left = "--left '" + kSamples + "/left[0-9]*.jpg'";
   const std::string right = "--right '" + kSamples + "/right[0-9]*.jpg'";
   const std::string out = " -o " + dir + "/stereo.yaml --report " + dir + "/report.json";
@@ -135,7 +130,7 @@ TEST_F(CalibrateCli, BadInputGetsOneLineThatSaysWhatToDoAndWritesNothing) {
        "telear calibrate: --report '" + dir + "/nowhere/report.json': directory '" + dir +
            "/nowhere' does not exist"},
       {left + " --right '" + kSamples + "/right0[1-4].jpg' --pattern chessboard:9x6:1" + out,
-       "telear calibrate: --left matches 13 images but --right matches 4; every left image "
+       "telear calibrate: 13 left images but 4 right images; every left image "
        "needs the right image taken at the same moment"},
       {"--left '" + kSamples + "/left0[12].jpg' --right '" + kSamples +
            "/right0[12].jpg' --pattern chessboard:9x6:1" + out,

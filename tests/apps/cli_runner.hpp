@@ -4,9 +4,12 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include "test_util/temp_dir.hpp"
 
 namespace telear::test {
 
@@ -25,18 +28,15 @@ inline std::string slurp(const std::string& path) {
 
 // `arguments` is appended to the binary's path as shell words (quote them yourself).
 inline CommandResult run_telear(const std::string& arguments) {
-  static int counter = 0;
-  const std::string base = ::testing::TempDir() + "telear_cli_" + std::to_string(::getpid()) + "_" +
-                           std::to_string(counter++);
+  const test_files::TempDir dir("cli");
+  const std::string out = dir.file("stdout"), err = dir.file("stderr");
   const std::string command =
-      std::string(TELEAR_BINARY) + " " + arguments + " > " + base + ".out 2> " + base + ".err";
+      std::string(TELEAR_BINARY) + " " + arguments + " > " + out + " 2> " + err;
   const int status = std::system(command.c_str());
   CommandResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = slurp(base + ".out");
-  result.err = slurp(base + ".err");
-  std::remove((base + ".out").c_str());
-  std::remove((base + ".err").c_str());
+  result.out = slurp(out);
+  result.err = slurp(err);
   return result;
 }
 

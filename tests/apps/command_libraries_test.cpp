@@ -22,10 +22,10 @@
 #include "telear/core/robot_description.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/geometry/allowed_collisions.hpp"
+#include "telear/lab/simulated_robot_server.hpp"
+#include "telear/lab/vision_source.hpp"
 #include "telear/render/arm_snapshot.hpp"
 #include "telear/session/plan_check_report.hpp"
-#include "telear/session/simulated_robot_server.hpp"
-#include "telear/session/vision_source.hpp"
 #include "telear/vision/accuracy_check.hpp"
 #include "telear/vision/image_calibration.hpp"
 #include "telear/vision/registration.hpp"
@@ -139,7 +139,7 @@ TEST(IkListing, AnArmWithoutTheClosedFormListsNumericSolutionsAndRefusesAConfig)
                                T.matrix()),
             1e-9);
   EXPECT_THAT(core::list_ik_solutions(**model, T, "lun").error().message,
-              StartsWith("--config selects closed-form solutions, and "));
+              StartsWith("config selects closed-form solutions, and "));
 }
 
 TEST(KinematicsReport, ThePoseLineTheTablesAndTheJson) {
@@ -220,11 +220,11 @@ TEST(ArmSnapshot, InputsAreCheckedBeforeAnyGlWork) {
   EXPECT_EQ(render::check_snapshot_inputs(mono, {frame}, render::StereoLayout::kSideBySide)
                 .error()
                 .message,
-            "--background image is 32x24 but the camera's image is 64x48");
+            "background image is 32x24 but the camera's image is 64x48");
   EXPECT_EQ(render::check_snapshot_inputs(mono, {frame, frame}, render::StereoLayout::kSideBySide)
                 .error()
                 .message,
-            "--background gives two images but only one eye is drawn");
+            "background gives two images but only one eye is drawn");
   auto unequal = stereo;
   unequal[1].camera.width = 80;
   EXPECT_THAT(
@@ -244,14 +244,14 @@ TEST(ArmSnapshot, TheEyesTheBackgroundsAndTheOutputNames) {
   ASSERT_TRUE(both);
   EXPECT_EQ(both->size(), 2u);
   EXPECT_EQ(render::snapshot_eyes("", "middle", *model, q, 64, 48).error().message,
-            "--eye must be left, right or both, got 'middle'");
+            "eye must be left, right or both, got 'middle'");
   EXPECT_THAT(render::snapshot_eyes("/nonexistent.yaml", "", *model, q, 64, 48).error().message,
               HasSubstr("/nonexistent.yaml"));
   auto none = render::read_snapshot_backgrounds("");
   ASSERT_TRUE(none);
   EXPECT_TRUE(none->empty());
   EXPECT_EQ(render::read_snapshot_backgrounds(",b.png").error().message,
-            "--background: empty file name in ',b.png'");
+            "background: empty file name in ',b.png'");
   EXPECT_THAT(render::read_snapshot_backgrounds("/nonexistent.png").error().message,
               HasSubstr("/nonexistent.png"));
   EXPECT_EQ(render::snapshot_eye_path("out/view.png", "left"), "out/view_left.png");
@@ -343,32 +343,32 @@ TEST(PlanCheckReport, TextAndJsonOfAContact) {
 // [SECTION] session: the vision server's source, chosen by name
 
 TEST(VisionSource, EachKindOpensOrSaysWhatIsWrong) {
-  session::VisionSourceOptions synthetic;
+  lab::VisionSourceOptions synthetic;
   synthetic.kind = "synthetic";
   synthetic.size = core::ImageSize{64, 48};
-  auto opened = session::open_vision_source(synthetic);
+  auto opened = lab::open_vision_source(synthetic);
   ASSERT_TRUE(opened) << opened.error().message;
   ASSERT_TRUE(opened->source);
   EXPECT_FALSE(opened->robot);
   EXPECT_TRUE(opened->warnings.empty());
 
-  session::VisionSourceOptions sim;  // the shipped rig; its size is the rig file's
+  lab::VisionSourceOptions sim;  // the shipped rig; its size is the rig file's
   sim.size = core::ImageSize{64, 48};
-  auto rig = session::open_vision_source(sim);
+  auto rig = lab::open_vision_source(sim);
   ASSERT_TRUE(rig) << rig.error().message;
   ASSERT_EQ(rig->warnings.size(), 1u);
-  EXPECT_THAT(rig->warnings[0], StartsWith("--resolution is ignored for --source sim"));
+  EXPECT_THAT(rig->warnings[0], StartsWith("the size is ignored for the sim source"));
 
-  session::VisionSourceOptions bad;
+  lab::VisionSourceOptions bad;
   bad.kind = "bogus";
-  EXPECT_EQ(session::open_vision_source(bad).error().message,
-            "--source 'bogus' is not one of sim, files, v4l2, synthetic");
+  EXPECT_EQ(lab::open_vision_source(bad).error().message,
+            "source 'bogus' is not one of sim, files, v4l2, synthetic");
   bad.kind = "files";
-  EXPECT_EQ(session::open_vision_source(bad).error().message,
-            "--source files needs --left FILE and --right FILE");
+  EXPECT_EQ(lab::open_vision_source(bad).error().message,
+            "the files source needs a left and a right file");
   bad.robot_server = "127.0.0.1:1";
-  EXPECT_EQ(session::open_vision_source(bad).error().message,
-            "--robot-server is for --source sim (the simulated rig follows the robot)");
+  EXPECT_EQ(lab::open_vision_source(bad).error().message,
+            "robot_server is for the sim source (the simulated rig follows the robot)");
 }
 
 // [SECTION] session: telear robot-server's server
@@ -376,24 +376,24 @@ TEST(VisionSource, EachKindOpensOrSaysWhatIsWrong) {
 TEST(SimulatedRobotServer, StartsOnAnEphemeralPortOrSaysWhyNot) {
   auto description = core::load_robot_description({"puma560", "", {}});
   ASSERT_TRUE(description) << description.error().message;
-  session::SimulatedRobotServerOptions options;
+  lab::SimulatedRobotServerOptions options;
   options.server.listen_address = "127.0.0.1:0";
   options.server.token = "t";
   options.heartbeat_ns = 5'000'000'000;  // beyond the default bounds: they are widened
   options.initial_q = *description->model->named_configuration("qr");
-  auto server = session::start_simulated_robot_server(*description, options);
+  auto server = lab::start_simulated_robot_server(*description, options);
   ASSERT_TRUE(server) << server.error().message;
   EXPECT_THAT((*server)->address(), StartsWith("127.0.0.1:"));
   EXPECT_NE((*server)->address(), "127.0.0.1:0");
   (*server)->shutdown();
 
   options.initial_q[2] = 3.0;  // beyond the elbow's limit
-  EXPECT_THAT(session::start_simulated_robot_server(*description, options).error().message,
+  EXPECT_THAT(lab::start_simulated_robot_server(*description, options).error().message,
               HasSubstr("joint 3"));
   options.initial_q = *description->model->named_configuration("qr");
   options.check_collisions = true;
   options.server.workspace_file = "/nonexistent/ws.yaml";
-  EXPECT_THAT(session::start_simulated_robot_server(*description, options).error().message,
+  EXPECT_THAT(lab::start_simulated_robot_server(*description, options).error().message,
               HasSubstr("/nonexistent/ws.yaml"));
 }
 

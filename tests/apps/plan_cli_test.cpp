@@ -5,13 +5,13 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear {
 namespace {
@@ -22,20 +22,14 @@ using ::testing::StartsWith;
 
 class PlanCheckCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ =
-        std::filesystem::path(::testing::TempDir()) / ("plan_check_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
   std::string write(const std::string& name, const std::string& text) {
     const std::string path = (dir_ / name).string();
     std::ofstream(path) << text;
     return path;
   }
 
-  std::filesystem::path dir_;
+  test_files::TempDir tmp_{"plan_check"};
+  const std::filesystem::path dir_ = tmp_.path();
 };
 
 const std::string kWorkspace = std::string(TELEAR_TEST_DATA_DIR) + "/workspaces/puma560_table.yaml";

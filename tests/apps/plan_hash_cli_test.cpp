@@ -4,7 +4,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include "telear/core/plan_hash.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/core/trajectory.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear {
 namespace {
@@ -64,14 +64,10 @@ std::string plan_yaml(const std::vector<core::JointWaypoint>& plan) {
 class PlanHashCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ =
-        std::filesystem::path(::testing::TempDir()) / ("plan_hash_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_);
     auto description = core::load_robot_description({"puma560", "", {}});
     ASSERT_TRUE(description) << description.error().message;
     model_ = description->model;
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
 
   std::string write(const std::string& name, const std::vector<core::JointWaypoint>& plan) {
     const std::string path = (dir_ / name).string();
@@ -87,7 +83,8 @@ class PlanHashCli : public ::testing::Test {
     return {*core::plan_hash(*trajectory), trajectory->duration()};
   }
 
-  std::filesystem::path dir_;
+  test_files::TempDir tmp_{"plan_hash"};
+  const std::filesystem::path dir_ = tmp_.path();
   core::RobotModelPtr model_;
 };
 

@@ -6,7 +6,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -22,6 +21,7 @@
 #include "telear/vision/camera_file.hpp"
 #include "telear/vision/observations_file.hpp"
 #include "telear/vision/registration.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear {
@@ -30,14 +30,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_telear;
 using ::testing::HasSubstr;
-
-std::string fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("telear_register_cli_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
 
 void write(const std::string& path, const std::string& text) {
   std::ofstream file(path);
@@ -81,7 +73,8 @@ double table_value(const std::string& out, const std::string& name) {
 }
 
 TEST(RegisterEvalCli, RegistersSyntheticObservationsAndEvalPassesTheTargets) {
-  const std::string dir = fresh_dir("end_to_end");
+  test_files::TempDir tmp("register_cli_end_to_end");
+  const std::string dir = tmp.string();
   ASSERT_TRUE(
       vision::write_observations_file(synthetic_observations(15, 7), dir + "/obs.yaml").ok());
   write(dir + "/stereo.yaml", calibrated_rig_yaml());
@@ -125,7 +118,8 @@ TEST(RegisterEvalCli, RegistersSyntheticObservationsAndEvalPassesTheTargets) {
 
 TEST(RegisterEvalCli, ARegisteredFileWithoutRAndTUsesItsPoses) {
   // The truth file has both T_cam_base and no R, T: the geometry comes from the poses.
-  const std::string dir = fresh_dir("poses");
+  test_files::TempDir tmp("register_cli_poses");
+  const std::string dir = tmp.string();
   ASSERT_TRUE(
       vision::write_observations_file(synthetic_observations(6, 3), dir + "/obs.yaml").ok());
   const auto r = run_telear("register --rig " + truth_path() + " --observations " + dir +
@@ -135,7 +129,8 @@ TEST(RegisterEvalCli, ARegisteredFileWithoutRAndTUsesItsPoses) {
 }
 
 TEST(RegisterEvalCli, BadInputIsOneLineAndNoOutputFile) {
-  const std::string dir = fresh_dir("bad");
+  test_files::TempDir tmp("register_cli_bad");
+  const std::string dir = tmp.string();
   write(dir + "/stereo.yaml", calibrated_rig_yaml());
   vision::RegistrationObservations two = synthetic_observations(2, 5);
   ASSERT_TRUE(vision::write_observations_file(two, dir + "/two.yaml").ok());

@@ -3,13 +3,13 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
 
 #include "cli_runner.hpp"
 #include "telear/render/image_io.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear {
@@ -18,8 +18,10 @@ namespace {
 using test::run_telear;
 using ::testing::HasSubstr;
 
+// `name` in this process's own scratch folder (removed at exit).
 std::string temp(const std::string& name) {
-  return ::testing::TempDir() + "telear_render_" + std::to_string(::getpid()) + "_" + name;
+  static const test_files::TempDir dir("render_command");
+  return dir.file(name);
 }
 
 std::string rig() {
@@ -128,9 +130,9 @@ TEST(CliRender, BadInputIsOneLineAndNonZero) {
   ASSERT_TRUE(render::write_png(small, core::Image(320, 240, 3)));
   expect_one_line_error(run_telear("render --q qn --camera " + rig() + " --eye left --background " +
                                    small + " -o " + out),
-                        "--background image is 320x240 but the left camera's image is 640x480");
+                        "background image is 320x240 but the left camera's image is 640x480");
   expect_one_line_error(run_telear("render --q qn --eye middle -o " + out),
-                        "--eye must be left, right or both, got 'middle'");
+                        "eye must be left, right or both, got 'middle'");
   expect_one_line_error(
       run_telear("render --q qn --camera " + rig() + " --stereo over-under -o " + out),
       "--stereo: unknown stereo layout 'over-under' (use sbs, tb, anaglyph or separate)");

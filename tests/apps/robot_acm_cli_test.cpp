@@ -4,11 +4,11 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 
 #include "cli_runner.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear {
 namespace {
@@ -32,7 +32,8 @@ TEST(RobotAcmCli, PrintsTheBlockTheShippedRobotFileStores) {
 }
 
 TEST(RobotAcmCli, WritesTheSameBlockToAFile) {
-  const std::string file = ::testing::TempDir() + "acm_" + std::to_string(::getpid()) + ".yaml";
+  test_files::TempDir tmp("robot_acm");
+  const std::string file = tmp.file("acm.yaml");
   const auto printed = run_telear("robot acm --robot ur6 --samples 100 --seed 4 --never");
   ASSERT_EQ(printed.exit_code, 0) << printed.err;
   EXPECT_THAT(printed.out, HasSubstr("# 100 random configurations within the joint limits "
@@ -44,7 +45,6 @@ TEST(RobotAcmCli, WritesTheSameBlockToAFile) {
   EXPECT_THAT(written.out, StartsWith("wrote "));
   EXPECT_THAT(written.out, HasSubstr(" allowed pairs of ur6 to " + file + "\n"));
   EXPECT_EQ(slurp(file), printed.out);
-  std::filesystem::remove(file);
 }
 
 TEST(RobotAcmCli, ADhTableIsPrintedWithANote) {

@@ -7,7 +7,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -15,6 +14,7 @@
 
 #include "cli_runner.hpp"
 #include "eval_report.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear {
 namespace {
@@ -22,11 +22,8 @@ namespace {
 using test::run_telear;
 
 TEST(SimAccuracyChain, RenderedImagesToRegisteredGhostMeetEveryTarget) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::path(::testing::TempDir()) / ("sim_chain_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string d = dir.string();
+  test_files::TempDir tmp("sim_chain");
+  const std::string d = tmp.string();
   const std::string rig = std::string(TELEAR_TEST_DATA_DIR) + "/rigs/puma560_rig.yaml";
 
   auto step = [](const std::string& args) {
@@ -51,7 +48,6 @@ TEST(SimAccuracyChain, RenderedImagesToRegisteredGhostMeetEveryTarget) {
     EXPECT_LT(report[eye]["registration_mm"].get<double>(), 1.0) << eye;
   }
   EXPECT_NEAR(report["baseline_estimate_mm"].get<double>(), 60.0, 0.5);
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -8,7 +8,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +16,7 @@
 
 #include "cli_runner.hpp"
 #include "eval_report.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear {
 namespace {
@@ -25,12 +25,8 @@ using test::run_telear;
 using ::testing::HasSubstr;
 
 TEST(SimAccuracyChainFisheye, RenderedImagesToRegisteredGhostMeetEveryTarget) {
-  namespace fs = std::filesystem;
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("sim_chain_fisheye_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string d = dir.string();
+  test_files::TempDir tmp("sim_chain_fisheye");
+  const std::string d = tmp.string();
   const std::string rig = std::string(TELEAR_TEST_DATA_DIR) + "/rigs/puma560_fisheye_rig.yaml";
 
   auto step = [](const std::string& args) {
@@ -81,12 +77,13 @@ TEST(SimAccuracyChainFisheye, RenderedImagesToRegisteredGhostMeetEveryTarget) {
     EXPECT_LT(report[eye]["registration_mm"].get<double>(), 1.0) << eye;
   }
   EXPECT_NEAR(report["baseline_estimate_mm"].get<double>(), 60.0, 0.5);
-  fs::remove_all(dir);
 }
 
 TEST(CalibrateModel, BadModelOptionsAreOneLineErrors) {
-  const std::string common = "calibrate --left 'nothing*.png' --pattern chessboard:9x6:0.03 -o " +
-                             ::testing::TempDir() + "/never.yaml";
+  test_files::TempDir tmp("calibrate_model");
+  const std::string never = tmp.file("never.yaml");
+  const std::string common =
+      "calibrate --left 'nothing*.png' --pattern chessboard:9x6:0.03 -o " + never;
   auto unknown = run_telear(common + " --model pinhole");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_EQ(unknown.err,
@@ -99,7 +96,7 @@ TEST(CalibrateModel, BadModelOptionsAreOneLineErrors) {
   auto k3 = run_telear(common + " --model rational_polynomial --estimate-k3");
   EXPECT_EQ(k3.exit_code, 2);
   EXPECT_THAT(k3.err, HasSubstr("--estimate-k3: applies to plumb_bob only"));
-  EXPECT_FALSE(std::filesystem::exists(::testing::TempDir() + "/never.yaml"));
+  EXPECT_FALSE(std::filesystem::exists(never));
 }
 
 }  // namespace

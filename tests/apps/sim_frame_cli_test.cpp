@@ -2,12 +2,12 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 
 #include "cli_runner.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear {
 namespace {
@@ -16,7 +16,8 @@ using test::run_telear;
 using ::testing::HasSubstr;
 
 TEST(SimFrameCli, WritesBothEyesOfTheSceneAtAConfiguration) {
-  const std::string prefix = ::testing::TempDir() + "sim_frame_" + std::to_string(::getpid());
+  test_files::TempDir tmp("sim_frame");
+  const std::string prefix = tmp.file("frame");
   const auto r = run_telear("sim frame --rig " + std::string(TELEAR_TEST_DATA_DIR) +
                             "/rigs/puma560_rig.yaml --q qr -o " + prefix);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -25,16 +26,14 @@ TEST(SimFrameCli, WritesBothEyesOfTheSceneAtAConfiguration) {
     ASSERT_TRUE(std::filesystem::exists(path)) << path;
     EXPECT_GT(std::filesystem::file_size(path), 10000u) << path;  // a real scene, not blank
     EXPECT_THAT(r.out, HasSubstr("wrote " + path));
-    std::filesystem::remove(path);
   }
 }
 
 // The default rig comes from core::data_directory(), not from a path relative to the working
 // directory: `telear sim frame` works from anywhere without TELEAR_DATA_DIR.
 TEST(SimFrameCli, DefaultRigIsFoundFromAnyWorkingDirectory) {
-  const std::filesystem::path dir =
-      ::testing::TempDir() + "sim_frame_cwd_" + std::to_string(::getpid());
-  std::filesystem::create_directories(dir);
+  test_files::TempDir tmp("sim_frame_cwd");
+  const std::filesystem::path dir = tmp.path();
   const std::string command = "cd '" + dir.string() + "' && env -u TELEAR_DATA_DIR " +
                               std::string(TELEAR_BINARY) +
                               " sim frame --q qr -o frame > out.txt 2> err.txt";
@@ -43,11 +42,11 @@ TEST(SimFrameCli, DefaultRigIsFoundFromAnyWorkingDirectory) {
   for (const char* eye : {"frame_left.png", "frame_right.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir / eye)) << (dir / eye);
   }
-  std::filesystem::remove_all(dir);
 }
 
 TEST(SimFrameCli, BadInputIsOneLineAndWritesNothing) {
-  const std::string prefix = ::testing::TempDir() + "sim_frame_bad_" + std::to_string(::getpid());
+  test_files::TempDir tmp("sim_frame_bad");
+  const std::string prefix = tmp.file("frame");
   const std::string rig = " --rig " + std::string(TELEAR_TEST_DATA_DIR) + "/rigs/puma560_rig.yaml";
   const auto wrong_count = run_telear("sim frame" + rig + " --q 0,0,0 -o " + prefix);
   EXPECT_EQ(wrong_count.exit_code, 2);

@@ -11,14 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "test_util/temp_dir.hpp"
+
 namespace telear::cli {
 namespace {
 
 using ::testing::HasSubstr;
 
 TEST(StreamBenchCommandTest, ShortRunWritesTheTableAndJson) {
-  const std::filesystem::path json_path =
-      std::filesystem::temp_directory_path() / "telear_stream_bench_test.json";
+  test_files::TempDir tmp("stream_bench");
+  const std::filesystem::path json_path = tmp.file("bench.json");
   StreamBenchOptions options;
   options.seconds = 0.3;
   options.resolutions = "64x48";
@@ -53,7 +55,6 @@ TEST(StreamBenchCommandTest, ShortRunWritesTheTableAndJson) {
   const nlohmann::json& bytes = robot.at("command_bytes_plan_100hz");
   EXPECT_GT(bytes.at("jog_stream_bytes").get<double>(), bytes.at("plan_bytes").get<double>());
   EXPECT_GE(robot.at("motion_s").get<double>(), 10.0);
-  std::filesystem::remove(json_path);
 }
 
 TEST(StreamBenchCommandTest, BadArgumentsGetOneClearLine) {

@@ -15,6 +15,7 @@
 #include "telear/console/console_actions.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::console {
 namespace {
@@ -61,8 +62,8 @@ Stats region_stats(const core::Image& image, int x0, int y0, int x1, int y1) {
 }
 
 TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
-  const fs::path dir = fs::temp_directory_path() / "telear_console_test";
-  fs::create_directories(dir);
+  test_files::TempDir tmp("console");
+  const fs::path dir = tmp.path();
   const std::string shot = (dir / "console.png").string();
   fs::remove(shot);
   const std::string script = (dir / "plan.txt").string();
@@ -138,7 +139,7 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   // Reconnection through the connection panel's path: new servers, Connect.
   auto model = core::load_robot("puma560");
   ASSERT_TRUE(model);
-  auto servers = session::EmbeddedServers::create(*model);
+  auto servers = lab::EmbeddedServers::create(*model);
   ASSERT_TRUE(servers) << servers.error().message;
   UiState& ui = app.ui();
   std::snprintf(ui.robot_address, sizeof ui.robot_address, "%s",
@@ -158,8 +159,8 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
 // embedded servers simulate the same arm on its own rig and serve its URDF and tip, and a
 // Cartesian jog of the ghost in the tool frame is planned and executed on it.
 TEST(ConsoleApp, AUrdfArmIsJoggedPlannedAndExecuted) {
-  const fs::path dir = fs::temp_directory_path() / "telear_console_arm_test";
-  fs::create_directories(dir);
+  test_files::TempDir tmp("console_arm");
+  const fs::path dir = tmp.path();
   const std::string script = (dir / "plan.txt").string();
   std::ofstream(script) << "wait-until connected 30\n"
                            "wait-until in-control 10\n"

@@ -24,12 +24,13 @@
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/lab/embedded_servers.hpp"
 #include "telear/session/capture_session.hpp"
-#include "telear/session/embedded_servers.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/capture_folder.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::console {
@@ -50,7 +51,8 @@ std::string degrees(const Eigen::VectorXd& q) {
 
 TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
   const char* keep = std::getenv("TELEAR_TEST_OUTPUT");
-  const fs::path dir = keep ? fs::path(keep) : fs::temp_directory_path() / "telear_console_reg";
+  test_files::TempDir tmp("console_reg");
+  const fs::path dir = keep ? fs::path(keep) : tmp.path();
   fs::create_directories(dir);
   const fs::path captures = dir / "captures";
   fs::remove_all(captures);
@@ -74,11 +76,11 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
   // The servers: the simulated PUMA where the operator left it (no workspace: the poses are
   // the point here, not the table) and the rig serving its calibration, as a lab runs them.
   const std::string calibration = test::data_path("cameras/puma560_stereo.yaml");
-  session::EmbeddedServersOptions server_options;
+  lab::EmbeddedServersOptions server_options;
   server_options.calibration_file = calibration;
   server_options.initial_q = start;
   server_options.fps = 10.0;
-  auto servers = session::EmbeddedServers::create(loaded->model, server_options);
+  auto servers = lab::EmbeddedServers::create(loaded->model, server_options);
   ASSERT_TRUE(servers) << servers.error().message;
   const std::string token_file = (dir / "token").string();
   std::ofstream(token_file) << (*servers)->token() << "\n";

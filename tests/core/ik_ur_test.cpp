@@ -431,7 +431,7 @@ TEST(UrIk, TheKinListingUsesTheClosedForm) {
   EXPECT_EQ(list_ik_solutions(*arm7, tool_pose(*arm7, *arm7->named_configuration("home")), "lun")
                 .error()
                 .message,
-            "--config selects closed-form solutions, and robot 'arm7' has no standard DH table "
+            "config selects closed-form solutions, and robot 'arm7' has no standard DH table "
             "(the PUMA class's closed form reads one; a URDF arm has the UR class's, ik_ur.hpp, "
             "or numeric IK); robot 'arm7' is not of the UR class (closed-form IK): it has 7 "
             "joints, needs 6");

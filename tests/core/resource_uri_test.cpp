@@ -8,7 +8,7 @@
 
 #include <cstdlib>
 
-#include "test_util/mesh_test_files.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::core {
 namespace {
@@ -75,7 +75,7 @@ TEST_F(MeshUriTest, NotFoundListsEveryPlaceLookedAndTheFix) {
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().message, "mesh 'package://arm/meshes/forearm.stl' not found (looked in " +
                                    dir("a/arm") + ", " + dir("b/arm") +
-                                   "; set ROS_PACKAGE_PATH or pass --package-path DIR)");
+                                   "; set ROS_PACKAGE_PATH or add a package path)");
   // A package found without the file: it is named as the place looked.
   file("b/arm/meshes/upper.stl");
   r = resolve_resource_uri("package://arm/meshes/forearm.stl", s);
@@ -86,7 +86,7 @@ TEST_F(MeshUriTest, NotFoundListsEveryPlaceLookedAndTheFix) {
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().message,
             "mesh 'package://arm/meshes/forearm.stl' not found (no package search path; set "
-            "ROS_PACKAGE_PATH or pass --package-path DIR)");
+            "ROS_PACKAGE_PATH or add a package path)");
 }
 
 TEST_F(MeshUriTest, FileUrisAbsoluteAndRelativePaths) {

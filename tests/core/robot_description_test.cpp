@@ -12,6 +12,7 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::core {
@@ -82,8 +83,8 @@ TEST(RobotFile, LoadsTheUrdfTipGripperConfigurationsAndMarker) {
 }
 
 TEST(RobotFile, ResolvesPackageUrisAndRelativePaths) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "telear_robot_file_pkg";
-  fs::remove_all(dir);
+  test_files::TempDir tmp("robot_file_pkg");
+  const fs::path dir = tmp.path();
   std::ifstream in(kFiles + "/urdf/prismatic.urdf");
   const std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   write(dir / "pkgs" / "my_arm" / "urdf" / "arm.urdf", urdf);
@@ -116,7 +117,7 @@ TEST(RobotFile, ResolvesPackageUrisAndRelativePaths) {
   EXPECT_EQ(lost.error().message,
             "robot file '" + (dir / "ros.yaml").string() +
                 "': urdf 'package://my_arm/urdf/arm.urdf' not found (no package search path; "
-                "set ROS_PACKAGE_PATH or pass --package-path DIR)");
+                "set ROS_PACKAGE_PATH or add a package path)");
   // --package-path (RobotSpec::package_paths) is searched too, before anything else.
   auto via_option =
       load_robot_description({(dir / "ros.yaml").string(), "", {(dir / "pkgs").string()}});
@@ -125,8 +126,8 @@ TEST(RobotFile, ResolvesPackageUrisAndRelativePaths) {
 }
 
 TEST(RobotFile, ErrorsNameTheFileAndTheKey) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "telear_robot_file_errors";
-  fs::remove_all(dir);
+  test_files::TempDir tmp("robot_file_errors");
+  const fs::path dir = tmp.path();
   const std::string gripper_urdf =
       fs::path(kFiles + "/urdf/mimic_gripper.urdf").lexically_normal().string();
   struct Case {
@@ -173,7 +174,8 @@ TEST(RobotFile, ErrorsNameTheFileAndTheKey) {
 
 // The allowed-collision matrix stored in the robot file (geometry/allowed_collisions.hpp).
 TEST(RobotFile, KeepsTheAllowedCollisionPairs) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "telear_robot_file_acm";
+  test_files::TempDir tmp("robot_file_acm");
+  const fs::path dir = tmp.path();
   const std::string gripper_urdf =
       fs::path(kFiles + "/urdf/mimic_gripper.urdf").lexically_normal().string();
   write(dir / "acm.yaml", "urdf: " + gripper_urdf +

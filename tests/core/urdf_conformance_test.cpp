@@ -65,7 +65,7 @@ std::size_t index_of(const RobotDescription& d, const std::string& link) {
 TEST(UrdfConformance, BranchingTreeNeedsATipAndListsTheLeaves) {
   EXPECT_EQ(refusal("branching_tip"),
             "URDF '" + urdf("branching_tip") +
-                "': the tree has several leaf links (a, b, tcp); name the tip with --tip LINK");
+                "': the tree has several leaf links (a, b, tcp); name the tip link");
   EXPECT_EQ(refusal("branching_tip", "nope"),
             "URDF '" + urdf("branching_tip") + "': has no link named 'nope'");
   const RobotDescription d = load("branching_tip", "a");

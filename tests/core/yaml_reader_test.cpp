@@ -7,6 +7,8 @@
 
 #include <fstream>
 
+#include "test_util/temp_dir.hpp"
+
 namespace telear::core {
 namespace {
 
@@ -25,8 +27,8 @@ TEST(LoadYaml, NamesTheFileAndTheLineOfASyntaxError) {
 }
 
 TEST(LoadYamlFile, ReadsAFileOrSaysItCannot) {
-  const std::string path = ::testing::TempDir() + "yaml_reader_test.yaml";
-  std::ofstream(path) << "k: 2.5\n";
+  test_files::TempDir tmp("yaml_reader");
+  const std::string path = tmp.write("reader.yaml", "k: 2.5\n");
   const auto root = load_yaml_file(path, "");
   ASSERT_TRUE(root) << root.error().message;
   EXPECT_EQ((*root)["k"].as<double>(), 2.5);

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "test_util/mesh_test_files.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::geometry {
 namespace {

@@ -11,7 +11,7 @@
 #include <algorithm>
 
 #include "telear/geometry/robot_geometry.hpp"
-#include "test_util/mesh_test_files.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::geometry {
 namespace {

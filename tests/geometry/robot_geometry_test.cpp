@@ -162,7 +162,7 @@ TEST_F(RobotGeometryTest, AMissingMeshIsAnErrorNamingLinkUriAndPlaces) {
   EXPECT_EQ(body.error().message,
             "link 'upper': mesh 'package://arm/meshes/none.stl' not found (looked in " +
                 (tmp.path() / "pkgs/arm").string() +
-                "; set ROS_PACKAGE_PATH or pass --package-path DIR)");
+                "; set ROS_PACKAGE_PATH or add a package path)");
 }
 
 TEST_F(RobotGeometryTest, MissingMeshesBecomeStandInsWithAWarning) {
@@ -327,7 +327,7 @@ TEST(ConformanceMeshes, MissingMeshFilesAreRefusedNamingLinkUriAndWhereTheyWereL
   const std::string by_package =
       "link 'l1': mesh 'package://telear_test_pkg/meshes/gone.stl' not found (looked in " +
       (std::filesystem::path(d.urdf_path).parent_path() / "telear_test_pkg").string() +
-      "; set ROS_PACKAGE_PATH or pass --package-path DIR)";
+      "; set ROS_PACKAGE_PATH or add a package path)";
   auto body = body_for(d, options);
   ASSERT_FALSE(body);
   EXPECT_EQ(body.error().message, relative);  // the first link's, in file order

@@ -68,7 +68,7 @@ libdir=$(dirname "$(dirname "$(dirname "$config")")")
 for f in telearConfigVersion.cmake telearTargets.cmake; do
   [[ -f $libdir/cmake/telear/$f ]] || fail "not installed: ${libdir#"$prefix"/}/cmake/telear/$f"
 done
-for lib in core geometry vision render sim_robot sim_rig proto net session console; do
+for lib in core geometry vision render sim_robot sim_rig proto net session lab console; do
   [[ -f $libdir/libtelear_$lib.a ]] || fail "not installed: ${libdir#"$prefix"/}/libtelear_$lib.a"
 done
 

@@ -4,24 +4,23 @@
 // equidistant cameras and the evaluation is close to the truth.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 
-#include "telear/session/calibration_pipeline.hpp"
+#include "telear/lab/calibration_pipeline.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 namespace {
 
 namespace fs = std::filesystem;
 
 TEST(CalibrationPipelineFisheye, CalibratesWithTheRigsLensModel) {
-  const fs::path cache =
-      fs::path(::testing::TempDir()) / ("pipeline_fisheye_" + std::to_string(::getpid()));
-  fs::remove_all(cache);
+  test_files::TempDir tmp("pipeline_fisheye");
+  const fs::path cache = tmp.file("cache");
   CalibrationPipelineOptions options;
   options.rig_file = test::data_path("rigs/puma560_fisheye_rig.yaml");
   options.cache_dir = cache.string();
@@ -44,8 +43,7 @@ TEST(CalibrationPipelineFisheye, CalibratesWithTheRigsLensModel) {
     EXPECT_LT(eye->registration_mm, 5.0);
     EXPECT_LT(eye->overlay_rms_px, 1.0);
   }
-  fs::remove_all(cache);
 }
 
 }  // namespace
-}  // namespace telear::session
+}  // namespace telear::lab

@@ -6,15 +6,15 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "telear/session/calibration_pipeline.hpp"
+#include "telear/lab/calibration_pipeline.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 namespace {
 
 namespace fs = std::filesystem;
@@ -30,9 +30,8 @@ CalibrationPipelineOptions small_pipeline(const std::string& cache) {
 }
 
 TEST(CalibrationPipeline, CalibratesRegistersEvaluatesAndCachesTheResult) {
-  const fs::path cache =
-      fs::path(::testing::TempDir()) / ("pipeline_" + std::to_string(::getpid()));
-  fs::remove_all(cache);
+  test_files::TempDir tmp("pipeline");
+  const fs::path cache = tmp.file("cache");
   const CalibrationPipelineOptions options = small_pipeline(cache.string());
 
   auto first = run_calibration_pipeline(options);
@@ -65,11 +64,11 @@ TEST(CalibrationPipeline, CalibratesRegistersEvaluatesAndCachesTheResult) {
   EXPECT_EQ(second->evaluation.left.fx_error_percent, e.left.fx_error_percent);
   EXPECT_EQ(second->evaluation.right.registration_mm, e.right.registration_mm);
   EXPECT_EQ(second->registered_file, first->registered_file);
-  fs::remove_all(cache);
 }
 
 TEST(CalibrationPipeline, ABadRigPathIsAnErrorNamingTheStepAndTheFile) {
-  CalibrationPipelineOptions options = small_pipeline(::testing::TempDir() + "pipeline_bad");
+  test_files::TempDir tmp("pipeline_bad");
+  CalibrationPipelineOptions options = small_pipeline(tmp.file("cache"));
   options.rig_file = "/nonexistent/rig.yaml";
   auto result = run_calibration_pipeline(options);
   ASSERT_FALSE(result.ok());
@@ -77,7 +76,7 @@ TEST(CalibrationPipeline, ABadRigPathIsAnErrorNamingTheStepAndTheFile) {
               ::testing::StartsWith("calibration pipeline: capture: the rig file "
                                     "'/nonexistent/rig.yaml' does not exist"));
 
-  options = small_pipeline(::testing::TempDir() + "pipeline_bad");
+  options = small_pipeline(tmp.file("cache"));
   options.views = 0;
   result = run_calibration_pipeline(options);
   ASSERT_FALSE(result.ok());
@@ -85,4 +84,4 @@ TEST(CalibrationPipeline, ABadRigPathIsAnErrorNamingTheStepAndTheFile) {
 }
 
 }  // namespace
-}  // namespace telear::session
+}  // namespace telear::lab

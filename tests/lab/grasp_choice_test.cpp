@@ -1,4 +1,4 @@
-// The grasp choice (include/telear/session/grasp_choice.hpp) on the PUMA 560 and the simulated
+// The grasp choice (include/telear/lab/grasp_choice.hpp) on the PUMA 560 and the simulated
 // rig's box: every task position is reachable within the limits with the chosen rotation, the
 // marker side faces the cameras better than the naive straight-down grasp, and a box out of
 // reach is an error that names it.
@@ -16,14 +16,14 @@
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
-#include "telear/session/demo_task.hpp"
-#include "telear/session/grasp_choice.hpp"
+#include "telear/lab/demo_task.hpp"
+#include "telear/lab/grasp_choice.hpp"
 #include "telear/session/plan_collision.hpp"
 #include "telear/session/session.hpp"
 #include "telear/sim/stereo_rig.hpp"
 #include "test_util/test_util.hpp"
 
-namespace telear::session {
+namespace telear::lab {
 namespace {
 
 struct Fixture {
@@ -124,18 +124,18 @@ TEST(GraspChoice, AnUnreachableBoxIsAnErrorNamingIt) {
 // position elbow-up (the only branch that clears the table and the pedestal within the shipped
 // elbow range, data/workspaces/puma560_table.yaml), and the plan, the carried box included, is
 // collision-free with the arm at least 5 mm from the workspace.
-std::unique_ptr<Session> collision_checking_puma_session() {
+std::unique_ptr<session::Session> collision_checking_puma_session() {
   auto robot = geometry::load_robot_assets({"puma560", {}, {}});
   EXPECT_TRUE(robot) << robot.error().message;
   auto workspace = geometry::load_workspace(core::default_workspace_file("puma560"));
   EXPECT_TRUE(workspace) << workspace.error().message;
   if (!robot || !workspace) return nullptr;
-  SessionOptions options;
+  session::SessionOptions options;
   options.robot.address = "127.0.0.1:1";  // never connected
   options.vision.address = "127.0.0.1:1";
   options.description = robot->description;
   options.workspace = *workspace;
-  auto session = Session::create(robot->model(), options);
+  auto session = session::Session::create(robot->model(), options);
   EXPECT_TRUE(session) << session.error().message;
   return session ? std::move(*session) : nullptr;
 }
@@ -154,16 +154,16 @@ TEST(GraspChoice, ThePumasRehearsedPickAndPlaceIsElbowUpAndCollisionFree) {
   (void)session->plan().set_scales(0.5, 0.5);
   const Status rehearsed = rehearse_pick_and_place(*session, inputs, *grasp);
   ASSERT_TRUE(rehearsed) << rehearsed.error().message;
-  for (const PlanWaypoint& w : session->plan().waypoints()) {
+  for (const session::PlanWaypoint& w : session->plan().waypoints()) {
     // Elbow-up: the forearm bends down from the elbow (q3 < -90 deg), within the -135 limit.
     EXPECT_LT(core::degrees_from_radians(w.q[2]), -90.0) << w.label;
   }
-  const ValidationReport report = session->validate_plan();
+  const session::ValidationReport report = session->validate_plan();
   EXPECT_TRUE(report.ok()) << report.summary();
   ASSERT_TRUE(report.collision.has_value());
-  EXPECT_TRUE(report.collision->collision_free()) << collision_summary(*report.collision);
+  EXPECT_TRUE(report.collision->collision_free()) << session::collision_summary(*report.collision);
   EXPECT_GT(report.collision->min_workspace_clearance.distance_m, 0.005)
-      << collision_summary(*report.collision);
+      << session::collision_summary(*report.collision);
 }
 
 // Where the box stood before (0.65 m out, on the same table) the PUMA's elbow range reaches it
@@ -194,4 +194,4 @@ TEST(GraspChoice, OnACollisionCheckingSessionABoxReachedOnlyThroughTheTableIsRef
 }
 
 }  // namespace
-}  // namespace telear::session
+}  // namespace telear::lab

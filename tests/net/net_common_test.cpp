@@ -73,7 +73,7 @@ TEST(ServerLog, ABadLevelNamesTheValueAndTheAcceptedOnes) {
   for (const char* bad : {"warning", "INFO", "", "err"}) {
     auto level = parse_log_level(bad);
     ASSERT_FALSE(level) << bad;
-    EXPECT_EQ(level.error().message, std::string("--log-level '") + bad +
+    EXPECT_EQ(level.error().message, std::string("'") + bad +
                                          "' is not a log level; use one of trace, debug, info, "
                                          "warn, error, off");
   }

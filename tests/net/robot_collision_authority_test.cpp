@@ -25,6 +25,7 @@
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/plan_message.hpp"
 #include "telear/net/robot_client.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::net::test {
 namespace {
@@ -260,11 +261,10 @@ TEST(RobotCollisionAuthority, GetInfoReturnsTheWorkspace) {
 }
 
 TEST(RobotCollisionAuthority, AMalformedWorkspaceFailsServerCreation) {
-  const std::string path = ::testing::TempDir() + "bad_workspace.yaml";
-  {
-    std::ofstream out(path);
-    out << "name: bad\nobjects:\n  - name: plate\n    shape: box\n    size: [0.1, 0.1]\n";
-  }
+  test_files::TempDir tmp("collision_authority");
+  const std::string path =
+      tmp.write("bad_workspace.yaml",
+                "name: bad\nobjects:\n  - name: plate\n    shape: box\n    size: [0.1, 0.1]\n");
   auto server = create_server(path, above_table());
   ASSERT_FALSE(server);
   EXPECT_THAT(server.error().message, HasSubstr("robot server: "));

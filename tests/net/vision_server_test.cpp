@@ -12,10 +12,10 @@
 
 #include "telear/net/vision_client.hpp"
 #include "telear/net/vision_server.hpp"
-#include "telear/sim/stereo_rig.hpp"
 #include "telear/v1/vision.grpc.pb.h"
 #include "telear/vision/camera_file.hpp"
 #include "telear/vision/synthetic_source.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::net {
@@ -66,12 +66,6 @@ struct RawReader {
   grpc::ClientContext context;
   std::unique_ptr<grpc::ClientReader<telear::v1::StereoFrame>> reader;
 };
-
-std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() /
-          ("telear_vision_test_" + std::to_string(::getpid()) + "_" + name))
-      .string();
-}
 
 TEST(VisionServer, FramesArriveInOrderWithConsistentSkipCounts) {
   auto server = start_synthetic(160, 120, 100);
@@ -248,11 +242,22 @@ TEST(VisionServer, CameraInfoWithoutCalibration) {
   EXPECT_DOUBLE_EQ(info->source_fps, 30.0);
 }
 
+// The PUMA rig's cameras (the simulated rig renders with these intrinsics and poses), read as a
+// stereo camera file: the net tests stay free of the simulator (the ASan step builds them alone).
+vision::StereoCameraModel puma_rig_cameras() {
+  auto file = vision::load_camera_file(test::data_path("cameras/puma560_stereo.yaml"));
+  EXPECT_TRUE(file) << file.error().message;
+  EXPECT_TRUE(file && file->is_stereo());
+  if (!file || !file->is_stereo()) return {};
+  return {file->left, *file->right};
+}
+
 TEST(VisionServer, CameraInfoReturnsTheLoadedCalibration) {
-  auto rig = sim::load_stereo_rig(test::data_path("rigs/puma560_rig.yaml"));
-  ASSERT_TRUE(rig) << rig.error().message;
-  const std::string path = temp_path("stereo.yaml");
-  ASSERT_TRUE(vision::write_stereo_camera_file(rig->cameras, path));
+  const vision::StereoCameraModel cameras = puma_rig_cameras();
+  ASSERT_GT(cameras.left.width, 0);
+  test_files::TempDir tmp("vision_server");
+  const std::string path = tmp.file("stereo.yaml");
+  ASSERT_TRUE(vision::write_stereo_camera_file(cameras, path));
   VisionServerOptions server_options;
   server_options.source = synthetic(160, 120, 30);
   server_options.calibration_file = path;
@@ -264,13 +269,16 @@ TEST(VisionServer, CameraInfoReturnsTheLoadedCalibration) {
   grpc::ClientContext context;
   ASSERT_TRUE(raw.stub->GetCameraInfo(&context, {}, &message).ok());
   EXPECT_TRUE(message.found());
-  EXPECT_EQ(message.left().width(), rig->cameras.left.width);
+  EXPECT_EQ(message.left().width(), cameras.left.width);
   ASSERT_EQ(message.left().fc_size(), 2);
-  EXPECT_DOUBLE_EQ(message.left().fc(0), rig->cameras.left.fx);
+  EXPECT_DOUBLE_EQ(message.left().fc(0), cameras.left.fx);
   EXPECT_EQ(message.left().kc_size(), 5);
   ASSERT_EQ(message.translation_right_left_m_size(), 3);
-  // The rig's baseline, along the left camera's x axis.
-  EXPECT_NEAR(message.translation_right_left_m(0), -rig->baseline_m, 1e-9);
+  // The rig's 6 cm baseline, along the left camera's x axis.
+  const Eigen::Isometry3d T_right_left =
+      cameras.right.T_cam_base * cameras.left.T_cam_base.inverse();
+  EXPECT_NEAR(message.translation_right_left_m(0), T_right_left.translation().x(), 1e-9);
+  EXPECT_NEAR(message.translation_right_left_m(0), -0.06, 1e-6);
   EXPECT_FALSE(message.calibration_yaml().empty());
 
   VisionClientOptions options;
@@ -279,16 +287,16 @@ TEST(VisionServer, CameraInfoReturnsTheLoadedCalibration) {
   auto info = client.get_camera_info();
   ASSERT_TRUE(info) << info.error().message;
   EXPECT_TRUE(info->found);
-  EXPECT_NEAR(info->cameras.right.cx, rig->cameras.right.cx, 1e-9);
-  EXPECT_TRUE(info->cameras.right.T_cam_base.isApprox(rig->cameras.right.T_cam_base, 1e-9));
-  std::filesystem::remove(path);
+  EXPECT_NEAR(info->cameras.right.cx, cameras.right.cx, 1e-9);
+  EXPECT_TRUE(info->cameras.right.T_cam_base.isApprox(cameras.right.T_cam_base, 1e-9));
 }
 
 TEST(VisionServer, MonoCalibrationIsRefused) {
-  auto rig = sim::load_stereo_rig(test::data_path("rigs/puma560_rig.yaml"));
-  ASSERT_TRUE(rig);
-  const std::string path = temp_path("mono.yaml");
-  ASSERT_TRUE(vision::write_camera_file(rig->cameras.left, path));
+  const vision::StereoCameraModel cameras = puma_rig_cameras();
+  ASSERT_GT(cameras.left.width, 0);
+  test_files::TempDir tmp("vision_server");
+  const std::string path = tmp.file("mono.yaml");
+  ASSERT_TRUE(vision::write_camera_file(cameras.left, path));
   VisionServerOptions options;
   options.listen_address = "127.0.0.1:0";
   options.source = synthetic(160, 120, 30);
@@ -296,12 +304,11 @@ TEST(VisionServer, MonoCalibrationIsRefused) {
   auto server = VisionServer::create(std::move(options));
   ASSERT_FALSE(server);
   EXPECT_THAT(server.error().message, HasSubstr("is a mono camera file"));
-  std::filesystem::remove(path);
 }
 
 TEST(VisionServer, TokenIsRequiredWhenConfigured) {
-  const std::string token_path = temp_path("token");
-  std::ofstream(token_path) << "s3cret-token\n";
+  test_files::TempDir tmp("vision_server");
+  const std::string token_path = tmp.write("token", "s3cret-token\n");
   VisionServerOptions server_options;
   server_options.source = synthetic(160, 120, 30);
   server_options.token_file = token_path;
@@ -326,7 +333,6 @@ TEST(VisionServer, TokenIsRequiredWhenConfigured) {
   EXPECT_TRUE(authorized.get_camera_info());
   authorized.start();
   EXPECT_TRUE(authorized.wait_frame(0, 10.0));
-  std::filesystem::remove(token_path);
 }
 
 TEST(VisionServer, CleanShutdownWithClientsStreaming) {

@@ -14,6 +14,7 @@
 #include "telear/render/scene_objects.hpp"
 #include "telear/render/video_background.hpp"
 #include "telear/render/view_math.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::render {
 namespace {
@@ -188,8 +189,8 @@ TEST_F(GlBasicsTest, ObjectsDrawnAfterTheBackgroundLandOnTop) {
 TEST_F(GlBasicsTest, PngRoundTrip) {
   core::Image img(7, 5, 3);
   for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = static_cast<uint8_t>(i * 7);
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "telear_render_png_test.png").string();
+  test_files::TempDir tmp("render_png");
+  const std::string path = tmp.file("frame.png");
   ASSERT_TRUE(write_png(path, img));
   auto back = read_image(path);
   ASSERT_TRUE(back) << back.error().message;

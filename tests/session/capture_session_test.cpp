@@ -17,7 +17,7 @@
 #include "telear/core/angles.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/trajectory.hpp"
-#include "telear/session/embedded_servers.hpp"
+#include "telear/lab/embedded_servers.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/sim/stereo_rig.hpp"
@@ -42,12 +42,12 @@ class CaptureSessionTest : public test::CaptureRigTest {
     auto visible = test::marker_visible_start();
     ASSERT_TRUE(visible) << visible.error().message;
     start = *visible;
-    EmbeddedServersOptions options;
+    lab::EmbeddedServersOptions options;
     options.calibration_file = calibration;
     options.initial_q = start;
     options.fps = 10.0;
     options.supersample = 2;
-    auto s = EmbeddedServers::create(model, options);
+    auto s = lab::EmbeddedServers::create(model, options);
     ASSERT_TRUE(s) << s.error().message;
     servers = std::move(*s);
     net::RobotClientOptions robot_options;
@@ -106,7 +106,7 @@ class CaptureSessionTest : public test::CaptureRigTest {
   }
 
   Eigen::VectorXd start;
-  std::unique_ptr<EmbeddedServers> servers;
+  std::unique_ptr<lab::EmbeddedServers> servers;
   std::unique_ptr<net::RobotClient> robot;
   std::unique_ptr<net::VisionClient> vision;
 };
@@ -246,7 +246,7 @@ TEST_F(CaptureSessionTest, RefusesAUsedFolderBadOptionsAndAReducedStream) {
   options.frames_per_pose = 0;
   opened = CaptureSession::open(*model, *robot, *vision, options);
   ASSERT_FALSE(opened);
-  EXPECT_EQ(opened.error().message, "capture: --frames 0 must be 1..30");
+  EXPECT_EQ(opened.error().message, "capture: frames_per_pose 0 must be 1..30");
 
   // A stream reduced for display would not match the calibration: refused, nothing recorded.
   auto reduced = start_vision(320, 240);

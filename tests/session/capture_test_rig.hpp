@@ -12,7 +12,7 @@
 #include "telear/core/result.hpp"
 #include "telear/core/robot_model.hpp"
 #include "telear/sim/stereo_rig.hpp"
-#include "test_util/mesh_test_files.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::test {
 
@@ -45,7 +45,7 @@ class CaptureRigTest : public ::testing::Test {
   core::RobotModelPtr model;
   sim::StereoRig rig;
   core::MarkerMount marker;
-  test_files::TempDir temp_dir;
+  test_files::TempDir temp_dir{"capture"};
   std::filesystem::path dir;
   std::string calibration;  // dir/calibration.yaml
 };

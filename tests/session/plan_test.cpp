@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "telear/session/ghost_arm.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::session {
@@ -123,8 +124,8 @@ TEST(Plan, YamlRoundTrip) {
   PlanWaypoint passed = plan.waypoint(1);
   passed.via = true;
   ASSERT_TRUE(plan.replace(1, passed).ok());
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "telear_plan_test.yaml").string();
+  test_files::TempDir tmp("plan");
+  const std::string path = tmp.file("plan.yaml");
   ASSERT_TRUE(plan.save(path).ok());
   auto loaded = Plan::load(test::puma560(), path);
   std::remove(path.c_str());

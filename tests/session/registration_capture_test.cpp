@@ -15,7 +15,7 @@
 #include "telear/core/arm_body.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/core/workspace.hpp"
-#include "telear/session/embedded_servers.hpp"
+#include "telear/lab/embedded_servers.hpp"
 #include "telear/session/marker_visibility.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/sim/rig_robot.hpp"
@@ -43,14 +43,14 @@ class RegistrationCaptureTest : public test::CaptureRigTest {
     auto visible = test::marker_visible_start();
     ASSERT_TRUE(visible) << visible.error().message;
     Eigen::VectorXd start = *visible;
-    EmbeddedServersOptions options;
+    lab::EmbeddedServersOptions options;
     options.calibration_file = calibration;
     options.initial_q = start;
     options.fps = 10.0;
     // 4 x 4 samples per pixel: edges integrated over the pixel's area as a real sensor does
     // (at 2 x 2 the corners' residual doubles, docs/registration.md).
     options.supersample = 4;
-    auto s = EmbeddedServers::create(model, options);
+    auto s = lab::EmbeddedServers::create(model, options);
     ASSERT_TRUE(s) << s.error().message;
     servers = std::move(*s);
     net::RobotClientOptions robot_options;
@@ -74,7 +74,7 @@ class RegistrationCaptureTest : public test::CaptureRigTest {
     servers.reset();
   }
 
-  std::unique_ptr<EmbeddedServers> servers;
+  std::unique_ptr<lab::EmbeddedServers> servers;
   std::unique_ptr<net::RobotClient> robot;
   std::unique_ptr<net::VisionClient> vision;
 };
@@ -210,7 +210,7 @@ TEST_F(RegistrationCaptureTest, RefusesAFolderThatAlreadyHoldsACapture) {
   options.frames_per_pose = 0;
   captured = capture_for_registration(*model, *robot, *vision, options);
   ASSERT_FALSE(captured);
-  EXPECT_EQ(captured.error().message, "capture: --frames 0 must be 1..30");
+  EXPECT_EQ(captured.error().message, "capture: frames_per_pose 0 must be 1..30");
 }
 
 // The automatic poses' line-of-sight test: a marker facing the camera is seen until an object

@@ -15,7 +15,7 @@
 
 #include "capture_test_rig.hpp"
 #include "telear/core/robot_loader.hpp"
-#include "telear/session/embedded_servers.hpp"
+#include "telear/lab/embedded_servers.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/sim/stereo_rig.hpp"
@@ -65,13 +65,13 @@ class RegistrationTargetCaptureTest : public test::CaptureRigTest {
       const std::string& rig_file, const std::string& name, const Eigen::VectorXd& start,
       int auto_poses, const std::vector<Eigen::VectorXd>& poses,
       const std::optional<vision::RegistrationTarget>& target = std::nullopt) {
-    EmbeddedServersOptions options;
+    lab::EmbeddedServersOptions options;
     options.rig = rig_file;
     options.calibration_file = calibration;
     options.initial_q = start;
     options.fps = 10.0;
     options.supersample = 2;
-    auto servers = EmbeddedServers::create(model, options);
+    auto servers = lab::EmbeddedServers::create(model, options);
     EXPECT_TRUE(servers) << servers.error().message;
     if (!servers) return {};
     net::RobotClientOptions robot_options;
@@ -151,7 +151,7 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
   // The coverage image is green under a board's seen corners.
   const cv::Mat coverage = vision::coverage_image(board_registration->detected,
                                                   rig.cameras.left.width, rig.cameras.left.height);
-  cv::imwrite((fs::temp_directory_path() / "telear_board_coverage.png").string(), coverage);
+  cv::imwrite((dir / "board_coverage.png").string(), coverage);
   for (const vision::HandEyeView& view : board_registration->detected.observations.views) {
     if (view.left.size() < 4) continue;
     // A quarter of the way along the seen corners' diagonal: inside the hull, off the dots.

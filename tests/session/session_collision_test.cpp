@@ -11,14 +11,14 @@
 #include "telear/geometry/collision_checker.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
+#include "telear/lab/demo_task.hpp"
+#include "telear/lab/embedded_servers.hpp"
+#include "telear/lab/view_input.hpp"
 #include "telear/net/motion_collision_guard.hpp"
 #include "telear/net/robot_client.hpp"
-#include "telear/session/demo_task.hpp"
-#include "telear/session/embedded_servers.hpp"
 #include "telear/session/ghost_clearance.hpp"
 #include "telear/session/plan_collision.hpp"
 #include "telear/session/session.hpp"
-#include "telear/session/view_input.hpp"
 #include "telear/sim/stereo_rig.hpp"
 
 namespace telear::session {
@@ -117,7 +117,7 @@ TEST(SessionCollision, TheGhostsClearanceFollowsItsJogsAndNamesTheLinksInContact
   EXPECT_EQ(session->view().ghost_contact_frames, session->ghost_clearance().contact_frames);
   EXPECT_FALSE(session->view().ghost_contact_frames.empty());
   // The AR view draws those links red.
-  EXPECT_EQ(ar_view_input(session->view()).ghost_highlight_frames,
+  EXPECT_EQ(lab::ar_view_input(session->view()).ghost_highlight_frames,
             session->view().ghost_contact_frames);
 }
 
@@ -174,8 +174,8 @@ TEST(SessionCollision, WithoutADescriptionAndWorkspaceNothingIsChecked) {
 // workspace: the session checks collisions, the box is carried from the grasp to the place.
 struct RehearsedTask {
   std::unique_ptr<Session> session;
-  DemoTaskInputs inputs;
-  GraspChoice grasp;
+  lab::DemoTaskInputs inputs;
+  lab::GraspChoice grasp;
 };
 
 RehearsedTask rehearse_demo_task(const std::string& robot_name) {
@@ -206,12 +206,12 @@ RehearsedTask rehearse_demo_task(const std::string& robot_name) {
                                    ? Eigen::Vector3d(arm_body.gripper->centre.cast<double>())
                                    : Eigen::Vector3d::Zero();
   task.inputs.camera_base_m = rig->cameras.left.T_cam_base.inverse().translation();
-  auto grasp = choose_task_grasp(*task.session, task.inputs);
+  auto grasp = lab::choose_task_grasp(*task.session, task.inputs);
   EXPECT_TRUE(grasp) << grasp.error().message;
   if (!grasp) return task;
   task.grasp = *grasp;
   (void)task.session->plan().set_scales(0.5, 0.5);
-  const Status rehearsed = rehearse_pick_and_place(*task.session, task.inputs, task.grasp);
+  const Status rehearsed = lab::rehearse_pick_and_place(*task.session, task.inputs, task.grasp);
   EXPECT_TRUE(rehearsed) << rehearsed.error().message;
   return task;
 }
@@ -289,9 +289,9 @@ TEST(CarriedObject, APlanThatCarriesTheBoxThroughTheTrayIsRefusedNamingTheBox) {
   // The carry step lowered until the box's bottom is 15 mm inside the tray (its top is at
   // z = 0.02 m; the box hangs 25 mm below the gripper's centre).
   const std::size_t carry = waypoint_labelled(session.plan(), "carry");
-  const std::vector<TaskStep> steps = demo_task_steps(task.inputs);
+  const std::vector<lab::TaskStep> steps = lab::demo_task_steps(task.inputs);
   const auto step = std::find_if(steps.begin(), steps.end(),
-                                 [](const TaskStep& s) { return s.label == "carry"; });
+                                 [](const lab::TaskStep& s) { return s.label == "carry"; });
   ASSERT_NE(step, steps.end());
   Eigen::Vector3d low = step->grip_position_base_m;
   low.z() = 0.02 + 0.025 - 0.015;
@@ -337,20 +337,20 @@ TEST(CarriedObject, APlanThatCarriesTheBoxThroughTheTrayIsRefusedNamingTheBox) {
 TEST(EmbeddedServersCollision, ServeRobotMakesTheRobotServerTheAuthorityInTheShippedWorkspace) {
   auto robot = geometry::load_robot_assets({"arm7", {}, {}});
   ASSERT_TRUE(robot) << robot.error().message;
-  EmbeddedServersOptions options;
-  ASSERT_TRUE(serve_robot(options, robot->description).ok());
+  lab::EmbeddedServersOptions options;
+  ASSERT_TRUE(lab::serve_robot(options, robot->description).ok());
   EXPECT_EQ(options.workspace_file, core::default_workspace_file("arm7"));
   ASSERT_TRUE(options.robot_description.has_value());
   EXPECT_EQ(options.robot_description->name, "arm7");
 
   // A workspace the caller chose is kept.
-  EmbeddedServersOptions chosen;
+  lab::EmbeddedServersOptions chosen;
   chosen.workspace_file = core::default_workspace_file("ur6");
-  ASSERT_TRUE(serve_robot(chosen, robot->description).ok());
+  ASSERT_TRUE(lab::serve_robot(chosen, robot->description).ok());
   EXPECT_EQ(chosen.workspace_file, core::default_workspace_file("ur6"));
 
   // The embedded robot server started with them checks collisions and says so on GetInfo.
-  auto servers = EmbeddedServers::create(robot->model(), options);
+  auto servers = lab::EmbeddedServers::create(robot->model(), options);
   ASSERT_TRUE(servers) << servers.error().message;
   net::RobotClientOptions client_options;
   client_options.address = (*servers)->robot_address();

@@ -9,7 +9,7 @@
 #include "telear/core/inverse_kinematics.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
-#include "telear/session/embedded_servers.hpp"
+#include "telear/lab/embedded_servers.hpp"
 #include "telear/session/session.hpp"
 #include "telear/sim/stereo_rig.hpp"
 
@@ -24,9 +24,9 @@ class SessionIntegrationTest : public ::testing::Test {
     auto m = core::load_robot("puma560");
     ASSERT_TRUE(m) << m.error().message;
     model = *m;
-    EmbeddedServersOptions options;
+    lab::EmbeddedServersOptions options;
     options.fps = 15.0;
-    auto s = EmbeddedServers::create(model, options);
+    auto s = lab::EmbeddedServers::create(model, options);
     ASSERT_TRUE(s) << s.error().message;
     servers = std::move(*s);
     SessionOptions session_options;
@@ -79,7 +79,7 @@ class SessionIntegrationTest : public ::testing::Test {
   }
 
   core::RobotModelPtr model;
-  std::unique_ptr<EmbeddedServers> servers;
+  std::unique_ptr<lab::EmbeddedServers> servers;
   std::unique_ptr<Session> session;
 };
 

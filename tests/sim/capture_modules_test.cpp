@@ -4,13 +4,13 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 
 #include "telear/sim/calibration_capture.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::sim {
@@ -19,8 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(CalibrationCapture, WritesEveryViewPerEyeAndTheTruth) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("capture_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  test_files::TempDir tmp("capture");
+  const fs::path dir = tmp.file("capture");
   CalibrationCaptureOptions options;
   options.rig_file = test::data_path("rigs/puma560_rig.yaml");
   options.views = 3;
@@ -46,22 +46,22 @@ TEST(CalibrationCapture, WritesEveryViewPerEyeAndTheTruth) {
   ASSERT_TRUE(truth.ok()) << truth.error().message;
   EXPECT_TRUE(truth->is_stereo());
   EXPECT_TRUE(truth->left_has_pose && truth->right_has_pose);
-  fs::remove_all(dir);
 }
 
 TEST(CalibrationCapture, BadOptionsAndRigsAreErrorsNamingThem) {
   CalibrationCaptureOptions options;
   options.rig_file = test::data_path("rigs/puma560_rig.yaml");
-  options.output_dir = ::testing::TempDir() + "capture_bad";
+  test_files::TempDir tmp("capture_bad");
+  options.output_dir = tmp.file("capture");
   options.views = 0;
   auto r = capture_calibration_views(options);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.error().message, "--views 0 is outside 1..100");
+  EXPECT_EQ(r.error().message, "views 0 is outside 1..100");
   options.views = 2;
   options.pattern = "chessboard:2x";
   r = capture_calibration_views(options);
   ASSERT_FALSE(r.ok());
-  EXPECT_THAT(r.error().message, ::testing::StartsWith("--pattern: "));
+  EXPECT_THAT(r.error().message, ::testing::StartsWith("pattern: "));
   options.pattern = "chessboard:9x6:0.03";
   options.rig_file = "/nonexistent/rig.yaml";
   r = capture_calibration_views(options);
@@ -103,12 +103,12 @@ TEST(MarkerObservations, BadOptionsAndRigsAreErrorsNamingThem) {
   options.configurations = 0;
   auto r = simulate_marker_observations(options);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.error().message, "--configs 0 is outside 1..500");
+  EXPECT_EQ(r.error().message, "configurations 0 is outside 1..500");
   options.configurations = 1;
   options.rig_file = "/nonexistent/rig.yaml";
   r = simulate_marker_observations(options);
   ASSERT_FALSE(r.ok());
-  EXPECT_THAT(r.error().message, ::testing::StartsWith("--rig: "));
+  EXPECT_THAT(r.error().message, ::testing::StartsWith("rig_file: "));
   EXPECT_THAT(r.error().message, ::testing::HasSubstr("/nonexistent/rig.yaml"));
 }
 

@@ -5,7 +5,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -18,6 +17,7 @@
 #include "telear/vision/calibration_pattern.hpp"
 #include "telear/vision/mono_calibration.hpp"
 #include "telear/vision/stereo_calibration.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::sim {
@@ -84,23 +84,22 @@ class CharucoCalibrationTest : public ::testing::Test {
 
     // One folder per process: CTest runs each test of this suite as its own process, in
     // parallel, and a shared folder let one process read images another was rewriting.
-    dir_ = ::testing::TempDir() + "/telear_charuco_calibration_" + std::to_string(::getpid());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = new test_files::TempDir("charuco_calibration");
     const TargetImageRenderer left_renderer(rig_->cameras.left);
     const TargetImageRenderer right_renderer(rig_->cameras.right);
     for (std::size_t k = 0; k < poses->size(); ++k) {
       char name[32];
       std::snprintf(name, sizeof name, "%02zu.png", k);
-      left_paths_.push_back(dir_ + "/left_" + name);
-      right_paths_.push_back(dir_ + "/right_" + name);
+      left_paths_.push_back(dir_->file(std::string("left_") + name));
+      right_paths_.push_back(dir_->file(std::string("right_") + name));
       cv::imwrite(left_paths_.back(), left_renderer.render(target, (*poses)[k], 4, 1.0, 2 * k));
       cv::imwrite(right_paths_.back(),
                   right_renderer.render(target, (*poses)[k], 4, 1.0, 2 * k + 1));
     }
   }
   static void TearDownTestSuite() {
-    fs::remove_all(dir_);
+    delete dir_;
+    dir_ = nullptr;
     delete rig_;
     rig_ = nullptr;
   }
@@ -120,13 +119,13 @@ class CharucoCalibrationTest : public ::testing::Test {
 
   static StereoRig* rig_;
   static vision::CalibrationPattern pattern_;
-  static std::string dir_;
+  static test_files::TempDir* dir_;
   static std::vector<std::string> left_paths_, right_paths_;
   static int sliver_;
 };
 StereoRig* CharucoCalibrationTest::rig_ = nullptr;
 vision::CalibrationPattern CharucoCalibrationTest::pattern_;
-std::string CharucoCalibrationTest::dir_;
+test_files::TempDir* CharucoCalibrationTest::dir_ = nullptr;
 std::vector<std::string> CharucoCalibrationTest::left_paths_, CharucoCalibrationTest::right_paths_;
 int CharucoCalibrationTest::sliver_ = 0;
 

@@ -1,36 +1,11 @@
 #include "test_util/mesh_test_files.hpp"
 
-#include <atomic>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <random>
 #include <sstream>
 #include <vector>
 
 namespace telear::test_files {
-namespace fs = std::filesystem;
-
-TempDir::TempDir() {
-  static std::atomic<int> counter{0};
-  std::random_device rd;
-  path_ = fs::temp_directory_path() /
-          ("telear_test_" + std::to_string(rd()) + "_" + std::to_string(counter++));
-  fs::create_directories(path_);
-}
-
-TempDir::~TempDir() {
-  std::error_code ec;
-  fs::remove_all(path_, ec);
-}
-
-std::string TempDir::write(const std::string& relative, const std::string& text) const {
-  const fs::path p = path_ / relative;
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-  return p.string();
-}
-
 namespace {
 
 void put_float(std::string& out, float v) {

@@ -3,25 +3,11 @@
 // data: a cube, a tetrahedron, a textured quad, a COLLADA triangle with a node transform).
 
 #include <Eigen/Geometry>
-#include <filesystem>
 #include <string>
 
+#include "test_util/temp_dir.hpp"  // TempDir, which the mesh tests write these into
+
 namespace telear::test_files {
-
-// A fresh empty directory under the system temp dir, removed with the object.
-class TempDir {
- public:
-  TempDir();
-  ~TempDir();
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-  // Writes `text` to path()/relative (creating directories) and returns the full path.
-  std::string write(const std::string& relative, const std::string& text) const;
-
- private:
-  std::filesystem::path path_;
-};
 
 // The unit cube [0, 1]^3 as a binary STL: 12 triangles with their face normals (684 bytes).
 std::string binary_stl_cube();

@@ -1,9 +1,16 @@
 #include "test_util/test_util.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <cmath>
+#include <fstream>
 #include <numbers>
+#include <random>
+#include <stdexcept>
+
+#include "test_util/temp_dir.hpp"
 
 #include "telear/core/random_configuration.hpp"
 #include "telear/core/robot_loader.hpp"
@@ -48,3 +55,44 @@ double max_abs_diff(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b) {
 }
 
 }  // namespace telear::test
+
+namespace telear::test_files {
+namespace fs = std::filesystem;
+
+TempDir::TempDir(std::string_view label) {
+  static std::atomic<unsigned> counter{0};
+  const auto pid = static_cast<unsigned long>(::getpid());
+  std::random_device rd;
+  const fs::path base = fs::temp_directory_path();
+  // create_directory is atomic and reports whether it made the folder: a name some other process
+  // (or an older run) already holds is never shared, a new one is drawn instead.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const fs::path candidate =
+        base / ("telear_" + std::string(label) + "_" + std::to_string(pid) + "_" +
+                std::to_string(counter++) + "_" + std::to_string(rd()));
+    if (fs::create_directory(candidate)) {
+      path_ = candidate;
+      return;
+    }
+  }
+  throw std::runtime_error("TempDir: no fresh folder under " + base.string());
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+std::string TempDir::file(const std::string& relative) const {
+  const fs::path p = path_ / relative;
+  fs::create_directories(p.parent_path());
+  return p.string();
+}
+
+std::string TempDir::write(const std::string& relative, const std::string& text) const {
+  const std::string p = file(relative);
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+}  // namespace telear::test_files

@@ -17,6 +17,7 @@
 #include "telear/vision/calibration_images.hpp"
 #include "telear/vision/calibration_report.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::vision {
 namespace {
@@ -26,14 +27,6 @@ using ::testing::HasSubstr;
 
 CalibrationPattern board() {
   return *parse_calibration_pattern("chessboard:9x6:0.03");
-}
-
-// A fresh, empty directory under the test temp dir.
-std::string fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("telear_calib_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
 }
 
 void write_board(const std::string& path, double width, double tilt, double roll,
@@ -50,7 +43,8 @@ std::vector<std::string> files_in(const std::string& dir) {
 }
 
 TEST(CalibrationImages, GlobIsSortedAndAnEmptyMatchSaysWhatToDo) {
-  const std::string dir = fresh_dir("glob");
+  test_files::TempDir tmp("calib_glob");
+  const std::string dir = tmp.string();
   for (const char* name : {"b.png", "a.png", "c.txt"}) std::ofstream(dir + "/" + name) << "x";
   const auto paths = expand_image_glob(dir + "/*.png", "--left");
   ASSERT_TRUE(paths.ok()) << paths.error().message;
@@ -60,11 +54,12 @@ TEST(CalibrationImages, GlobIsSortedAndAnEmptyMatchSaysWhatToDo) {
   EXPECT_EQ(none.error().message,
             "--left '" + dir +
                 "/left*.png' matches no file; check the directory and the pattern, and quote it "
-                "so that telear expands it (e.g. --left 'images/left*.png')");
+                "so that telear expands it (e.g. 'images/left*.png')");
 }
 
 TEST(CalibrationImages, SkipsImagesWithoutThePatternCorruptOrOfAnotherSizeAndSaysWhy) {
-  const std::string dir = fresh_dir("mono");
+  test_files::TempDir tmp("calib_mono");
+  const std::string dir = tmp.string();
   write_board(dir + "/01.png", 380.0, 25.0, 5.0);
   cv::imwrite(dir + "/02.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(128)));     // no pattern
   std::ofstream(dir + "/03.png") << "\x89PNG\r\n\x1a\n this is not a PNG file";  // corrupt
@@ -108,7 +103,8 @@ TEST(CalibrationImages, SkipsImagesWithoutThePatternCorruptOrOfAnotherSizeAndSay
 }
 
 TEST(CalibrationImages, PairsNeedEqualCountsAndBothImages) {
-  const std::string dir = fresh_dir("pairs");
+  test_files::TempDir tmp("calib_pairs");
+  const std::string dir = tmp.string();
   write_board(dir + "/left1.png", 380.0, 25.0, 5.0);
   write_board(dir + "/right1.png", 370.0, 28.0, 5.0);
   write_board(dir + "/left2.png", 300.0, -30.0, -8.0);
@@ -120,7 +116,7 @@ TEST(CalibrationImages, PairsNeedEqualCountsAndBothImages) {
   const auto unequal = detect_in_image_pairs(left, right, board());
   ASSERT_FALSE(unequal.ok());
   EXPECT_EQ(unequal.error().message,
-            "--left matches 3 images but --right matches 2; every left image needs the right "
+            "3 left images but 2 right images; every left image needs the right "
             "image taken at the same moment (pairs are matched in sorted name order): remove "
             "the unpaired images");
 
@@ -159,7 +155,8 @@ StereoCalibration synthetic_calibration() {
 
 TEST(CalibrationFile, StereoYamlReadsBackAsCamerasAndCarriesTheStereoExtras) {
   const StereoCalibration c = synthetic_calibration();
-  const std::string dir = fresh_dir("yaml");
+  test_files::TempDir tmp("calib_yaml");
+  const std::string dir = tmp.string();
   const std::string path = dir + "/stereo.yaml";
   ASSERT_TRUE(write_files_atomically({{path, stereo_calibration_yaml(c, board())}}).ok());
   EXPECT_EQ(files_in(dir), std::vector<std::string>{"stereo.yaml"});  // no temporaries left
@@ -197,7 +194,8 @@ TEST(CalibrationFile, StereoYamlReadsBackAsCamerasAndCarriesTheStereoExtras) {
 }
 
 TEST(CalibrationFile, StereoGeometryErrorsNameTheFileAndTheProblem) {
-  const std::string dir = fresh_dir("geometry");
+  test_files::TempDir tmp("calib_geometry");
+  const std::string dir = tmp.string();
   std::ofstream(dir + "/mono.yaml") << "%YAML:1.0\n---\nimage_width: 640\n";
   EXPECT_EQ(load_stereo_geometry(dir + "/mono.yaml").error().message,
             "stereo calibration '" + dir +
@@ -214,7 +212,8 @@ TEST(CalibrationFile, StereoGeometryErrorsNameTheFileAndTheProblem) {
 
 TEST(CalibrationFile, RosCameraInfoCarriesTheRectification) {
   const StereoCalibration c = synthetic_calibration();
-  const std::string dir = fresh_dir("ros");
+  test_files::TempDir tmp("calib_ros");
+  const std::string dir = tmp.string();
   const std::string path = dir + "/right.yaml";
   ASSERT_TRUE(write_files_atomically({{path, ros_stereo_camera_info_yaml(c, true, "right")}}).ok());
   const auto file = load_camera_file(path);  // telear reads ROS camera_info too
@@ -251,7 +250,8 @@ TEST(CalibrationFile, RosStereoPairAndXmlKeepTheGeometryOfEveryModel) {
     ASSERT_TRUE(c.ok()) << c.error().message;
     ASSERT_EQ(c->cameras.left.kc.model, model);
 
-    const std::string dir = fresh_dir(std::string("pair_") + distortion_model_name(model));
+    test_files::TempDir tmp(std::string("calib_pair_") + distortion_model_name(model));
+    const std::string dir = tmp.string();
     const std::string left = dir + "/left.yaml", right = dir + "/right.yaml";
     const std::string xml = dir + "/stereo.xml";
     ASSERT_TRUE(write_files_atomically({{left, ros_stereo_camera_info_yaml(*c, false, "left")},
@@ -280,7 +280,8 @@ TEST(CalibrationFile, RosStereoPairAndXmlKeepTheGeometryOfEveryModel) {
 }
 
 TEST(CalibrationFile, UnwritablePathsFailEarlyAndLeaveNothingBehind) {
-  const std::string dir = fresh_dir("unwritable");
+  test_files::TempDir tmp("calib_unwritable");
+  const std::string dir = tmp.string();
   EXPECT_TRUE(check_output_path(dir + "/stereo.yaml", "-o").ok());
   EXPECT_EQ(check_output_path(dir + "/missing/stereo.yaml", "-o").error().message,
             "-o '" + dir + "/missing/stereo.yaml': directory '" + dir +

@@ -13,6 +13,7 @@
 #include "telear/core/pose.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/opencv_camera.hpp"
+#include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::vision {
@@ -41,8 +42,10 @@ void expect_same(const CameraModel& a, const CameraModel& b) {
   EXPECT_LT((a.T_cam_base.matrix() - b.T_cam_base.matrix()).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+// `name` in this process's own scratch folder (removed at exit).
 std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + name;
+  static const test_files::TempDir dir("camera_file");
+  return dir.file(name);
 }
 
 std::string error_of(const std::string& text) {

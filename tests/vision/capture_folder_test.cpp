@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "test_util/temp_dir.hpp"
+
 namespace telear::vision {
 namespace {
 
@@ -35,13 +37,6 @@ CaptureSet two_poses() {
   return capture;
 }
 
-fs::path fresh_folder(const std::string& name) {
-  const fs::path folder = fs::path(::testing::TempDir()) / name;
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
-}
-
 TEST(CaptureFolder, ManifestRoundTripsExactly) {
   const CaptureSet written = two_poses();
   auto read = parse_capture_manifest(capture_manifest_yaml(written), "mem");
@@ -59,7 +54,8 @@ TEST(CaptureFolder, ManifestRoundTripsExactly) {
 }
 
 TEST(CaptureFolder, WritesAndLoadsAFolderWithItsImages) {
-  const fs::path folder = fresh_folder("capture_ok");
+  test_files::TempDir tmp("capture_ok");
+  const fs::path folder = tmp.path();
   const CaptureSet capture = two_poses();
   const cv::Mat left(24, 32, CV_8UC3, cv::Scalar(10, 20, 30));
   const cv::Mat right(24, 32, CV_8UC3, cv::Scalar(40, 50, 60));
@@ -78,7 +74,8 @@ TEST(CaptureFolder, WritesAndLoadsAFolderWithItsImages) {
 }
 
 TEST(CaptureFolder, AMissingImageIsNamedWithWhatToDo) {
-  const fs::path folder = fresh_folder("capture_missing");
+  test_files::TempDir tmp("capture_missing");
+  const fs::path folder = tmp.path();
   const CaptureSet capture = two_poses();
   const cv::Mat image(8, 8, CV_8UC1, cv::Scalar(0));
   for (const CapturedPose& pose : capture.poses) {
@@ -96,7 +93,8 @@ TEST(CaptureFolder, AMissingImageIsNamedWithWhatToDo) {
 }
 
 TEST(CaptureFolder, AFolderWithoutManifestIsRefused) {
-  const fs::path folder = fresh_folder("capture_empty");
+  test_files::TempDir tmp("capture_empty");
+  const fs::path folder = tmp.path();
   auto loaded = load_capture_folder(folder.string());
   ASSERT_FALSE(loaded);
   EXPECT_THAT(loaded.error().message, HasSubstr("capture.yaml missing or unreadable"));

@@ -12,6 +12,7 @@
 #include "telear/vision/calibration_images.hpp"
 #include "telear/vision/calibration_pattern.hpp"
 #include "telear/vision/charuco_board.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::vision {
 namespace {
@@ -223,8 +224,8 @@ TEST(CharucoPattern, StereoPairsKeepTheCornersBothImagesShow) {
   const int per_square = 50, margin = 30;
   const cv::Mat board = board_image(pattern, per_square, margin);
   const auto x = [&](int squares) { return margin + squares * per_square; };
-  const std::string dir = ::testing::TempDir() + "/telear_charuco_pairs";
-  std::filesystem::create_directories(dir);
+  test_files::TempDir tmp("charuco_pairs");
+  const std::string dir = tmp.string();
   // Pair 0: left shows squares 0..4 (corner columns 0..3), right squares 2..6 (columns 2..5):
   // columns 2 and 3 in common. Pair 1: left squares 0..3 (columns 0..2): column 2 alone.
   const std::vector<std::string> left = {dir + "/left0.png", dir + "/left1.png"};
