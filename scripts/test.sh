@@ -2,30 +2,62 @@
 # The README's test command: install what is missing, build, run the whole test suite; then
 # the network layer's tests again under AddressSanitizer (issue 5: servers, clients and the
 # video pipeline are threaded code). TELEAR_SKIP_ASAN=1 skips that step for local runs; CI
-# (.ci/run) always runs it.
+# (.ci/run) always runs it. Each stage's wall time is printed at the end (issue 20: the next
+# regression of the loop shows in every CI log).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+stage_names=()
+stage_seconds=()
+stage_start=0
+begin_stage() { stage_start=$(date +%s); echo "test.sh: == $1"; }
+end_stage() {
+  stage_names+=("$1")
+  stage_seconds+=($(($(date +%s) - stage_start)))
+}
+print_stages() {
+  echo "test.sh: stage wall times (s):"
+  local total=0
+  for i in "${!stage_names[@]}"; do
+    printf '  %-16s %5d\n' "${stage_names[$i]}" "${stage_seconds[$i]}"
+    total=$((total + stage_seconds[i]))
+  done
+  printf '  %-16s %5d\n' "total" "$total"
+}
+trap print_stages EXIT
+
+begin_stage "build"
 scripts/build.sh
+end_stage "build"
 build_dir=${TELEAR_BUILD_DIR:-build}
-ctest --test-dir "$build_dir" --output-on-failure -j 2
+# Tests wait on servers, heartbeats and the simulated robot's real-time motion as much as they
+# compute, so CTest runs more of them than there are cores (TELEAR_TEST_JOBS overrides).
+begin_stage "tests"
+ctest --test-dir "$build_dir" --output-on-failure -j "${TELEAR_TEST_JOBS:-3}"
+end_stage "tests"
 
 if [ "${TELEAR_SKIP_ASAN:-0}" = "1" ]; then
   echo "test.sh: AddressSanitizer step skipped (TELEAR_SKIP_ASAN=1)"
   exit 0
 fi
 asan_dir=${TELEAR_ASAN_BUILD_DIR:-build-asan}
+begin_stage "asan build"
 if [ ! -f "$asan_dir/build.ninja" ]; then
   # -O1 -g1: ASan's recommended optimisation with line tables only, to keep the 2-core
   # CI build short.
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
     -DTELEAR_SANITIZE=address -DTELEAR_BUILD_BENCH=OFF
 fi
-# Only the net test executables (tests/net/CMakeLists.txt), not the whole tree.
-cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target robot_server_test vision_server_test \
-  net_client_test
-# Leaks are errors; the suppressions name third-party libraries only (Mesa's EGL/llvmpipe,
-# LLVM), never telear code. robot_python_example and server_log_level run the telear binary,
-# which this step does not build (they ran above, uninstrumented).
+# Only the net test executable (tests/net/CMakeLists.txt): the network layer, the simulated
+# robot driver (core and geometry) and synthetic video -- no renderer, no simulated rig.
+cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target net_test
+end_stage "asan build"
+# Leaks are errors; the suppressions name third-party libraries only, never telear code.
+# robot_python_example and server_log_level run the telear binary, which this step does not
+# build (they ran above, uninstrumented).
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1"
 export LSAN_OPTIONS="suppressions=$(pwd)/scripts/sanitizers/lsan.supp:print_suppressions=0"
-ctest --test-dir "$asan_dir" --output-on-failure -j 2 -L net -E '^(robot_python_example|server_log_level)$'
+begin_stage "asan tests"
+ctest --test-dir "$asan_dir" --output-on-failure -j 2 -L '^net$' \
+  -E '^(robot_python_example|server_log_level)$'
+end_stage "asan tests"
