@@ -98,9 +98,12 @@ TEST_F(NearestIk, ASmallMoveStaysOnTheSameBranch) {
 }
 
 TEST_F(NearestIk, UsesTheTwoPiEquivalentOfTheWristJoints) {
-  Eigen::VectorXd q(6);
+  // Fixed-size vectors: a copied comma-initialised VectorXd draws GCC 12's
+  // -Wmaybe-uninitialized false positive at -O1 (the tests' optimisation).
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  Vector6d q;
   q << 0.1, -0.3, 0.2, radians_from_degrees(250.0), -0.6, radians_from_degrees(-240.0);
-  Eigen::VectorXd q_current = q;
+  Vector6d q_current = q;
   q_current[3] -= 0.02;
   q_current[5] += 0.02;
   const auto r = solve_ik_nearest(*model, tool_pose(*model, q), q_current);
@@ -110,9 +113,10 @@ TEST_F(NearestIk, UsesTheTwoPiEquivalentOfTheWristJoints) {
 }
 
 TEST_F(NearestIk, WristSingularityKeepsJoint4Still) {
-  Eigen::VectorXd q(6);
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  Vector6d q;
   q << 0.2, -0.4, 0.3, 0.3, 0.0, 0.2;
-  Eigen::VectorXd q_current = q;
+  Vector6d q_current = q;
   q_current[3] = 0.7;
   const auto r = solve_ik_nearest(*model, tool_pose(*model, q), q_current);
   ASSERT_TRUE(r) << r.error().message;
