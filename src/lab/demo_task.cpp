@@ -6,9 +6,8 @@
 #include <thread>
 #include <utility>
 
+#include "telear/core/clock.hpp"
 #include "telear/core/number_format.hpp"
-
-#include "seconds.hpp"
 
 namespace telear::lab {
 namespace {
@@ -27,7 +26,7 @@ Error phase_error(const std::string& phase, const std::string& message) {
 Status start(session::Session& session, SessionRecorder& recorder, const DemoTaskInputs& inputs) {
   const auto wait_start = Clock::now();
   while (!(session.view().real && session.view().frame)) {
-    if (seconds_since(wait_start) > inputs.connect_timeout_s) {
+    if (core::seconds_since(wait_start) > inputs.connect_timeout_s) {
       return Error{"no robot state or video from the servers after " +
                    core::format_number(inputs.connect_timeout_s) + " s"};
     }
@@ -246,7 +245,7 @@ Result<DemoTaskOutcome> run_demo_task(session::Session& session, SessionRecorder
   const double delay_s = inputs.delay_ms / 1000.0;
   bool execution_key = false, vr_key = false;
   while (session.executing()) {
-    const double t = seconds_since(exec_start);
+    const double t = core::seconds_since(exec_start);
     if (t > duration + 30) return phase_error("execution", "the execution did not finish in time");
     const bool in_window = t > 0.4 * duration && t < 0.4 * duration + 3.0;
     session.set_injected_video_delay(in_window ? delay_s : 0.0);

@@ -7,6 +7,7 @@
 
 #include "telear/core/angles.hpp"
 #include "telear/core/arm_body.hpp"
+#include "telear/core/clock.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/number_format.hpp"
@@ -30,8 +31,6 @@
 #include "telear/vision/observations_file.hpp"
 #include "telear/vision/overlay_accuracy.hpp"
 #include "telear/vision/registered_camera_file.hpp"
-
-#include "seconds.hpp"
 
 namespace telear::lab {
 namespace {
@@ -97,7 +96,7 @@ Result<ServerRegistration> register_through_servers(
   auto captured = session::capture_for_registration(model, robot, vision, capture);
   (void)robot.release_lease();
   if (!captured) return captured.error();
-  const double capture_s = seconds_since(start);
+  const double capture_s = core::seconds_since(start);
   auto registration = vision::register_captures(model, directory, "", marker);
   if (!registration) return Error{"register: " + registration.error().message};
   const vision::HandEyeResult& r = registration->result;
@@ -114,7 +113,7 @@ Result<ServerRegistration> register_through_servers(
   json["poses_used"] = r.views_used;
   json["frames_per_pose"] = options.registration_frames;
   json["capture_s"] = capture_s;
-  json["seconds"] = seconds_since(start);
+  json["seconds"] = core::seconds_since(start);
   for (auto [eye, e, baseline, t] :
        {std::tuple{"left", &accuracy.left, &r.baseline_left, &truth.left},
         std::tuple{"right", &accuracy.right, &r.baseline_right, &truth.right}}) {
@@ -376,7 +375,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   facts.vr_to_ar = session.display().vr_to_ar_switches();
   facts.switches = session.display().switches();
   facts.injected_delay_ms = options.delay_ms;
-  facts.seconds = seconds_since(demo_start);
+  facts.seconds = core::seconds_since(demo_start);
   if (Status s = write_demo_report(facts, options.out_dir); !s) return s.error();
 
   session.disconnect();
@@ -390,7 +389,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   result.video_warning = facts.recording.video_warning;
   result.key_frames = facts.recording.key_frames;
   result.calibration_cached = calibration->cached;
-  result.seconds = seconds_since(demo_start);
+  result.seconds = core::seconds_since(demo_start);
   return result;
 }
 

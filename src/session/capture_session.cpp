@@ -6,11 +6,10 @@
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
+#include "telear/core/clock.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/vision/calibration_file.hpp"
-
-#include "seconds.hpp"
 
 namespace telear::session {
 namespace {
@@ -81,7 +80,7 @@ std::shared_ptr<const net::DecodedStereoFrame> frame_after(net::VisionClient& vi
                                                            std::uint64_t after_id,
                                                            double timeout_s) {
   const auto start = Clock::now();
-  while (seconds_since(start) < timeout_s) {
+  while (core::seconds_since(start) < timeout_s) {
     if (auto frame = vision.latest_frame()) {
       const auto& f = **frame;
       if (f.frame_id > after_id && std::min(f.capture_ns_left, f.capture_ns_right) > after_ns) {
@@ -103,7 +102,7 @@ Result<std::vector<vision::CapturedFrame>> capture_pose_frames(net::VisionClient
   const std::int64_t rest_ns = rest.capture_client_ns();
   const auto start = Clock::now();
   while (static_cast<int>(frames.size()) < options.frames &&
-         seconds_since(start) < options.timeout_s) {
+         core::seconds_since(start) < options.timeout_s) {
     const auto frame = frame_after(vision, rest_ns, last_frame_id, 2.0);
     if (!frame) continue;
     last_frame_id = frame->frame_id;
@@ -191,7 +190,7 @@ Result<net::RobotStateSample> CaptureSession::wait_for_rest() {
   if (!state) return Error{"no robot state from the robot server within 5 s"};
   const auto start = Clock::now();
   std::uint64_t sequence = state->sequence;
-  while (seconds_since(start) < options_.rest_timeout_s) {
+  while (core::seconds_since(start) < options_.rest_timeout_s) {
     if (cancel_) return Error{"cancelled: the capture was closed"};
     if (state->state.estop) return Error{"the robot is e-stopped: " + state->state.estop_reason};
     if (state->state.mode == core::RobotMode::kIdle && state->state.trajectory_id.empty()) {

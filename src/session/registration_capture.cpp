@@ -23,8 +23,6 @@
 #include "telear/vision/hand_eye_registration.hpp"
 #include "telear/vision/registration_target.hpp"
 
-#include "seconds.hpp"
-
 namespace telear::session {
 namespace {
 
@@ -56,7 +54,7 @@ Result<net::RobotStateSample> move_to(const core::RobotModel& model, net::RobotC
   if (auto ack = robot.execute_plan(plan_id, *trajectory); !ack) return ack.error();
   const auto start = Clock::now();
   std::uint64_t sequence = state->sequence;
-  while (seconds_since(start) < options.pose_timeout_s) {
+  while (core::seconds_since(start) < options.pose_timeout_s) {
     const auto s = robot.wait_state(sequence, 1.0);
     if (!s) continue;
     sequence = s->sequence;

@@ -4,6 +4,7 @@
 // so stamps from the servers and a client on loopback compare directly; across machines they
 // differ by an offset that ClockOffsetEstimator (telear/net/clock_offset.hpp) estimates from Ping.
 
+#include <chrono>
 #include <cstdint>
 
 namespace telear::core {
@@ -16,6 +17,11 @@ inline double ns_to_s(std::int64_t ns) {
 }
 inline std::int64_t s_to_ns(double s) {
   return static_cast<std::int64_t>(s * 1e9);
+}
+
+// Seconds elapsed on the steady clock since `start`: the workflows' timeouts and durations.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace telear::core
