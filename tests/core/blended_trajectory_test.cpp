@@ -20,12 +20,7 @@
 namespace telear::core {
 namespace {
 
-Eigen::VectorXd deg(std::initializer_list<double> values) {
-  Eigen::VectorXd q(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (double v : values) q[i++] = radians_from_degrees(v);
-  return q;
-}
+using test::deg;
 
 JointWaypoint via(Eigen::VectorXd q, double min_duration = 0.0) {
   return JointWaypoint(std::move(q), min_duration, std::nullopt, true);

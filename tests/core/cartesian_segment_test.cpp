@@ -34,12 +34,7 @@ using ::testing::StartsWith;
 constexpr double kLineBoundM = 0.0001;  // 0.1 mm
 constexpr double kArcBoundRad = radians_from_degrees(0.1);
 
-Eigen::VectorXd deg(std::initializer_list<double> values) {
-  Eigen::VectorXd q(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (double v : values) q[i++] = radians_from_degrees(v);
-  return q;
-}
+using test::deg;
 
 JointWaypoint cartesian(Eigen::VectorXd q, double min_duration = 0.0) {
   JointWaypoint w(std::move(q), min_duration);

@@ -16,9 +16,9 @@ namespace telear::core {
 namespace {
 
 using test::dh_product;
+using test::kPi;
 using test::max_abs_diff;
 using ::testing::HasSubstr;
-constexpr double kPi = std::numbers::pi;
 
 // Largest |wrap(a_i - b_i)|: joint vectors equal modulo 2 pi.
 double max_angle_diff(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {

@@ -28,8 +28,8 @@
 namespace telear::core {
 namespace {
 
+using test::kPi;
 using ::testing::HasSubstr;
-constexpr double kPi = std::numbers::pi;
 
 RobotModelPtr shipped(const char* name) {
   auto d = load_robot_description({name, "", {}});

@@ -15,9 +15,9 @@
 namespace telear::core {
 namespace {
 
+using test::kPi;
 using test::max_abs_diff;
 using ::testing::HasSubstr;
-constexpr double kPi = std::numbers::pi;
 
 // Brute force: every 2 pi shift of every joint of every analytic solution, the nearest one
 // within the limits.

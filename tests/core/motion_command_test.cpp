@@ -23,12 +23,7 @@ using ::testing::StartsWith;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kTight = 1e-9;  // m and rad: what IK round trips reach
 
-Eigen::VectorXd deg(std::initializer_list<double> values) {
-  Eigen::VectorXd q(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (double v : values) q[i++] = radians_from_degrees(v);
-  return q;
-}
+using test::deg;
 
 double rotation_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return rotation_vector(a * b.transpose()).norm();

@@ -18,12 +18,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::MatchesRegex;
 
-Eigen::VectorXd deg(std::initializer_list<double> values) {
-  Eigen::VectorXd q(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (double v : values) q[i++] = radians_from_degrees(v);
-  return q;
-}
+using test::deg;
 
 // A pick-and-place on the PUMA written out in full (no random numbers, so that the golden
 // values below depend on nothing but telear's own arithmetic): approach, via points around

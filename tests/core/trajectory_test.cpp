@@ -21,12 +21,7 @@ using ::testing::HasSubstr;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-Eigen::VectorXd deg(std::initializer_list<double> values) {
-  Eigen::VectorXd q(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (double v : values) q[i++] = radians_from_degrees(v);
-  return q;
-}
+using test::deg;
 
 // [SECTION] The normalized trapezoid
 

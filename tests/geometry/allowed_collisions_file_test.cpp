@@ -4,6 +4,7 @@
 // block loads back to the matrix it was written from.
 
 #include "telear/geometry/allowed_collisions_file.hpp"
+#include "test_util/test_util.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -21,11 +22,7 @@ using ::testing::HasSubstr;
 
 const std::string kRobots = std::string(TELEAR_TEST_DATA_DIR) + "/robots";
 
-core::RobotDescription description(const std::string& robot) {
-  auto d = core::load_robot_description({robot, "", {}});
-  EXPECT_TRUE(d) << d.error().message;
-  return std::move(*d);
-}
+using test::robot_description;
 
 std::string read(const std::string& path) {
   std::ifstream in(path);
@@ -55,7 +52,7 @@ std::string robot_file(const test_files::TempDir& dir, const std::string& robot,
 TEST(AllowedCollisionsFile, TheShippedArmsStoreTheSampledMatrix) {
   for (const std::string robot : {"ur6", "arm7"}) {
     SCOPED_TRACE(robot);
-    const core::RobotDescription d = description(robot);
+    const core::RobotDescription d = robot_description(robot);
     ASSERT_TRUE(d.allowed_collisions) << robot << ".yaml stores no allowed_collisions:";
     auto sampled = sample_allowed_collisions(d);
     ASSERT_TRUE(sampled) << sampled.error().message;
@@ -96,7 +93,7 @@ TEST(AllowedCollisionsFile, TheBlockRoundTripsThroughTheRobotFile) {
   AllowedCollisionOptions options;
   options.samples = 50;
   options.allow_never = true;
-  auto sampled = sample_allowed_collisions(description("arm7"), {{}, options});
+  auto sampled = sample_allowed_collisions(robot_description("arm7"), {{}, options});
   ASSERT_TRUE(sampled) << sampled.error().message;
   AllowedCollisionMatrix m = *sampled;
   m.allow("link0", "hand", AllowedReason::kUser);
@@ -129,7 +126,7 @@ TEST(AllowedCollisionsFile, TheBlockRoundTripsThroughTheRobotFile) {
 TEST(AllowedCollisionsFile, SamplingRefusesBadOptions) {
   AllowedCollisionOptions options;
   options.samples = 0;
-  auto bad = sample_allowed_collisions(description("ur6"), {{}, options});
+  auto bad = sample_allowed_collisions(robot_description("ur6"), {{}, options});
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().message, "allowed collisions: samples must be at least 1, got 0");
 }

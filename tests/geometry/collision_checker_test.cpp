@@ -13,6 +13,7 @@
 #include "telear/core/pose.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
 #include "test_util/mesh_test_files.hpp"
+#include "test_util/test_util.hpp"
 
 namespace telear::geometry {
 namespace {
@@ -188,14 +189,10 @@ TEST(CollisionCheckerTest, AMissingWorkspaceMeshIsRefusedNamingTheObject) {
   EXPECT_THAT(workspace.error().message, HasSubstr(path + ": object 'junk': "));
 }
 
-core::RobotDescription description(const std::string& robot) {
-  auto d = core::load_robot_description({robot, "", {}});
-  EXPECT_TRUE(d) << d.error().message;
-  return std::move(*d);
-}
+using test::robot_description;
 
 CollisionChecker arm_checker(const std::string& robot, const core::Workspace& workspace = {}) {
-  auto checker = make_collision_checker(description(robot), workspace);
+  auto checker = make_collision_checker(robot_description(robot), workspace);
   EXPECT_TRUE(checker) << checker.error().message;
   return std::move(*checker);
 }
@@ -274,7 +271,7 @@ TEST(CollisionCheckerTest, AnObjectHeldInTheGripperMovesWithItAndIsChecked) {
   Eigen::VectorXd q(6);
   q << 0, 0.5, -0.5, 0, 1.5708, 0;
   // A plate across the tool's z axis, 0.3 m out: beyond the hand's reach.
-  auto robot = description("puma560");
+  auto robot = robot_description("puma560");
   const Eigen::Isometry3d T_base_tool = core::tool_pose(*robot.model, q);
   Eigen::Isometry3d T_plate = T_base_tool;
   T_plate.translation() += 0.3 * T_base_tool.linear().col(2);
@@ -309,7 +306,7 @@ TEST(AllowedCollisionsTest, TheRobotFilesMatrixIsUsedAsWritten) {
   const std::string path = dir.write(
       "ur6_acm.yaml", "urdf: " + robots + "/telear_ur6/urdf/ur6.urdf\npackage_paths: [" + robots +
                           "]\ntip: tcp\nallowed_collisions:\n  - [base_link, upper_arm_link]\n");
-  auto checker = make_collision_checker(description(path), core::Workspace{});
+  auto checker = make_collision_checker(robot_description(path), core::Workspace{});
   ASSERT_TRUE(checker) << checker.error().message;
   EXPECT_TRUE(checker->allowed().allowed("upper_arm_link", "base_link"));
   EXPECT_TRUE(checker->allowed().allowed("base_link", "shoulder_link"));  // adjacent, added

@@ -48,7 +48,7 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
-Eigen::Vector3d position(const core::Mesh& mesh, std::uint32_t index) {
+Eigen::Vector3d vertex_position(const core::Mesh& mesh, std::uint32_t index) {
   const float* p = mesh.vertices[index].position;
   return {p[0], p[1], p[2]};
 }
@@ -59,8 +59,8 @@ double largest_deviation_from_sphere(const core::Mesh& mesh) {
   double worst = 0.0;
   for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
     const Eigen::Vector3d nearest = closest_on_triangle(
-        Eigen::Vector3d::Zero(), position(mesh, mesh.triangles[t]),
-        position(mesh, mesh.triangles[t + 1]), position(mesh, mesh.triangles[t + 2]));
+        Eigen::Vector3d::Zero(), vertex_position(mesh, mesh.triangles[t]),
+        vertex_position(mesh, mesh.triangles[t + 1]), vertex_position(mesh, mesh.triangles[t + 2]));
     worst = std::max(worst, kRadius - nearest.norm());
   }
   return worst;

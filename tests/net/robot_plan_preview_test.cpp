@@ -19,7 +19,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-RobotClientOptions client_options(const RobotServer& server, const std::string& token = kToken) {
+RobotClientOptions preview_client_options(const RobotServer& server,
+                                          const std::string& token = kToken) {
   RobotClientOptions options;
   options.address = server.address();
   options.token = token;
@@ -61,7 +62,7 @@ TEST(RobotPlanPreview, TheServersHashIsTheInProcessOneAndExecutePlanRunsIt) {
   const std::string hash = *core::plan_hash(*trajectory);
 
   // An observer (no token, no lease) may preview.
-  RobotClient observer(client_options(*server, ""));
+  RobotClient observer(preview_client_options(*server, ""));
   auto preview = observer.preview_plan("preview-1", waypoints, half_speed(), true);
   ASSERT_TRUE(preview) << preview.error().message;
   EXPECT_EQ(preview->plan_id, "preview-1");
@@ -98,7 +99,7 @@ TEST(RobotPlanPreview, TheServersHashIsTheInProcessOneAndExecutePlanRunsIt) {
   EXPECT_EQ(read_state(*stub).mode(), v1::ROBOT_MODE_IDLE);  // nothing moved
 
   // The lease holder sends the waypoints with the previewed hash: exactly that motion runs.
-  RobotClient operator_client(client_options(*server));
+  RobotClient operator_client(preview_client_options(*server));
   ASSERT_TRUE(operator_client.acquire_lease().ok());
   auto ack = operator_client.execute_plan("preview-1", waypoints, half_speed(), preview->plan_hash);
   ASSERT_TRUE(ack) << ack.error().message;
@@ -224,7 +225,7 @@ TEST(RobotPlanPreview, ALongPlanIsPreviewedWithoutItsSamples) {
   auto stub = stub_for(*server);
   std::vector<core::JointWaypoint> waypoints = via_waypoints(q_of(read_state(*stub)));
   waypoints.back().min_duration = 400.0;  // 40,000 samples at 100 Hz, over kMaxPreviewSamples
-  RobotClient observer(client_options(*server, ""));
+  RobotClient observer(preview_client_options(*server, ""));
   auto preview = observer.preview_plan("long", waypoints, half_speed(), true);
   ASSERT_TRUE(preview) << preview.error().message;
   EXPECT_TRUE(preview->samples_omitted);

@@ -245,7 +245,7 @@ TEST(VisionServer, CameraInfoWithoutCalibration) {
 // The PUMA rig's cameras (the simulated rig renders with these intrinsics and poses), read as a
 // stereo camera file: the net tests stay free of the simulator (the ASan step builds them alone).
 vision::StereoCameraModel puma_rig_cameras() {
-  auto file = vision::load_camera_file(test::data_path("cameras/puma560_stereo.yaml"));
+  auto file = vision::load_camera_file(telear::test::data_path("cameras/puma560_stereo.yaml"));
   EXPECT_TRUE(file) << file.error().message;
   EXPECT_TRUE(file && file->is_stereo());
   if (!file || !file->is_stereo()) return {};

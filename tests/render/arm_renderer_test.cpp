@@ -19,7 +19,7 @@ namespace {
 
 using test::GlTest;
 
-const Eigen::Vector3i kBlack(0, 0, 0);
+using test::kBlack;
 constexpr int kW = 320, kH = 240;
 constexpr float kFovy = std::numbers::pi_v<float> / 4;  // 45 degrees
 

@@ -22,7 +22,7 @@ namespace {
 using test::GlTest;
 using ::testing::HasSubstr;
 
-const Eigen::Vector3i kBlack(0, 0, 0);
+using test::kBlack;
 
 class GlBasicsTest : public GlTest {
  protected:

@@ -26,6 +26,9 @@ class GlTest : public ::testing::Test {
 // Pixels whose RGB differs from `background` by more than `tolerance` in any channel.
 bool differs(const core::Image& image, int x, int y, const Eigen::Vector3i& background,
              int tolerance = 8);
+// The background colour of the renderer tests' clears.
+inline const Eigen::Vector3i kBlack(0, 0, 0);
+
 long count_covered(const core::Image& image, const Eigen::Vector3i& background);
 
 // Bounding box of the covered pixels: {min_x, min_y, max_x, max_y}; min > max when none.

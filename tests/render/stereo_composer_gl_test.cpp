@@ -14,7 +14,7 @@ namespace {
 
 using test::GlTest;
 
-constexpr int kW = 64, kH = 48;
+constexpr int kEyeW = 64, kEyeH = 48;
 
 // Fills the target's top-left (or bottom-right) 16x12 square white over `colour`.
 void paint_eye(const OffscreenTarget& eye, const Eigen::Vector3f& colour, bool top_left) {
@@ -22,9 +22,9 @@ void paint_eye(const OffscreenTarget& eye, const Eigen::Vector3f& colour, bool t
   glEnable(GL_SCISSOR_TEST);
   // GL rows go up: the image's top rows are the framebuffer's last ones.
   if (top_left) {
-    glScissor(4, kH - 4 - 12, 16, 12);
+    glScissor(4, kEyeH - 4 - 12, 16, 12);
   } else {
-    glScissor(kW - 4 - 16, 4, 16, 12);
+    glScissor(kEyeW - 4 - 16, 4, 16, 12);
   }
   glClearColor(1, 1, 1, 1);
   glClear(GL_COLOR_BUFFER_BIT);
@@ -40,8 +40,8 @@ class StereoComposerTest : public GlTest {
   void SetUp() override {
     GlTest::SetUp();
     if (HasFatalFailure()) return;
-    auto l = OffscreenTarget::create(kW, kH);
-    auto r = OffscreenTarget::create(kW, kH);
+    auto l = OffscreenTarget::create(kEyeW, kEyeH);
+    auto r = OffscreenTarget::create(kEyeW, kEyeH);
     auto c = StereoComposer::create();
     ASSERT_TRUE(l) << l.error().message;
     ASSERT_TRUE(r) << r.error().message;
@@ -54,7 +54,7 @@ class StereoComposerTest : public GlTest {
   }
 
   core::Image compose(StereoLayout layout) {
-    const ComposedSize size = composed_size(layout, kW, kH);
+    const ComposedSize size = composed_size(layout, kEyeW, kEyeH);
     auto out = OffscreenTarget::create(size.width, size.height);
     EXPECT_TRUE(out);
     out->clear(0, 1, 0, 1);  // green: any pixel left uncovered shows
@@ -66,8 +66,8 @@ class StereoComposerTest : public GlTest {
   void expect_region_is_eye(const core::Image& out, int x0, int y0, const core::Image& eye,
                             const std::string& what) {
     int mismatches = 0;
-    for (int y = 0; y < kH; ++y) {
-      for (int x = 0; x < kW; ++x) {
+    for (int y = 0; y < kEyeH; ++y) {
+      for (int x = 0; x < kEyeW; ++x) {
         if (rgb(out, x0 + x, y0 + y) != rgb(eye, x, y)) ++mismatches;
       }
     }
@@ -81,39 +81,39 @@ class StereoComposerTest : public GlTest {
 TEST_F(StereoComposerTest, EyesReadBackAsPainted) {
   const core::Image l = left.read_rgb();
   EXPECT_EQ(rgb(l, 5, 5), Eigen::Vector3i(255, 255, 255));  // top-left square
-  EXPECT_EQ(rgb(l, kW - 6, kH - 6), Eigen::Vector3i(128, 0, 0));
+  EXPECT_EQ(rgb(l, kEyeW - 6, kEyeH - 6), Eigen::Vector3i(128, 0, 0));
   const core::Image r = right.read_rgb();
-  EXPECT_EQ(rgb(r, kW - 6, kH - 6), Eigen::Vector3i(255, 255, 255));  // bottom-right square
+  EXPECT_EQ(rgb(r, kEyeW - 6, kEyeH - 6), Eigen::Vector3i(255, 255, 255));  // bottom-right square
   EXPECT_EQ(rgb(r, 5, 5), Eigen::Vector3i(0, 0, 128));
 }
 
 TEST_F(StereoComposerTest, SideBySidePutsTheLeftEyeOnTheLeft) {
   const core::Image out = compose(StereoLayout::kSideBySide);
-  ASSERT_EQ(out.width, 2 * kW);
-  ASSERT_EQ(out.height, kH);
+  ASSERT_EQ(out.width, 2 * kEyeW);
+  ASSERT_EQ(out.height, kEyeH);
   expect_region_is_eye(out, 0, 0, left.read_rgb(), "left half = left eye");
-  expect_region_is_eye(out, kW, 0, right.read_rgb(), "right half = right eye");
+  expect_region_is_eye(out, kEyeW, 0, right.read_rgb(), "right half = right eye");
 }
 
 TEST_F(StereoComposerTest, TopBottomPutsTheLeftEyeOnTop) {
   const core::Image out = compose(StereoLayout::kTopBottom);
-  ASSERT_EQ(out.width, kW);
-  ASSERT_EQ(out.height, 2 * kH);
+  ASSERT_EQ(out.width, kEyeW);
+  ASSERT_EQ(out.height, 2 * kEyeH);
   expect_region_is_eye(out, 0, 0, left.read_rgb(), "top half = left eye");
-  expect_region_is_eye(out, 0, kH, right.read_rgb(), "bottom half = right eye");
+  expect_region_is_eye(out, 0, kEyeH, right.read_rgb(), "bottom half = right eye");
 }
 
 TEST_F(StereoComposerTest, AnaglyphIsLeftInRedAndRightInCyan) {
   const core::Image out = compose(StereoLayout::kAnaglyph);
-  ASSERT_EQ(out.width, kW);
+  ASSERT_EQ(out.width, kEyeW);
   // Left eye's white square: red = 255; right eye there is dark blue: green 0, blue 128.
   EXPECT_EQ(rgb(out, 8, 8), Eigen::Vector3i(255, 0, 128));
   // Right eye's white square: cyan 255, 255; left eye there is dark red: luminance 0.299*128.
-  EXPECT_NEAR(rgb(out, kW - 8, kH - 8).x(), 38, 1);
-  EXPECT_EQ(rgb(out, kW - 8, kH - 8).tail<2>(), Eigen::Vector2i(255, 255));
+  EXPECT_NEAR(rgb(out, kEyeW - 8, kEyeH - 8).x(), 38, 1);
+  EXPECT_EQ(rgb(out, kEyeW - 8, kEyeH - 8).tail<2>(), Eigen::Vector2i(255, 255));
   // Elsewhere: red from the left eye's luminance, blue from the right eye.
-  EXPECT_NEAR(rgb(out, kW / 2, kH / 2).x(), 38, 1);
-  EXPECT_EQ(rgb(out, kW / 2, kH / 2).z(), 128);
+  EXPECT_NEAR(rgb(out, kEyeW / 2, kEyeH / 2).x(), 38, 1);
+  EXPECT_EQ(rgb(out, kEyeW / 2, kEyeH / 2).z(), 128);
 }
 
 TEST_F(StereoComposerTest, LayoutNamesAndSizes) {
@@ -130,7 +130,7 @@ TEST_F(StereoComposerTest, LayoutNamesAndSizes) {
 TEST_F(StereoComposerTest, PageFlippingNeedsAStereoVisualAndFallsBackCleanly) {
   // A headless context has no quad-buffer visual: an error, nothing drawn.
   const Status status = composer.present_page_flipped(*context(), left.colour_texture(),
-                                                      right.colour_texture(), kW, kH);
+                                                      right.colour_texture(), kEyeW, kEyeH);
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.error().message.find("has no quad-buffer stereo visual"), std::string::npos)
       << status.error().message;

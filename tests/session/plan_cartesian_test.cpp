@@ -21,11 +21,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-Eigen::VectorXd q6(double a, double b, double c, double d, double e, double f) {
-  Eigen::VectorXd q(6);
-  q << a, b, c, d, e, f;
-  return q;
-}
+using test::q6;
 
 // The IK solution nearest q of q's tool pose moved by `offset` (base frame).
 Eigen::VectorXd moved(const core::RobotModel& model, const Eigen::VectorXd& q,

@@ -9,17 +9,14 @@
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/session/plan_collision.hpp"
 #include "telear/session/plan_validation.hpp"
+#include "test_util/test_util.hpp"
 
 namespace telear::session {
 namespace {
 
 using ::testing::HasSubstr;
 
-Eigen::VectorXd q6(double a, double b, double c, double d, double e, double f) {
-  Eigen::VectorXd q(6);
-  q << a, b, c, d, e, f;
-  return q;
-}
+using test::q6;
 
 struct Scene {
   core::RobotDescription description;

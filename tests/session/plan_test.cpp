@@ -13,11 +13,7 @@
 namespace telear::session {
 namespace {
 
-Eigen::VectorXd q6(double a, double b, double c, double d, double e, double f) {
-  Eigen::VectorXd q(6);
-  q << a, b, c, d, e, f;
-  return q;
-}
+using test::q6;
 
 Plan three_waypoints() {
   Plan plan(test::puma560());

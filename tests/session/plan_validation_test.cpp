@@ -7,11 +7,7 @@
 namespace telear::session {
 namespace {
 
-Eigen::VectorXd q6(double a, double b, double c, double d, double e, double f) {
-  Eigen::VectorXd q(6);
-  q << a, b, c, d, e, f;
-  return q;
-}
+using test::q6;
 
 Plan good_plan() {
   Plan plan(test::puma560());

@@ -20,6 +20,7 @@
 #include "telear/session/plan_collision.hpp"
 #include "telear/session/session.hpp"
 #include "telear/sim/stereo_rig.hpp"
+#include "test_util/test_util.hpp"
 
 namespace telear::session {
 namespace {
@@ -27,11 +28,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-Eigen::VectorXd q6(double a, double b, double c, double d, double e, double f) {
-  Eigen::VectorXd q(6);
-  q << a, b, c, d, e, f;
-  return q;
-}
+using test::q6;
 
 // From the zero pose down into the PUMA's table top (plan_collision_test.cpp).
 const Eigen::VectorXd kZero = q6(0, 0, 0, 0, 0, 0);

@@ -28,12 +28,7 @@ namespace telear::sim {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDt = 0.001;  // the default servo period
 
-inline Eigen::VectorXd deg(std::initializer_list<double> values) {
-  Eigen::VectorXd q(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (double v : values) q[i++] = core::radians_from_degrees(v);
-  return q;
-}
+using test::deg;
 
 // Watches every period's state: speeds against the max velocities, the change of velocity
 // over one period against the max accelerations, positions against the limits.

@@ -10,6 +10,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "telear/core/angles.hpp"
 #include "test_util/temp_dir.hpp"
 
 #include "telear/core/random_configuration.hpp"
@@ -18,7 +19,31 @@
 namespace telear::test {
 
 std::string data_path(const std::string& relative) {
-  return std::string(TELEAR_TEST_DATA_DIR) + "/" + relative;
+  // Appended piece by piece: GCC 12 at -O1 reports a false -Wstringop-overflow for the
+  // chained operator+ on a string literal.
+  std::string path = TELEAR_TEST_DATA_DIR;
+  path += '/';
+  path += relative;
+  return path;
+}
+
+Eigen::VectorXd deg(std::initializer_list<double> values) {
+  Eigen::VectorXd q(static_cast<Eigen::Index>(values.size()));
+  Eigen::Index i = 0;
+  for (double v : values) q[i++] = core::radians_from_degrees(v);
+  return q;
+}
+
+Eigen::VectorXd q6(double a, double b, double c, double d, double e, double f) {
+  Eigen::VectorXd q(6);
+  q << a, b, c, d, e, f;
+  return q;
+}
+
+core::RobotDescription robot_description(const std::string& robot) {
+  auto description = core::load_robot_description({robot, "", {}});
+  EXPECT_TRUE(description) << description.error().message;
+  return std::move(*description);
 }
 
 core::RobotModelPtr puma560() {

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "rendered_pattern.hpp"
+#include "synthetic_observations.hpp"
 #include "synthetic_views.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/calibration_images.hpp"
@@ -25,14 +26,12 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-CalibrationPattern board() {
-  return *parse_calibration_pattern("chessboard:9x6:0.03");
-}
+using test::chessboard_9x6;
 
 void write_board(const std::string& path, double width, double tilt, double roll,
                  cv::Size size = {640, 480}) {
-  const cv::Matx33d H = test::view_homography(board(), size, width, tilt, roll);
-  ASSERT_TRUE(cv::imwrite(path, test::render_pattern(board(), H, size)));
+  const cv::Matx33d H = test::view_homography(chessboard_9x6(), size, width, tilt, roll);
+  ASSERT_TRUE(cv::imwrite(path, test::render_pattern(chessboard_9x6(), H, size)));
 }
 
 std::vector<std::string> files_in(const std::string& dir) {
@@ -68,7 +67,7 @@ TEST(CalibrationImages, SkipsImagesWithoutThePatternCorruptOrOfAnotherSizeAndSay
 
   std::vector<DetectionProgress> progress;
   const auto result =
-      detect_in_images(*expand_image_glob(dir + "/*.png", "--left"), board(),
+      detect_in_images(*expand_image_glob(dir + "/*.png", "--left"), chessboard_9x6(),
                        [&progress](const DetectionProgress& p) { progress.push_back(p); });
   ASSERT_TRUE(result.ok()) << result.error().message;
   EXPECT_EQ(result->image_size, cv::Size(640, 480));
@@ -97,7 +96,7 @@ TEST(CalibrationImages, SkipsImagesWithoutThePatternCorruptOrOfAnotherSizeAndSay
   EXPECT_THAT(progress[1].outcome, HasSubstr("no pattern found"));
 
   // Nothing decodable at all is an error, not an empty calibration.
-  const auto nothing = detect_in_images({dir + "/03.png"}, board());
+  const auto nothing = detect_in_images({dir + "/03.png"}, chessboard_9x6());
   ASSERT_FALSE(nothing.ok());
   EXPECT_THAT(nothing.error().message, HasSubstr("none of the 1 images could be decoded"));
 }
@@ -113,7 +112,7 @@ TEST(CalibrationImages, PairsNeedEqualCountsAndBothImages) {
 
   const auto left = *expand_image_glob(dir + "/left*.png", "--left");
   const auto right = *expand_image_glob(dir + "/right*.png", "--right");
-  const auto unequal = detect_in_image_pairs(left, right, board());
+  const auto unequal = detect_in_image_pairs(left, right, chessboard_9x6());
   ASSERT_FALSE(unequal.ok());
   EXPECT_EQ(unequal.error().message,
             "3 left images but 2 right images; every left image needs the right "
@@ -122,7 +121,7 @@ TEST(CalibrationImages, PairsNeedEqualCountsAndBothImages) {
 
   std::vector<std::string> progress;
   const auto pairs = detect_in_image_pairs(
-      {left[0], left[1]}, right, board(),
+      {left[0], left[1]}, right, chessboard_9x6(),
       [&progress](const DetectionProgress& p) { progress.push_back(p.name + ": " + p.outcome); });
   ASSERT_TRUE(pairs.ok()) << pairs.error().message;
   ASSERT_EQ(pairs->views.size(), 1u);
@@ -146,9 +145,9 @@ TEST(CalibrationImages, PairsNeedEqualCountsAndBothImages) {
 StereoCalibration synthetic_calibration() {
   std::mt19937_64 rng(42);
   const test::SyntheticRig rig = test::default_rig();
-  const auto poses = test::random_pattern_poses(rig, board(), 8, rng);
-  auto result =
-      calibrate_stereo(board(), test::stereo_views(rig, board(), poses, 0.1, rng), {640, 480});
+  const auto poses = test::random_pattern_poses(rig, chessboard_9x6(), 8, rng);
+  auto result = calibrate_stereo(
+      chessboard_9x6(), test::stereo_views(rig, chessboard_9x6(), poses, 0.1, rng), {640, 480});
   EXPECT_TRUE(result.ok());
   return *result;
 }
@@ -158,7 +157,7 @@ TEST(CalibrationFile, StereoYamlReadsBackAsCamerasAndCarriesTheStereoExtras) {
   test_files::TempDir tmp("calib_yaml");
   const std::string dir = tmp.string();
   const std::string path = dir + "/stereo.yaml";
-  ASSERT_TRUE(write_files_atomically({{path, stereo_calibration_yaml(c, board())}}).ok());
+  ASSERT_TRUE(write_files_atomically({{path, stereo_calibration_yaml(c, chessboard_9x6())}}).ok());
   EXPECT_EQ(files_in(dir), std::vector<std::string>{"stereo.yaml"});  // no temporaries left
 
   const auto file = load_camera_file(path);
@@ -242,10 +241,11 @@ TEST(CalibrationFile, RosStereoPairAndXmlKeepTheGeometryOfEveryModel) {
     // Seed 3, 12 views: with seed 42's 10 views cv::fisheye::stereoCalibrate's initialisation
     // stops on an assertion (abs_max < threshold), which is not what this test is about.
     std::mt19937_64 rng(3);
-    const auto poses = test::random_pattern_poses(rig, board(), 12, rng);
+    const auto poses = test::random_pattern_poses(rig, chessboard_9x6(), 12, rng);
     StereoCalibrationOptions options;
     options.calibration.model = model;
-    auto c = calibrate_stereo(board(), test::stereo_views(rig, board(), poses, 0.1, rng),
+    auto c = calibrate_stereo(chessboard_9x6(),
+                              test::stereo_views(rig, chessboard_9x6(), poses, 0.1, rng),
                               {640, 480}, options);
     ASSERT_TRUE(c.ok()) << c.error().message;
     ASSERT_EQ(c->cameras.left.kc.model, model);
@@ -256,7 +256,7 @@ TEST(CalibrationFile, RosStereoPairAndXmlKeepTheGeometryOfEveryModel) {
     const std::string xml = dir + "/stereo.xml";
     ASSERT_TRUE(write_files_atomically({{left, ros_stereo_camera_info_yaml(*c, false, "left")},
                                         {right, ros_stereo_camera_info_yaml(*c, true, "right")},
-                                        {xml, stereo_calibration_yaml(*c, board())}})
+                                        {xml, stereo_calibration_yaml(*c, chessboard_9x6())}})
                     .ok());
     const auto pair = load_camera_file(left + "," + right);
     ASSERT_TRUE(pair.ok()) << pair.error().message;
@@ -309,7 +309,7 @@ TEST(CalibrationFile, UnwritablePathsFailEarlyAndLeaveNothingBehind) {
 
 TEST(CalibrationReport, JsonHasEveryParameterWithItsStandardDeviationAndEveryView) {
   CalibrationReport report;
-  report.pattern = board();
+  report.pattern = chessboard_9x6();
   report.image_size = {640, 480};
   report.stereo = synthetic_calibration();
   report.views_given = 9;
@@ -352,18 +352,18 @@ TEST(CalibrationReport, JsonHasEveryParameterWithItsStandardDeviationAndEveryVie
 TEST(CalibrationReport, MonoReportListsPosesAndOutliers) {
   std::mt19937_64 rng(7);
   const test::SyntheticRig rig = test::default_rig();
-  const auto poses = test::random_pattern_poses(rig, board(), 6, rng);
+  const auto poses = test::random_pattern_poses(rig, chessboard_9x6(), 6, rng);
   std::vector<PatternView> views;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     views.push_back({"img" + std::to_string(i) + ".png",
-                     test::project_pattern(rig.left, poses[i], board(), 0.1, rng)});
+                     test::project_pattern(rig.left, poses[i], chessboard_9x6(), 0.1, rng)});
   }
   for (cv::Point2f& p : views[2].image_points) p.y += 1.5f * std::sin(p.x / 60.0f);
   CalibrationReport report;
-  report.pattern = board();
+  report.pattern = chessboard_9x6();
   report.image_size = {640, 480};
   report.views_given = 6;
-  auto mono = calibrate_mono(board(), views, {640, 480});
+  auto mono = calibrate_mono(chessboard_9x6(), views, {640, 480});
   ASSERT_TRUE(mono.ok()) << mono.error().message;
   report.mono = *mono;
   const auto j = nlohmann::json::parse(calibration_report_json(report));

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <opencv2/calib3d.hpp>
 
+#include "synthetic_observations.hpp"
 #include "synthetic_views.hpp"
 #include "telear/vision/mono_calibration.hpp"
 #include "telear/vision/stereo_calibration.hpp"
@@ -18,9 +19,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-CalibrationPattern board() {
-  return *parse_calibration_pattern("chessboard:9x6:0.03");
-}
+using test::chessboard_9x6;
 
 std::vector<PatternView> left_views(const std::vector<StereoPatternView>& stereo) {
   std::vector<PatternView> views;
@@ -37,9 +36,9 @@ struct Synthetic {
 Synthetic synthetic(int count, double noise_px, std::uint64_t seed) {
   Synthetic s;
   std::mt19937_64 rng(seed);
-  s.poses = test::random_pattern_poses(s.rig, board(), count, rng);
+  s.poses = test::random_pattern_poses(s.rig, chessboard_9x6(), count, rng);
   EXPECT_EQ(static_cast<int>(s.poses.size()), count);
-  s.views = test::stereo_views(s.rig, board(), s.poses, noise_px, rng);
+  s.views = test::stereo_views(s.rig, chessboard_9x6(), s.poses, noise_px, rng);
   return s;
 }
 
@@ -88,7 +87,7 @@ constexpr double kNoiseRms = 0.1 * M_SQRT2;
 
 TEST(MonoCalibration, RecoversTheTrueCameraFromNoisyCorners) {
   const Synthetic s = synthetic(20, 0.1, 20240601);
-  const auto result = calibrate_mono(board(), left_views(s.views), {640, 480});
+  const auto result = calibrate_mono(chessboard_9x6(), left_views(s.views), {640, 480});
   ASSERT_TRUE(result.ok()) << result.error().message;
   print_camera("mono, 20 views, 0.1 px noise", s.rig.left, result->camera, result->std_dev);
   std::printf("  rms %.4f px\n", result->rms_px);
@@ -108,7 +107,7 @@ TEST(MonoCalibration, RecoversTheTrueCameraFromNoisyCorners) {
 
 TEST(MonoCalibration, NoiseFreeCornersGiveTheTruthExactly) {
   const Synthetic s = synthetic(8, 0.0, 7);
-  const auto result = calibrate_mono(board(), left_views(s.views), {640, 480});
+  const auto result = calibrate_mono(chessboard_9x6(), left_views(s.views), {640, 480});
   ASSERT_TRUE(result.ok()) << result.error().message;
   EXPECT_LT(result->rms_px, 1e-3);
   EXPECT_NEAR(result->camera.fx, s.rig.left.fx, 0.01);
@@ -139,7 +138,7 @@ TEST(MonoCalibration, RejectsAnOutlierViewAndSaysWhy) {
   // View 5's corners displaced by a smooth 2 px warp (a bent board, a wrong detection).
   for (cv::Point2f& p : s.views[5].left_points)
     p += cv::Point2f(0.004f * (p.y - 240.0f), 1.5f * std::sin(p.x / 60.0f));
-  const auto result = calibrate_mono(board(), left_views(s.views), {640, 480});
+  const auto result = calibrate_mono(chessboard_9x6(), left_views(s.views), {640, 480});
   ASSERT_TRUE(result.ok()) << result.error().message;
   ASSERT_EQ(result->rejected.size(), 1u);
   EXPECT_EQ(result->rejected[0].name, "view05_left");
@@ -151,7 +150,7 @@ TEST(MonoCalibration, RejectsAnOutlierViewAndSaysWhy) {
 
   CalibrationOptions keep_all;
   keep_all.outlier_factor = 0.0;
-  const auto kept = calibrate_mono(board(), left_views(s.views), {640, 480}, keep_all);
+  const auto kept = calibrate_mono(chessboard_9x6(), left_views(s.views), {640, 480}, keep_all);
   ASSERT_TRUE(kept.ok());
   EXPECT_TRUE(kept->rejected.empty());
   EXPECT_GT(kept->rms_px, 1.5 * result->rms_px);
@@ -161,31 +160,31 @@ TEST(MonoCalibration, BadInputIsAnErrorThatSaysWhatToDo) {
   const Synthetic s = synthetic(5, 0.1, 3);
   std::vector<PatternView> views = left_views(s.views);
 
-  auto few = calibrate_mono(board(), {views[0], views[1]}, {640, 480});
+  auto few = calibrate_mono(chessboard_9x6(), {views[0], views[1]}, {640, 480});
   ASSERT_FALSE(few.ok());
   EXPECT_THAT(few.error().message,
               HasSubstr("too few views: 2 usable views (need at least 3); capture more images"));
 
   std::vector<PatternView> short_view = views;
   short_view[2].image_points.pop_back();
-  auto wrong = calibrate_mono(board(), short_view, {640, 480});
+  auto wrong = calibrate_mono(chessboard_9x6(), short_view, {640, 480});
   ASSERT_FALSE(wrong.ok());
   EXPECT_EQ(wrong.error().message,
             "view 'view02_left' has 53 points but pattern chessboard:9x6:0.03 has 54");
 
-  auto size = calibrate_mono(board(), views, {0, 480});
+  auto size = calibrate_mono(chessboard_9x6(), views, {0, 480});
   ASSERT_FALSE(size.ok());
   EXPECT_THAT(size.error().message, HasSubstr("image size 0x480 is not positive"));
 
   CalibrationOptions options;
   options.outlier_factor = 0.5;
-  auto bad_options = calibrate_mono(board(), views, {640, 480}, options);
+  auto bad_options = calibrate_mono(chessboard_9x6(), views, {640, 480}, options);
   ASSERT_FALSE(bad_options.ok());
   EXPECT_THAT(bad_options.error().message, HasSubstr("outlier_factor must be 0"));
 
   // Every view the same: Zhang's method has nothing to work with.
   std::vector<PatternView> same(4, views[0]);
-  auto degenerate = calibrate_mono(board(), same, {640, 480});
+  auto degenerate = calibrate_mono(chessboard_9x6(), same, {640, 480});
   if (degenerate.ok()) {
     // OpenCV may return a solution for identical views; it cannot be the truth.
     EXPECT_GT(std::abs(degenerate->camera.fx - s.rig.left.fx) +
@@ -198,7 +197,7 @@ TEST(MonoCalibration, BadInputIsAnErrorThatSaysWhatToDo) {
 
 TEST(StereoCalibration, RecoversTheRigAndTheBaseline) {
   const Synthetic s = synthetic(20, 0.1, 20240601);
-  const auto result = calibrate_stereo(board(), s.views, {640, 480});
+  const auto result = calibrate_stereo(chessboard_9x6(), s.views, {640, 480});
   ASSERT_TRUE(result.ok()) << result.error().message;
   print_camera("stereo left, 20 pairs, 0.1 px noise", s.rig.left, result->cameras.left,
                result->left_std_dev);
@@ -258,7 +257,7 @@ TEST(StereoCalibration, MeetsTheAccuracyTargetsOverSeeds) {
   int cc_count = 0;
   for (std::uint64_t seed : {101u, 102u, 103u, 104u, 105u}) {
     const Synthetic s = synthetic(20, 0.1, seed);
-    const auto r = calibrate_stereo(board(), s.views, {640, 480});
+    const auto r = calibrate_stereo(chessboard_9x6(), s.views, {640, 480});
     ASSERT_TRUE(r.ok()) << r.error().message;
     double fx = 0.0, fy = 0.0, cc = 0.0;
     for (const auto& [truth, estimate] :
@@ -291,8 +290,8 @@ TEST(StereoCalibration, JointRefinementIsAtLeastAsAccurateAsFixedMonoIntrinsics)
     const Synthetic s = synthetic(12, 0.1, seed);
     StereoCalibrationOptions fixed;
     fixed.refine_intrinsics = false;
-    const auto a = calibrate_stereo(board(), s.views, {640, 480});
-    const auto b = calibrate_stereo(board(), s.views, {640, 480}, fixed);
+    const auto a = calibrate_stereo(chessboard_9x6(), s.views, {640, 480});
+    const auto b = calibrate_stereo(chessboard_9x6(), s.views, {640, 480}, fixed);
     ASSERT_TRUE(a.ok() && b.ok());
     auto error = [&s](const StereoCalibration& c) {
       const double true_baseline = s.rig.T_right_left.translation().norm();
@@ -315,7 +314,7 @@ TEST(StereoCalibration, RejectsAnOutlierPairInEitherImage) {
   Synthetic s = synthetic(12, 0.1, 5);
   for (cv::Point2f& p : s.views[7].right_points)
     p += cv::Point2f(1.5f * std::cos(p.y / 50.0f), 0.004f * (p.x - 320.0f));
-  const auto result = calibrate_stereo(board(), s.views, {640, 480});
+  const auto result = calibrate_stereo(chessboard_9x6(), s.views, {640, 480});
   ASSERT_TRUE(result.ok()) << result.error().message;
   ASSERT_EQ(result->rejected.size(), 1u);
   EXPECT_EQ(result->rejected[0].name, "view07_left");
@@ -327,20 +326,20 @@ TEST(StereoCalibration, RejectsAnOutlierPairInEitherImage) {
 
 TEST(StereoCalibration, BadInputIsAnErrorThatSaysWhatToDo) {
   const Synthetic s = synthetic(4, 0.1, 8);
-  auto few = calibrate_stereo(board(), {s.views[0], s.views[1]}, {640, 480});
+  auto few = calibrate_stereo(chessboard_9x6(), {s.views[0], s.views[1]}, {640, 480});
   ASSERT_FALSE(few.ok());
   EXPECT_THAT(few.error().message,
               HasSubstr("too few views: 2 usable stereo pairs (need at least 3)"));
 
   std::vector<StereoPatternView> bad = s.views;
   bad[1].right_points.resize(10);
-  auto wrong = calibrate_stereo(board(), bad, {640, 480});
+  auto wrong = calibrate_stereo(chessboard_9x6(), bad, {640, 480});
   ASSERT_FALSE(wrong.ok());
   EXPECT_THAT(wrong.error().message, HasSubstr("view 'view01_right' has 10 points"));
 
   StereoCalibrationOptions options;
   options.rectify_alpha = 2.0;
-  auto alpha = calibrate_stereo(board(), s.views, {640, 480}, options);
+  auto alpha = calibrate_stereo(chessboard_9x6(), s.views, {640, 480}, options);
   ASSERT_FALSE(alpha.ok());
   EXPECT_THAT(alpha.error().message, HasSubstr("rectify_alpha must be"));
 }

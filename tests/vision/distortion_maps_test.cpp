@@ -8,7 +8,7 @@
 namespace telear::vision {
 namespace {
 
-CameraModel camera(double alpha_c = 0.0) {
+CameraModel lens_camera(double alpha_c = 0.0) {
   CameraModel c;
   c.width = 320;
   c.height = 240;
@@ -49,7 +49,7 @@ cv::Mat blob_image(int width, int height, const Eigen::Vector2d& centre, double 
 
 TEST(DistortionMaps, UndistortMapsPointAtTheRawPositionOfEachRay) {
   for (double alpha_c : {0.0, 0.02}) {  // OpenCV's path and telear's own (skew)
-    const CameraModel c = camera(alpha_c);
+    const CameraModel c = lens_camera(alpha_c);
     const UndistortMaps maps = compute_undistort_maps(c);
     ASSERT_EQ(maps.map_x.type(), CV_32FC1);
     ASSERT_EQ(maps.map_x.size(), cv::Size(320, 240));
@@ -70,11 +70,11 @@ TEST(DistortionMaps, UndistortMapsPointAtTheRawPositionOfEachRay) {
 // OpenCV's map, an equidistant (fisheye) one through telear's own loop; both must show a point
 // where the pinhole with the same K puts it, and the raw-to-pinhole table must invert them.
 TEST(DistortionMaps, RationalAndEquidistantLensesUndistortToThePinhole) {
-  CameraModel rational = camera();
+  CameraModel rational = lens_camera();
   rational.kc =
       *Distortion::from_coefficients(DistortionModel::rational_polynomial,
                                      {0.42, -0.08, 0.0009, -0.0006, 0.01, 0.75, 0.02, 0.003});
-  CameraModel fisheye = camera();
+  CameraModel fisheye = lens_camera();
   fisheye.fx = fisheye.fy = 150.0;
   fisheye.kc =
       *Distortion::from_coefficients(DistortionModel::equidistant, {-0.012, 0.031, -0.018, 0.004});
@@ -100,7 +100,7 @@ TEST(DistortionMaps, RationalAndEquidistantLensesUndistortToThePinhole) {
 }
 
 TEST(DistortionMaps, UndistortedImageShowsAPointWhereThePinholePutsIt) {
-  const CameraModel c = camera();
+  const CameraModel c = lens_camera();
   const Eigen::Vector3d p_cam(0.35, -0.25, 1.0);
   const Eigen::Vector2d raw_uv = *c.project(p_cam);
   const Eigen::Vector2d pinhole_uv = *c.project_pinhole(p_cam);
@@ -112,7 +112,7 @@ TEST(DistortionMaps, UndistortedImageShowsAPointWhereThePinholePutsIt) {
 }
 
 TEST(DistortionMaps, FoldedRaysHaveNoSourcePixel) {
-  CameraModel c = camera();
+  CameraModel c = lens_camera();
   c.fx = c.fy = 120.0;  // wide: the image corners lie beyond r = 1.054
   const UndistortMaps maps = compute_undistort_maps(c);
   EXPECT_EQ(maps.map_x.at<float>(0, 0), -1.0f);
@@ -120,7 +120,7 @@ TEST(DistortionMaps, FoldedRaysHaveNoSourcePixel) {
 }
 
 TEST(DistortionMaps, RawToPinholeLutInvertsTheDistortion) {
-  const CameraModel c = camera(0.01);
+  const CameraModel c = lens_camera(0.01);
   const RawToPinholeLut lut = compute_raw_to_pinhole_lut(c);
   ASSERT_EQ(lut.pinhole_uv.type(), CV_32FC2);
   EXPECT_EQ(lut.invalid_count, 0);
@@ -142,7 +142,7 @@ TEST(DistortionMaps, RawToPinholeLutInvertsTheDistortion) {
 }
 
 TEST(DistortionMaps, LutMarksPixelsWithNoRay) {
-  CameraModel c = camera();
+  CameraModel c = lens_camera();
   c.fx = c.fy = 120.0;
   const RawToPinholeLut lut = compute_raw_to_pinhole_lut(c);
   EXPECT_GT(lut.invalid_count, 0);

@@ -37,9 +37,7 @@ Eigen::Isometry3d true_T_flange_target() {
   return T;
 }
 
-Eigen::Isometry3d T_right_left_of(const StereoCameraModel& rig) {
-  return right_from_left(rig.left.T_cam_base, rig.right.T_cam_base);
-}
+using test::T_right_left_of;
 
 // Observations of the marker at `count` random configurations both eyes see it at.
 HandEyeObservations synthetic(const core::RobotModel& model, const StereoCameraModel& truth,

@@ -18,9 +18,7 @@
 namespace telear::vision {
 namespace {
 
-Eigen::Isometry3d T_right_left_of(const StereoCameraModel& rig) {
-  return right_from_left(rig.left.T_cam_base, rig.right.T_cam_base);
-}
+using test::T_right_left_of;
 
 // Camera models with the pose removed: what the registration starts from.
 StereoCameraModel unregistered(StereoCameraModel rig) {

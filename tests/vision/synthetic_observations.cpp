@@ -8,6 +8,7 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/random_configuration.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "telear/vision/registration.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::test {
@@ -19,6 +20,14 @@ bool inside(const vision::CameraModel& camera, const std::optional<Eigen::Vector
 }
 
 }  // namespace
+
+Eigen::Isometry3d T_right_left_of(const vision::StereoCameraModel& rig) {
+  return vision::right_from_left(rig.left.T_cam_base, rig.right.T_cam_base);
+}
+
+vision::CalibrationPattern chessboard_9x6() {
+  return *vision::parse_calibration_pattern("chessboard:9x6:0.03");
+}
 
 vision::StereoCameraModel shipped_stereo_cameras() {
   Result<vision::CameraFile> file =
