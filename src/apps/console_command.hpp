@@ -7,9 +7,14 @@
 #include <ostream>
 
 #include "telear/console/console_options.hpp"
+#include "telear/console/local_servers.hpp"
 #include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
+
+// The embedded default: lab's simulated robot and vision servers for the console's arm, on
+// loopback (the console links no simulator; this is where the command wires it in).
+console::LocalServersStarter simulated_local_servers();
 
 // `arm`: --arm (the console's --robot is the server's address), --tip, --package-path,
 // --missing-meshes.

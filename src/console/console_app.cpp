@@ -29,7 +29,6 @@
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
-#include "telear/lab/view_input.hpp"
 #include "telear/net/token_file.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
@@ -41,6 +40,7 @@
 #include "telear/render/scene_objects.hpp"
 #include "telear/render/stereo_composer.hpp"
 #include "telear/session/capture_session.hpp"
+#include "telear/view/ar_view_input.hpp"
 #include "telear/vision/camera_file.hpp"
 
 namespace telear::console {
@@ -179,17 +179,20 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   }
   if (!options.fullscreen_eyes.empty() && options.fullscreen_eyes != "two-windows" &&
       options.fullscreen_eyes != "sbs") {
-    return Error{"--fullscreen-eyes '" + options.fullscreen_eyes + "': two-windows or sbs"};
+    return Error{"fullscreen_eyes '" + options.fullscreen_eyes + "': two-windows or sbs"};
   }
   if (options.headless && !options.fullscreen_eyes.empty()) {
-    return Error{"--fullscreen-eyes needs a display; it cannot be combined with --headless"};
+    return Error{"fullscreen_eyes needs a display; it cannot be combined with headless"};
   }
   const bool embedded = options.robot.empty() && options.vision.empty();
   if (!embedded && (options.robot.empty() || options.vision.empty())) {
-    return Error{"give both --robot and --vision, or neither (the embedded simulated servers)"};
+    return Error{"give both the robot and the vision server's address, or neither (local servers)"};
+  }
+  if (embedded && !options.start_local_servers) {
+    return Error{"no robot and vision server addresses, and no local servers to start"};
   }
   auto resolution = core::parse_image_size(options.resolution, {64, 48}, {1920, 1080});
-  if (!resolution) return Error{"--resolution: " + resolution.error().message};
+  if (!resolution) return Error{"resolution: " + resolution.error().message};
   const auto [width, height] = *resolution;
 
   auto arm = geometry::load_robot_assets(options.arm, options.geometry);
@@ -225,14 +228,11 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   robot.client_name = "telear-console";
   vision.client_name = "telear-console";
   if (embedded) {
-    lab::EmbeddedServersOptions server_options;
-    server_options.calibration_file = calibration_file;
-    if (Status s = lab::serve_robot(server_options, arm->description); !s) return s.error();
-    auto servers = lab::EmbeddedServers::create(m.model, server_options);
+    auto servers = options.start_local_servers(m.model, arm->description, calibration_file);
     if (!servers) return servers.error();
     app->servers_ = std::move(*servers);
     if (!cameras) {
-      cameras = app->servers_->rig_cameras();
+      cameras = app->servers_->cameras();
       app->ui_.calibration_note =
           "calibration: the simulator's TRUE cameras (no --calibration; `telear demo` writes a "
           "registered one to out/demo/cache/registered.yaml)";
@@ -473,7 +473,7 @@ bool ConsoleApp::frame() {
       ui_.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
   m.view->set_options(view_options);
   const session::SessionView& v = session_->view();
-  render::ArViewInput input = lab::ar_view_input(v);
+  render::ArViewInput input = view::ar_view_input(v);
   if (input.ghost_q.size() == 0) input.ghost_q = session_->ghost().q();  // before the first update
   m.view->render(input);
   ViewTextures textures;

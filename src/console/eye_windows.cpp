@@ -40,13 +40,13 @@ Result<std::unique_ptr<EyeWindows>> EyeWindows::create(render::GlfwContext& main
       eyes->windows_[i] =
           open_window(two_monitors ? monitors[i] : nullptr, 960, 540,
                       i == 0 ? "telear left eye" : "telear right eye", main.window());
-      if (!eyes->windows_[i]) return Error{"--fullscreen-eyes: cannot open the eye windows"};
+      if (!eyes->windows_[i]) return Error{"fullscreen_eyes: cannot open the eye windows"};
       if (!two_monitors) glfwSetWindowPos(eyes->windows_[i], i * 970, 40);
     }
   } else {
     eyes->windows_[0] = open_window(count > 0 ? monitors[count - 1] : nullptr, 1920, 540,
                                     "telear stereo (side by side)", main.window());
-    if (!eyes->windows_[0]) return Error{"--fullscreen-eyes: cannot open the stereo window"};
+    if (!eyes->windows_[0]) return Error{"fullscreen_eyes: cannot open the stereo window"};
   }
   for (GLFWwindow* w : eyes->windows_) {
     if (!w) continue;

@@ -5,7 +5,7 @@
 #include <opencv2/videoio.hpp>
 #include <thread>
 
-#include "telear/lab/view_input.hpp"
+#include "telear/view/ar_view_input.hpp"
 #include "telear/render/image_io.hpp"
 
 namespace telear::lab {
@@ -77,7 +77,7 @@ void SessionRecorder::tick() {
       }
     }
   }
-  view_.render(ar_view_input(v));
+  view_.render(view::ar_view_input(v));
   last_image_ = view_.read_composed_rgb();
   if (writer_->isOpened()) {
     cv::Mat rgb(last_image_.height, last_image_.width, CV_8UC3, last_image_.pixels.data());

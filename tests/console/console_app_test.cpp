@@ -2,6 +2,7 @@
 // servers, driven by a UI script exactly as `telear console --headless --script` runs it.
 
 #include "telear/console/console_app.hpp"
+#include "apps/console_command.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include "telear/console/console_actions.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/lab/embedded_servers.hpp"
 #include "test_util/temp_dir.hpp"
 
 namespace telear::console {
@@ -89,6 +91,7 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
                            "screenshot " +
                                shot + "\n";
   ConsoleOptions options;
+  options.start_local_servers = cli::simulated_local_servers();  // as `telear console`
   options.headless = true;
   options.width = kWidth;
   options.height = kHeight;
@@ -176,6 +179,7 @@ TEST(ConsoleApp, AUrdfArmIsJoggedPlannedAndExecuted) {
                            "screenshot " +
                                (dir / "arm.png").string() + "\n";
   ConsoleOptions options;
+  options.start_local_servers = cli::simulated_local_servers();  // as `telear console`
   options.arm = {"ur6", "", {}};
   options.headless = true;
   options.width = kWidth;

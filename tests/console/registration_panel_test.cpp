@@ -16,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "apps/console_command.hpp"
 #include "capture_test_rig.hpp"
 #include "telear/console/console_actions.hpp"
 #include "telear/console/console_app.hpp"
@@ -118,6 +119,7 @@ TEST(RegistrationPanel, ScriptedCaptureAddsPosesShowsCoverageAndSolves) {
   std::ofstream(script_file) << script.str();
 
   ConsoleOptions options;
+  options.start_local_servers = cli::simulated_local_servers();  // as `telear console`
   options.headless = true;
   options.width = 1600;
   options.height = 1000;

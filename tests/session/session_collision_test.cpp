@@ -13,7 +13,7 @@
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/lab/demo_task.hpp"
 #include "telear/lab/embedded_servers.hpp"
-#include "telear/lab/view_input.hpp"
+#include "telear/view/ar_view_input.hpp"
 #include "telear/net/motion_collision_guard.hpp"
 #include "telear/net/robot_client.hpp"
 #include "telear/session/ghost_clearance.hpp"
@@ -114,7 +114,7 @@ TEST(SessionCollision, TheGhostsClearanceFollowsItsJogsAndNamesTheLinksInContact
   EXPECT_EQ(session->view().ghost_contact_frames, session->ghost_clearance().contact_frames);
   EXPECT_FALSE(session->view().ghost_contact_frames.empty());
   // The AR view draws those links red.
-  EXPECT_EQ(lab::ar_view_input(session->view()).ghost_highlight_frames,
+  EXPECT_EQ(view::ar_view_input(session->view()).ghost_highlight_frames,
             session->view().ghost_contact_frames);
 }
 

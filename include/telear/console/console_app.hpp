@@ -2,7 +2,7 @@
 // The operator console: the main loop that draws a Session (telear/session/session.hpp) with Dear
 // ImGui and the stereo AR view (telear/render/ar_view.hpp).
 //
-// It owns, in this order: the embedded simulated servers (when started without addresses), the
+// It owns, in this order: the local servers (when started without addresses), the
 // Session, the GL context (a GLFW window, or an EGL context and an off-screen frame buffer of
 // the window's size with --headless), the ArView, ImGui, the input devices, the script runner
 // and the optional full-screen eye windows. It keeps no state of its own beyond the UiState:
@@ -18,11 +18,11 @@
 #include <string>
 
 #include "telear/console/console_options.hpp"
+#include "telear/console/local_servers.hpp"
 #include "telear/console/script_runner.hpp"
 #include "telear/console/ui_state.hpp"
 #include "telear/core/image.hpp"
 #include "telear/core/result.hpp"
-#include "telear/lab/embedded_servers.hpp"
 #include "telear/session/session.hpp"
 
 namespace telear::console {
@@ -46,7 +46,7 @@ class ConsoleApp {
 
   session::Session& session() { return *session_; }
   UiState& ui() { return ui_; }
-  lab::EmbeddedServers* servers() { return servers_.get(); }
+  LocalServers* servers() { return servers_.get(); }  // null when given addresses
   const ScriptRunner& script() const { return script_; }
   int frames_drawn() const { return frames_; }
   // The console's last drawn image (the whole window), RGB, top row first.
@@ -60,7 +60,7 @@ class ConsoleApp {
   void rebuild_session();
 
   std::unique_ptr<Impl> impl_;
-  std::unique_ptr<lab::EmbeddedServers> servers_;
+  std::unique_ptr<LocalServers> servers_;
   std::unique_ptr<session::Session> session_;
   UiState ui_;
   ScriptRunner script_;

@@ -1,19 +1,23 @@
 #pragma once
-// What `telear console` is started with (docs/console.md). Plain values; the CLI fills them.
+// What `telear console` is started with (docs/console.md). Plain values that the CLI fills,
+// and how local servers are started when no address is given.
 
 #include <string>
 
+#include "telear/console/local_servers.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/geometry/robot_geometry.hpp"
 
 namespace telear::console {
 
 struct ConsoleOptions {
-  // Servers. Empty robot and vision addresses: start the embedded simulated servers.
+  // Servers. Empty robot and vision addresses: start local ones with `start_local_servers`
+  // (`telear console`: the embedded simulated servers).
   std::string robot;        // HOST:PORT
   std::string vision;       // HOST:PORT
   std::string token_file;   // first line: the bearer token
   std::string calibration;  // registered stereo camera file; empty: see docs/console.md
+  LocalServersStarter start_local_servers;  // empty: the addresses are required
   // The arm drawn as the ghost (--arm, --tip, --package-path, --missing-meshes): the same
   // robot the robot server runs; the embedded servers simulate it.
   core::RobotSpec arm{"puma560", {}, {}};

@@ -1,6 +1,6 @@
-#include "telear/lab/view_input.hpp"
+#include "telear/view/ar_view_input.hpp"
 
-namespace telear::lab {
+namespace telear::view {
 
 render::ArViewInput ar_view_input(const session::SessionView& view) {
   render::ArViewInput input;
@@ -21,4 +21,4 @@ render::ArViewInput ar_view_input(const session::SessionView& view) {
   return input;
 }
 
-}  // namespace telear::lab
+}  // namespace telear::view
