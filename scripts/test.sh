@@ -30,29 +30,59 @@ begin_stage "build"
 scripts/build.sh
 end_stage "build"
 build_dir=${TELEAR_BUILD_DIR:-build}
-# Tests wait on servers, heartbeats and the simulated robot's real-time motion as much as they
-# compute, so CTest runs more of them than there are cores (TELEAR_TEST_JOBS overrides).
-begin_stage "tests"
-ctest --test-dir "$build_dir" --output-on-failure -j "${TELEAR_TEST_JOBS:-3}"
-end_stage "tests"
-
-if [ "${TELEAR_SKIP_ASAN:-0}" = "1" ]; then
-  echo "test.sh: AddressSanitizer step skipped (TELEAR_SKIP_ASAN=1)"
-  exit 0
-fi
 asan_dir=${TELEAR_ASAN_BUILD_DIR:-build-asan}
-begin_stage "asan build"
-if [ ! -f "$asan_dir/build.ninja" ]; then
-  # -O1 -g1: ASan's recommended optimisation with line tables only, to keep the 2-core
-  # CI build short. Unity batches and precompiled headers as in the main tree (the Eigen
-  # allocator mismatch with Debian's uninstrumented Ceres is settled in CMakeLists.txt).
-  cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
-    -DTELEAR_SANITIZE=address -DTELEAR_BUILD_BENCH=OFF
+asan=1
+if [ "${TELEAR_SKIP_ASAN:-0}" = "1" ]; then
+  asan=0
+  echo "test.sh: AddressSanitizer step skipped (TELEAR_SKIP_ASAN=1)"
 fi
-# Only the net test executable (tests/net/CMakeLists.txt): the network layer, the simulated
-# robot driver (core and geometry) and synthetic video -- no renderer, no simulated rig.
-cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target net_test
-end_stage "asan build"
+
+# The AddressSanitizer tree: -O1 -g1, ASan's recommended optimisation with line tables only.
+# Unity batches and precompiled headers as in the main tree (the Eigen allocator mismatch with
+# Debian's uninstrumented Ceres is settled in CMakeLists.txt). Only the net test executable
+# (tests/net/CMakeLists.txt): the network layer, the simulated robot driver (core and
+# geometry) and synthetic video -- no renderer, no simulated rig.
+asan_build() {
+  if [ ! -f "$asan_dir/build.ninja" ]; then
+    cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
+      -DTELEAR_SANITIZE=address -DTELEAR_BUILD_BENCH=OFF
+  fi
+  cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target net_test
+}
+
+# Tests wait on servers, heartbeats and the simulated robot's real-time motion as much as they
+# compute, so CTest runs more of them than there are cores (TELEAR_TEST_JOBS overrides). The
+# ASan tree builds meanwhile at the lowest priority (nice 19), on the CPU time the tests leave
+# idle (about a sixth of two cores); whatever is left is built after them, at full priority.
+begin_stage "tests"
+asan_log="$build_dir/asan-build-during-tests.log"
+asan_pid=""
+asan_begin=$(date +%s)
+if [ "$asan" = "1" ]; then
+  (
+    renice -n 19 -p "$BASHPID" > /dev/null
+    asan_build
+    date +%s > "$asan_log.end"
+  ) > "$asan_log" 2>&1 &
+  asan_pid=$!
+fi
+tests_status=0
+ctest --test-dir "$build_dir" --output-on-failure -j "${TELEAR_TEST_JOBS:-3}" || tests_status=$?
+end_stage "tests"
+if [ "$tests_status" != "0" ]; then
+  [ -n "$asan_pid" ] && kill "$asan_pid" 2> /dev/null
+  exit "$tests_status"
+fi
+[ "$asan" = "1" ] || exit 0
+
+# The rest of the ASan build, if any, now at full priority (a failed build shows its log).
+begin_stage "asan build rest"
+asan_status=0
+wait "$asan_pid" || asan_status=$?
+cat "$asan_log"
+[ "$asan_status" = "0" ] || exit "$asan_status"
+end_stage "asan build rest"
+echo "test.sh: the ASan build took $(($(cat "$asan_log.end") - asan_begin)) s from the tests' start"
 # Leaks are errors; the suppressions name third-party libraries only, never telear code.
 # robot_python_example and server_log_level run the telear binary, which this step does not
 # build (they ran above, uninstrumented).
