@@ -83,7 +83,30 @@ endfunction()
 # whose public headers are included as "telear/NAME/file.hpp" from include/ (in the build
 # tree and, installed, from the package's include directory). It is installed and exported
 # as telear::NAME (find_package(telear)).
+#
+# The AddressSanitizer tree (scripts/test.sh) compiles again only what it instruments -- the
+# network layer, the simulated robot driver and the net tests -- and links the layers named in
+# TELEAR_PREBUILT_LAYERS from the main tree's build in TELEAR_PREBUILT_DIR: such a library
+# keeps its usage requirements (include paths, the packages it links) but its code is that
+# tree's archive, compiled without instrumentation.
+set(TELEAR_PREBUILT_DIR "" CACHE PATH "a build tree whose layer archives this tree links")
+set(TELEAR_PREBUILT_LAYERS "" CACHE STRING "the layers linked from TELEAR_PREBUILT_DIR")
 function(telear_library name)
+  if(TELEAR_PREBUILT_DIR AND name IN_LIST TELEAR_PREBUILT_LAYERS)
+    file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+    set(archive ${TELEAR_PREBUILT_DIR}/${folder}/libtelear_${name}.a)
+    if(NOT EXISTS ${archive})
+      message(FATAL_ERROR "TELEAR_PREBUILT_LAYERS: ${archive} is missing (build that tree first)")
+    endif()
+    add_library(telear_${name} STATIC ${PROJECT_SOURCE_DIR}/cmake/prebuilt_layer.cpp)
+    add_library(telear::${name} ALIAS telear_${name})
+    set_target_properties(telear_${name} PROPERTIES EXPORT_NAME ${name})
+    target_include_directories(telear_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                     $<INSTALL_INTERFACE:include>)
+    target_link_libraries(telear_${name} PUBLIC ${archive})
+    set_property(GLOBAL APPEND PROPERTY TELEAR_EXPORTED_LIBRARIES telear_${name})
+    return()
+  endif()
   add_library(telear_${name} STATIC ${ARGN})
   add_library(telear::${name} ALIAS telear_${name})
   set_target_properties(telear_${name} PROPERTIES EXPORT_NAME ${name})

@@ -234,7 +234,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     if (!cameras) {
       cameras = app->servers_->cameras();
       app->ui_.calibration_note =
-          "calibration: the simulator's TRUE cameras (no --calibration; `telear demo` writes a "
+          "calibration: the simulator's TRUE cameras (no calibration file; `telear demo` writes a "
           "registered one to out/demo/cache/registered.yaml)";
     }
     robot.address = app->servers_->robot_address();
@@ -264,9 +264,9 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     net::VisionClient probe(vision);
     auto info = probe.get_camera_info();
     if (!info)
-      return Error{"no calibration: " + info.error().message + " (pass --calibration FILE)"};
+      return Error{"no calibration: " + info.error().message + " (give a calibration file)"};
     if (!info->found) {
-      return Error{"no calibration: the vision server has none; pass --calibration FILE"};
+      return Error{"no calibration: the vision server has none; give a calibration file"};
     }
     cameras = info->cameras;
     app->ui_.calibration_note = "calibration: from the vision server (" + info->source + ")";
