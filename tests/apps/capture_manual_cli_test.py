@@ -80,11 +80,12 @@ def operator_session():
 
 def main():
     telear, data = sys.argv[1], sys.argv[2]
+    start_file = sys.argv[3] if len(sys.argv) > 3 else None
     failures = []
     calibration = os.path.join(data, "cameras", "puma560_stereo.yaml")
     with tempfile.TemporaryDirectory() as tmp:
         captures = os.path.join(tmp, "captures")
-        with lab_servers(telear, calibration, tmp) as (robot_address, vision_address, token):
+        with lab_servers(telear, calibration, tmp, start_file) as (robot_address, vision_address, token):
             arguments = ["capture", "--manual", "--robot", robot_address, "--vision",
                          vision_address, "--token-file", token, "--arm", "puma560",
                          "--frames", "3", "--settle", "0.1", "-o", captures]

@@ -39,11 +39,16 @@ def run(telear, arguments, timeout=600):
     return subprocess.run([telear] + arguments, capture_output=True, text=True, timeout=timeout)
 
 
-def start_pose(telear, tmp):
-    """A configuration at which both cameras detect the marker (the operator's jog)."""
-    observations = os.path.join(tmp, "find.yaml")
-    r = run(telear, ["sim", "observations", "--configs", "4", "--seed", "2", "-o", observations])
-    assert r.returncode == 0, r.stderr
+def start_pose(telear, tmp, start_file=None):
+    """A configuration at which both cameras detect the marker (the operator's jog): from
+    `start_file`, the CTest fixture puma560_marker_start's observations (tests/CMakeLists.txt),
+    when it exists, else rendered here the same way."""
+    observations = start_file
+    if not observations or not os.path.exists(observations):
+        observations = os.path.join(tmp, "find.yaml")
+        r = run(telear, ["sim", "observations", "--configs", "4", "--seed", "2", "-o",
+                         observations])
+        assert r.returncode == 0, r.stderr
     with open(observations) as f:
         found = yaml.safe_load(f)
     for configuration in found["configurations"]:
@@ -53,7 +58,7 @@ def start_pose(telear, tmp):
 
 
 @contextlib.contextmanager
-def lab_servers(telear, calibration, tmp):
+def lab_servers(telear, calibration, tmp, start_file=None):
     """The lab's servers on loopback, sharing a token file: `telear robot-server` (the simulated
     PUMA 560 where both cameras see the marker) and `telear vision-server --source sim` (the rig
     following it, serving `calibration`). Yields (robot address, vision address, token file);
@@ -61,7 +66,7 @@ def lab_servers(telear, calibration, tmp):
     token = os.path.join(tmp, "token")
     with open(token, "w") as f:
         f.write("capture-test-token\n")
-    q = ",".join(f"{v:.9f}" for v in start_pose(telear, tmp))
+    q = ",".join(f"{v:.9f}" for v in start_pose(telear, tmp, start_file))
     robot, robot_address = start(telear, ["robot-server", "--listen", "127.0.0.1:0",
                                           "--token-file", token, "--q", q])
     vision = None
@@ -99,10 +104,11 @@ def registration_errors(telear, truth, registered, tmp, failures):
 
 def main():
     telear, data = sys.argv[1], sys.argv[2]
+    start_file = sys.argv[3] if len(sys.argv) > 3 else None
     failures = []
     calibration = os.path.join(data, "cameras", "puma560_stereo.yaml")
     with tempfile.TemporaryDirectory() as tmp:
-        with lab_servers(telear, calibration, tmp) as (robot_address, vision_address, token):
+        with lab_servers(telear, calibration, tmp, start_file) as (robot_address, vision_address, token):
             captures = os.path.join(tmp, "captures")
             r = run(telear, ["capture", "--robot", robot_address, "--vision", vision_address,
                              "--token-file", token, "--arm", "puma560", "--poses", "auto:10",

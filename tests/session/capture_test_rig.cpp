@@ -1,8 +1,11 @@
 #include "capture_test_rig.hpp"
 
+#include <filesystem>
+
 #include "telear/core/robot_loader.hpp"
 #include "telear/sim/marker_observations.hpp"
 #include "telear/vision/calibration_file.hpp"
+#include "telear/vision/observations_file.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration.hpp"
 
@@ -31,13 +34,21 @@ void CaptureRigTest::SetUp() {
 }
 
 Result<Eigen::VectorXd> marker_visible_start() {
-  sim::MarkerObservationsOptions find;
-  find.rig_file = sim::default_rig_file("puma560");
-  find.configurations = 4;
-  find.seed = 2;
-  auto found = sim::simulate_marker_observations(find);
-  if (!found) return found.error();
-  for (const auto& c : found->observations.configurations) {
+  vision::RegistrationObservations observations;
+  if (std::filesystem::exists(TELEAR_TEST_MARKER_START_FILE)) {
+    auto loaded = vision::load_observations_file(TELEAR_TEST_MARKER_START_FILE);
+    if (!loaded) return loaded.error();
+    observations = std::move(*loaded);
+  } else {
+    sim::MarkerObservationsOptions find;
+    find.rig_file = sim::default_rig_file("puma560");
+    find.configurations = 4;
+    find.seed = 2;
+    auto found = sim::simulate_marker_observations(find);
+    if (!found) return found.error();
+    observations = std::move(found->observations);
+  }
+  for (const auto& c : observations.configurations) {
     if (!c.left_pixels.empty() && !c.right_pixels.empty()) return c.q;
   }
   return Error{"the marker was not detected in both eyes anywhere"};

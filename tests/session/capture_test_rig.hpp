@@ -26,7 +26,9 @@ Result<PumaCaptureRig> load_puma_capture_rig();
 
 // Where the operator jogs the arm before capturing: the first configuration at which the
 // default PUMA rig's own rendered observations (seed 2, 4 configurations) found the marker in
-// both eyes. An error when none did.
+// both eyes. An error when none did. Rendered once per CTest run by the fixture
+// puma560_marker_start (tests/CMakeLists.txt), whose file every capture test reads; a test run
+// outside CTest, without that file, renders them itself.
 Result<Eigen::VectorXd> marker_visible_start();
 
 // The rig's true cameras written as `dir`/calibration.yaml, the calibration the vision server
