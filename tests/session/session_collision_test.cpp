@@ -13,13 +13,13 @@
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/lab/demo_task.hpp"
 #include "telear/lab/embedded_servers.hpp"
-#include "telear/view/ar_view_input.hpp"
 #include "telear/net/motion_collision_guard.hpp"
 #include "telear/net/robot_client.hpp"
 #include "telear/session/ghost_clearance.hpp"
 #include "telear/session/plan_collision.hpp"
 #include "telear/session/session.hpp"
 #include "telear/sim/stereo_rig.hpp"
+#include "telear/view/ar_view_input.hpp"
 #include "test_util/test_util.hpp"
 
 namespace telear::session {
