@@ -5,8 +5,8 @@
 #include <opencv2/videoio.hpp>
 #include <thread>
 
-#include "telear/view/ar_view_input.hpp"
 #include "telear/render/image_io.hpp"
+#include "telear/view/ar_view_input.hpp"
 
 namespace telear::lab {
 
