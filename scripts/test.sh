@@ -57,7 +57,7 @@ asan_build() {
 # Tests wait on servers, heartbeats and the simulated robot's real-time motion as much as they
 # compute, so CTest runs more of them than there are cores (TELEAR_TEST_JOBS overrides). The
 # ASan tree builds meanwhile at the lowest priority (nice 19), on the CPU time the tests leave
-# idle (about a sixth of two cores); whatever is left is built after them, at full priority.
+# idle; whatever is left is built after them, at full priority.
 begin_stage "tests"
 asan_log="$build_dir/asan-build-during-tests.log"
 asan_pid=""
