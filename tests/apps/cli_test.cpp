@@ -123,6 +123,14 @@ TEST(CliConventions, UsageErrorsAreOneLineNamingTheProblemAndExitTwo) {
        "telear console: --resolution: '640*480' is not WIDTHxHEIGHT (e.g. 640x480)\n"},
       {"console --size 1600x10",
        "telear console: --size: '1600x10' is outside 64x48 .. 8192x8192\n"},
+      {"console --robot 127.0.0.1:1",
+       "telear console: give both --robot and --vision, or neither (the embedded simulated "
+       "servers)\n"},
+      {"console --fullscreen-eyes three",
+       "telear console: --fullscreen-eyes 'three': two-windows or sbs\n"},
+      {"console --headless --fullscreen-eyes sbs",
+       "telear console: --fullscreen-eyes needs a display; it cannot be combined with "
+       "--headless\n"},
       {"vision-server --resolution 8x8",
        "telear vision-server: --resolution: '8x8' is outside 16x16 .. 8192x8192\n"},
       {"bench stream --resolutions 640x480,big",

@@ -63,6 +63,36 @@ Stats region_stats(const core::Image& image, int x0, int y0, int x1, int y1) {
   return s;
 }
 
+// The library checks its options by field (the command names its flags, tests/apps): the
+// servers both or neither, local servers only when something can start them, the eye output.
+TEST(ConsoleApp, OptionsAreRefusedNamingTheField) {
+  std::ostringstream log;
+  ConsoleOptions options;
+  options.headless = true;
+  auto created = ConsoleApp::create(options, log);
+  ASSERT_FALSE(created);
+  EXPECT_EQ(created.error().message,
+            "no robot and vision server addresses, and no local servers to start");
+
+  options.robot = "127.0.0.1:1";
+  created = ConsoleApp::create(options, log);
+  ASSERT_FALSE(created);
+  EXPECT_EQ(created.error().message,
+            "give both the robot and the vision server's address, or neither (local servers)");
+
+  options = ConsoleOptions{};
+  options.fullscreen_eyes = "three";
+  created = ConsoleApp::create(options, log);
+  ASSERT_FALSE(created);
+  EXPECT_EQ(created.error().message, "fullscreen_eyes 'three': two-windows or sbs");
+  options.fullscreen_eyes = "sbs";
+  options.headless = true;
+  created = ConsoleApp::create(options, log);
+  ASSERT_FALSE(created);
+  EXPECT_EQ(created.error().message,
+            "fullscreen_eyes needs a display; it cannot be combined with headless");
+}
+
 TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   test_files::TempDir tmp("console");
   const fs::path dir = tmp.path();
