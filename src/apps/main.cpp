@@ -22,7 +22,7 @@ void add_robot_server_command(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<RobotServerCommandOptions>();
   RobotServerCommandOptions& robot_server = *options;
   CLI::App* robot_server_app = app.add_subcommand(
-      "robot-server", "the robot service over gRPC, the simulated robot as its driver");
+      "robot-server", "the robot service over gRPC, driving the simulated robot or a ROS arm");
   robot_server_app->add_option("--listen", robot_server.listen, "HOST:PORT; port 0: ephemeral")
       ->capture_default_str();
   robot_server_app
@@ -34,6 +34,22 @@ void add_robot_server_command(CLI::App& app, Commands& commands) {
   robot_server_app->add_option("--tls-cert", robot_server.tls_cert, "TLS certificate (PEM)");
   robot_server_app->add_option("--tls-key", robot_server.tls_key, "TLS private key (PEM)");
   add_robot_arguments(robot_server_app, robot_server, false);
+  robot_server_app
+      ->add_option("--driver", robot_server.driver,
+                   "sim (the simulated robot) or ros1 (an arm driven through ROS 1, docs/ros.md)")
+      ->capture_default_str();
+  robot_server_app->add_option("--ros-master", robot_server.ros.master_uri,
+                               "ros1: the master's URI (default: $ROS_MASTER_URI)");
+  robot_server_app
+      ->add_option("--joint-states", robot_server.ros.joint_states_topic,
+                   "ros1: the arm's sensor_msgs/JointState topic")
+      ->capture_default_str();
+  robot_server_app
+      ->add_option("--controller", robot_server.ros.controller_ns,
+                   "ros1: the control_msgs/FollowJointTrajectory action namespace")
+      ->capture_default_str();
+  robot_server_app->add_option("--gripper-action", robot_server.ros.gripper_ns,
+                               "ros1: a control_msgs/GripperCommand action namespace (optional)");
   robot_server_app
       ->add_option("--heartbeat-ms", robot_server.heartbeat_ms,
                    "default lease heartbeat period: a lease not renewed within it stops the arm")

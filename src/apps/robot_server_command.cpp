@@ -5,29 +5,49 @@
 #include "apps/command_failure.hpp"
 #include "telear/core/joint_values.hpp"
 #include "telear/core/robot_description.hpp"
+#include "telear/drivers/ros1_robot_driver.hpp"
 #include "telear/lab/simulated_robot_server.hpp"
 #include "telear/net/server_log.hpp"
 
 namespace telear::cli {
+namespace {
+
+// The one place a driver is chosen (docs/ros.md): the server above it never knows which.
+Result<std::unique_ptr<core::RobotDriver>> make_driver(const RobotServerCommandOptions& options,
+                                                       const core::RobotDescription& description,
+                                                       const Eigen::VectorXd& initial_q) {
+  if (options.driver == "sim") return lab::make_simulated_robot_driver(description, initial_q);
+  return drivers::make_ros1_robot_driver(description, options.ros);
+}
+
+}  // namespace
 
 int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out,
                      std::ostream& err) {
   const CommandFailure fail{err, "telear robot-server"};
   auto log_level = net::parse_log_level(options.log_level);
   if (!log_level) return fail("--log-level " + log_level.error().message, 2);
+  if (options.driver != "sim" && options.driver != "ros1") {
+    return fail("--driver must be sim or ros1, got '" + options.driver + "'", 2);
+  }
+  if (options.driver != "sim" && !options.initial_q.empty()) {
+    return fail("--q sets the simulated robot's start; a " + options.driver +
+                    " arm is where it is",
+                2);
+  }
   auto description = core::load_robot_description(options.robot_spec());
   if (!description) return fail(description.error().message, 1);
-  lab::SimulatedRobotServerOptions server_options;
+  Eigen::VectorXd initial_q;
   if (!options.initial_q.empty()) {
     auto q = core::parse_joint_values(*description->model, options.initial_q, "--q", false);
     if (!q) return fail(q.error().message, 1);
-    server_options.initial_q = *q;
+    initial_q = *q;
   }
   if (options.heartbeat_ms <= 0) {
     return fail("--heartbeat-ms must be positive, got " + std::to_string(options.heartbeat_ms), 1);
   }
-  server_options.heartbeat_ns = std::int64_t{options.heartbeat_ms} * 1'000'000;
-  net::RobotServerOptions& server = server_options.server;
+  net::RobotServerOptions server;
+  server.lease.set_default_heartbeat(std::int64_t{options.heartbeat_ms} * 1'000'000);
   server.listen_address = options.listen;
   server.token_file = options.token_file;
   server.allow_observers = options.allow_observers;
@@ -36,7 +56,7 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   // Collision checking (workspace and self) comes with --workspace: the shipped PUMA's body
   // primitives touch each other at ordinary poses (docs/collision.md, "Known limits"), so
   // self-collision alone would refuse everyday motions of the default robot.
-  server_options.check_collisions = !options.workspace.empty();
+  if (!options.workspace.empty()) server.robot_description = *description;
   server.workspace_file = options.workspace;
   server.safety_margin_m = options.safety_margin_m;
   if (options.exact_meshes) server.mesh_collision = geometry::MeshCollision::kExact;
@@ -52,7 +72,9 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
-  auto started = lab::start_simulated_robot_server(*description, std::move(server_options));
+  auto driver = make_driver(options, *description, initial_q);
+  if (!driver) return fail(driver.error().message, 1);
+  auto started = net::RobotServer::create(std::move(driver).value(), std::move(server));
   if (!started) return fail(started.error().message, 1);
   out << "robot server listening on " << (*started)->address() << std::endl;
 

@@ -1,6 +1,8 @@
 #pragma once
-// `telear robot-server`: the robot service (telear/net/robot_server.hpp) with the simulated robot
-// as its driver, until SIGINT or SIGTERM. Prints "robot server listening on HOST:PORT" on
+// `telear robot-server`: the robot service (telear/net/robot_server.hpp) with the driver --driver
+// names (sim: the simulated robot; ros1: an arm driven through ROS 1, telear/drivers/
+// ros1_robot_driver.hpp, docs/ros.md), until SIGINT or SIGTERM. The service cannot tell them
+// apart: the choice is made here and nowhere else. Prints "robot server listening on HOST:PORT" on
 // `out` once it accepts connections (scripts wait for that line; with port 0 it carries the
 // ephemeral port), and shuts down cleanly on the signal: streams are ended, the arm stops.
 // The log (spdlog, telear/net/server_log.hpp: one line per command with the client's name)
@@ -12,6 +14,7 @@
 #include <ostream>
 #include <string>
 
+#include "telear/drivers/ros1_robot_driver.hpp"
 #include "telear/geometry/robot_selection.hpp"
 #include "telear/net/motion_collision_guard.hpp"
 
@@ -19,11 +22,13 @@ namespace telear::cli {
 
 struct RobotServerCommandOptions : geometry::RobotSelection {
   std::string listen = "127.0.0.1:50051";
+  std::string driver = "sim";       // sim | ros1
+  drivers::Ros1DriverOptions ros;  // --ros-master, --joint-states, --controller, ...
   std::string token_file;
   bool allow_observers = true;
   std::string tls_cert, tls_key;
   int heartbeat_ms = 250;          // default lease heartbeat period
-  std::string initial_q;           // joint values or a named configuration; empty: zero
+  std::string initial_q;           // sim: joint values or a named configuration; empty: zero
   std::string log_level = "info";  // trace | debug | info | warn | error | off
   std::string workspace;           // workspace YAML; empty: self-collision only
   double safety_margin_m = net::kDefaultSafetyMarginM;

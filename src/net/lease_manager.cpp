@@ -22,6 +22,12 @@ std::string milliseconds_whole(std::int64_t ns) {
 
 }  // namespace
 
+void LeaseOptions::set_default_heartbeat(std::int64_t ns) {
+  default_heartbeat_ns = ns;
+  min_heartbeat_ns = std::min(min_heartbeat_ns, ns);
+  max_heartbeat_ns = std::max(max_heartbeat_ns, ns);
+}
+
 LeaseManager::LeaseManager(LeaseOptions options, LapseHandler on_lapse)
     : options_(options), on_lapse_(std::move(on_lapse)) {
   watchdog_ = std::thread([this] { watch(); });

@@ -11,6 +11,7 @@
 
 #include "telear/core/result.hpp"
 #include "telear/core/robot_description.hpp"
+#include "telear/core/robot_driver.hpp"
 #include "telear/net/robot_server.hpp"
 
 namespace telear::lab {
@@ -24,6 +25,11 @@ struct SimulatedRobotServerOptions {
   // workspace file); off, no collision checks (docs/collision.md, "Known limits").
   bool check_collisions = false;
 };
+
+// The simulated robot as a driver: the description's arm at initial_q (empty: its default),
+// reporting the description's URDF and tip on GetInfo. Errors: the simulated robot's.
+Result<std::unique_ptr<core::RobotDriver>> make_simulated_robot_driver(
+    const core::RobotDescription& description, const Eigen::VectorXd& initial_q);
 
 // Errors: the simulated robot's (initial_q outside the limits, ...) and the server's (the
 // address in use, TLS files, the workspace file, ...).

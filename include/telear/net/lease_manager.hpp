@@ -30,6 +30,9 @@ struct LeaseOptions {
   std::int64_t default_heartbeat_ns = 250'000'000;
   std::int64_t min_heartbeat_ns = 50'000'000;
   std::int64_t max_heartbeat_ns = 5'000'000'000;
+
+  // The default period `ns` (> 0), the bounds widened to admit it when it lies outside.
+  void set_default_heartbeat(std::int64_t ns);
 };
 
 struct LeaseGrant {
