@@ -29,6 +29,15 @@ packages=(
   libimgui-dev xvfb xauth
   # tests and benchmarks (Orocos KDL is the benchmark baseline; kdl_parser the URDF FK reference)
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev libkdl-parser-dev
+  # drivers: ROS 1 (docs/ros.md): roscpp, actionlib, the message headers and definitions, the
+  # generators for control_msgs (genmsg, gencpp); the tests' rosmaster, rostopic and
+  # image_publisher, the Python message modules rostopic prints with
+  libroscpp-dev libactionlib-dev libactionlib-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev
+  libgeometry-msgs-dev libstd-msgs-dev libvisualization-msgs-dev
+  ros-std-msgs ros-trajectory-msgs ros-actionlib-msgs ros-geometry-msgs ros-sensor-msgs
+  ros-visualization-msgs python3-genmsg python3-gencpp ros-message-generation
+  python3-rosmaster python3-rostopic python3-rospy python3-sensor-msgs python3-std-msgs
+  ros-image-publisher
   # tests: the shipped arms' check (tests/data/check_arms.py) reads the robot files
   python3-yaml
   # tests: OpenCV's real stereo chessboard images (examples/data), ~95 MB, not needed to build

@@ -87,10 +87,10 @@ class Link::Node {
     trajectory_msgs::JointTrajectory& trajectory = message.trajectory;
     // A zero stamp: the controller starts the trajectory when the goal arrives.
     trajectory.joint_names = goal.joint_names;
-    trajectory.points.resize(goal.times_s.size());
-    for (std::size_t k = 0; k < goal.times_s.size(); ++k) {
+    trajectory.points.resize(goal.times_ns.size());
+    for (std::size_t k = 0; k < goal.times_ns.size(); ++k) {
       trajectory.points[k].positions = goal.positions[k];
-      trajectory.points[k].time_from_start = ros::Duration(goal.times_s[k]);
+      trajectory.points[k].time_from_start.fromNSec(goal.times_ns[k]);
     }
     std::lock_guard lock(clients_mutex_);
     if (!trajectory_ || !trajectory_->isServerConnected()) return 0;

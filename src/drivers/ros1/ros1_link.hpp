@@ -39,10 +39,11 @@ struct JointStateMessage {
 };
 
 // One FollowJointTrajectory goal: positions only (the controller interpolates), in the
-// order of joint_names, at times from the goal's start.
+// order of joint_names, at whole nanoseconds from the goal's start (ROS durations are
+// integer seconds and nanoseconds; telear's wire rounds sample times the same way).
 struct TrajectoryGoal {
   std::vector<std::string> joint_names;
-  std::vector<double> times_s;
+  std::vector<std::int64_t> times_ns;
   std::vector<std::vector<double>> positions;
 };
 

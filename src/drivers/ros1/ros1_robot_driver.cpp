@@ -188,10 +188,11 @@ class Ros1RobotDriver final : public core::RobotDriver {
     }
     ros1::TrajectoryGoal goal;
     goal.joint_names = joint_names_;
-    // time_from_start is each sample's time less the first's (0 for the server's samples).
+    // time_from_start is each sample's time less the first's (0 for the server's samples),
+    // rounded to whole nanoseconds as PreviewPlan's answer and ExecuteTrajectory's wire are.
     const double t0 = waypoints.times.front();
     for (std::size_t k = 0; k < waypoints.q.size(); ++k) {
-      goal.times_s.push_back(waypoints.times[k] - t0);
+      goal.times_ns.push_back(std::llround((waypoints.times[k] - t0) * 1e9));
       const Eigen::VectorXd& q = waypoints.q[k];
       goal.positions.emplace_back(q.data(), q.data() + q.size());
     }
@@ -345,7 +346,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
     ros1::TrajectoryGoal goal;
     goal.joint_names = joint_names_;
     auto push = [&goal](double t, const Eigen::VectorXd& q) {
-      goal.times_s.push_back(t);
+      goal.times_ns.push_back(std::llround(t * 1e9));
       goal.positions.emplace_back(q.data(), q.data() + q.size());
     };
     if (duration_s) {
