@@ -90,6 +90,7 @@ Result<std::unique_ptr<RobotServer>> RobotServer::create(std::unique_ptr<core::R
       workspace = std::move(loaded).value();
       workspace_yaml = std::move(text).value();
     }
+    driver->show_workspace(workspace);
     auto made = MotionCollisionGuard::create(*options.robot_description, workspace,
                                              std::move(workspace_yaml), options.safety_margin_m,
                                              options.mesh_collision);

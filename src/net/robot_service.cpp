@@ -513,6 +513,7 @@ grpc::Status RobotService::PreviewPlan(grpc::ServerContext* context,
     return finish(context, what, s);
   }
   const core::Trajectory& trajectory = prepared->plan.trajectory;
+  driver_.show_preview(id, prepared->samples);
   response->set_plan_id(id);
   response->set_plan_hash(*plan_hash_bytes(prepared->plan.hash));
   response->set_algorithm(std::string(core::kTrajectoryAlgorithm));

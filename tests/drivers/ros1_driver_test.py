@@ -22,6 +22,7 @@ import time
 import unittest
 
 import grpc
+import yaml
 
 import ros1_harness as h
 from ros1_harness import pb
@@ -245,6 +246,39 @@ class Ros1DriverTest(unittest.TestCase):
         # Half of the PUMA gripper's opening (data/robots/puma560.yaml), in metres.
         self.assertGreater(event["position"], 0.0)
         self.assertLess(event["position"], 0.2)
+
+    # --- what the operator rehearses, seen by ROS tools ------------------------------------
+
+    def rostopic_echo(self, topic, master_uri):
+        env = h.ros_master.loopback_environment(self.dir)
+        env["ROS_MASTER_URI"] = master_uri
+        # Debian's rostopic (python3-rostopic), with Debian's interpreter.
+        return subprocess.run(["/usr/bin/python3", "/usr/bin/rostopic", "echo", "-n", "1",
+                               topic], capture_output=True, text=True, timeout=30, env=env)
+
+    def test_ghost_and_workspace_for_rviz(self):
+        workspace = os.path.join(h.SOURCE_DIR, "data", "workspaces", "puma560_table.yaml")
+        _, server = self.start(server_args=["--workspace", workspace])
+        self.wait_ready(server)
+        self.assertTrue(server.info().collision_checked)
+        preview = server.preview(server.plan("ros1-ghost", [Q0, Q1], velocity_scale=1.0))
+        # Played in real time, then the last sample held (latched): a late subscriber sees it.
+        time.sleep(preview.duration_s + 0.3)
+        ghost = self.rostopic_echo("/telear/ghost/joint_states", fixture_master_uri())
+        message = yaml.safe_load(ghost.stdout.split("\n---")[0])
+        self.assertEqual(message["name"], h.PUMA_JOINTS)
+        for got, want in zip(message["position"], preview.samples[-1].q):
+            self.assertAlmostEqual(got, want, places=6)
+        markers = self.rostopic_echo("/telear/workspace", fixture_master_uri())
+        self.assertEqual(markers.returncode, 0, markers.stderr)
+        array = yaml.safe_load(markers.stdout.split("\n---")[0])
+        table = [m for m in array["markers"] if m["ns"] == "table_top"]
+        self.assertEqual(len(table), 1)
+        self.assertEqual(table[0]["header"]["frame_id"], "base_link")
+        self.assertEqual(table[0]["type"], 1)  # CUBE
+        self.assertAlmostEqual(table[0]["scale"]["z"], 0.03, places=9)
+        # Nothing moved: a preview is not a command.
+        self.assertEqual(list(server.state().q), Q0)
 
     # --- the master --------------------------------------------------------------------------
 

@@ -23,6 +23,7 @@
 #include "telear/core/robot_model.hpp"
 #include "telear/core/robot_state.hpp"
 #include "telear/core/trajectory.hpp"
+#include "telear/core/workspace.hpp"
 
 namespace telear::core {
 
@@ -66,6 +67,13 @@ class RobotDriver {
   // Latched: halts at once; engaging again keeps the first reason.
   virtual void estop(const std::string& reason) = 0;
   virtual Status reset_estop() = 0;
+
+  // What the operator rehearses, for a driver that can show it to the arm's own tools (the
+  // ROS driver publishes it for RViz, docs/ros.md); nothing by default. The server calls
+  // show_preview after each PreviewPlan it answered (the samples ExecutePlan would run) and
+  // show_workspace once with the workspace it checks motions against. Must not block.
+  virtual void show_preview(const std::string& /*plan_id*/, const TimedWaypoints& /*samples*/) {}
+  virtual void show_workspace(const Workspace& /*workspace*/) {}
 };
 
 }  // namespace telear::core

@@ -18,6 +18,10 @@
 //               controller's own controlled stop).
 //   gripper     control_msgs/GripperCommand with --gripper-action: the opening fraction as the
 //               gap in metres (the robot file's max opening), also for a plan's gripper events.
+//   rehearsal   what the operator previews, for RViz: each previewed plan's samples played on
+//               --ghost-topic (sensor_msgs/JointState, latched, 30 Hz in real time, then its last
+//               sample held) and the server's workspace as a visualization_msgs/MarkerArray on
+//               the workspace topic (latched), in the robot's root link frame.
 //   faults      the master not answering, no joint states for silence_timeout_s, a missing
 //               joint, the action server not connected: every motion is refused with that
 //               reason and the state's `fault` says it; all clear themselves when ROS is back
@@ -41,6 +45,8 @@ struct Ros1DriverOptions {
   std::string controller_ns = "/arm_controller/follow_joint_trajectory";
   std::string gripper_ns;  // control_msgs/GripperCommand action; empty: no gripper
   std::string ghost_topic = "/telear/ghost/joint_states";
+  std::string workspace_topic = "/telear/workspace";
+  double ghost_rate_hz = 30.0;  // the previewed plan played at this rate
   double silence_timeout_s = 0.5;  // no joint states for longer: a fault
   double start_tolerance = 0.01;   // rad or m, a trajectory's start against the arm
   double jog_sample_rate_hz = 100.0;

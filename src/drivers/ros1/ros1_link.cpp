@@ -6,6 +6,7 @@
 #include <control_msgs/GripperCommandAction.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <atomic>
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <cstdlib>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -138,6 +140,54 @@ class Link::Node {
     if (ghost_) ghost_.publish(message);
   }
 
+  void publish_workspace(const std::string& frame_id,
+                         const std::vector<WorkspaceMarker>& markers) {
+    visualization_msgs::MarkerArray array;
+    const ros::Time now = ros::Time::now();
+    for (std::size_t i = 0; i < markers.size(); ++i) {
+      const WorkspaceMarker& from = markers[i];
+      visualization_msgs::Marker marker;
+      marker.header.frame_id = frame_id;
+      marker.header.stamp = now;
+      marker.ns = from.name;
+      marker.id = static_cast<int>(i);
+      marker.action = visualization_msgs::Marker::ADD;
+      switch (from.shape) {
+        case WorkspaceMarker::Shape::kBox:
+          marker.type = visualization_msgs::Marker::CUBE;
+          break;
+        case WorkspaceMarker::Shape::kCylinder:
+          marker.type = visualization_msgs::Marker::CYLINDER;
+          break;
+        case WorkspaceMarker::Shape::kSphere:
+          marker.type = visualization_msgs::Marker::SPHERE;
+          break;
+        case WorkspaceMarker::Shape::kMesh:
+          marker.type = visualization_msgs::Marker::MESH_RESOURCE;
+          marker.mesh_resource = from.mesh_resource;
+          break;
+      }
+      marker.pose.position.x = from.position[0];
+      marker.pose.position.y = from.position[1];
+      marker.pose.position.z = from.position[2];
+      marker.pose.orientation.x = from.orientation[0];
+      marker.pose.orientation.y = from.orientation[1];
+      marker.pose.orientation.z = from.orientation[2];
+      marker.pose.orientation.w = from.orientation[3];
+      marker.scale.x = from.scale[0];
+      marker.scale.y = from.scale[1];
+      marker.scale.z = from.scale[2];
+      marker.color.r = from.colour[0];
+      marker.color.g = from.colour[1];
+      marker.color.b = from.colour[2];
+      marker.color.a = 1.0f;
+      array.markers.push_back(marker);
+    }
+    std::lock_guard lock(clients_mutex_);
+    last_workspace_ = array;
+    if (workspace_) workspace_.publish(array);
+  }
+
  private:
   // Events for the driver leave ROS's threads through this queue: actionlib calls back with
   // its goal list locked, and the driver sends goals with its own state locked; handing the
@@ -215,12 +265,16 @@ class Link::Node {
     }
     ghost_ = handle_->advertise<sensor_msgs::JointState>(options_.ghost_topic, 1, true);
     if (last_ghost_) ghost_.publish(*last_ghost_);
+    workspace_ = handle_->advertise<visualization_msgs::MarkerArray>(options_.workspace_topic, 1,
+                                                                     true);
+    if (last_workspace_) workspace_.publish(*last_workspace_);
     registered_ = true;
   }
 
   void unregister_locked() {
     joint_states_.shutdown();
     ghost_.shutdown();
+    workspace_.shutdown();
     trajectory_.reset();
     gripper_client_.reset();
     trajectory_active_ = false;
@@ -252,6 +306,8 @@ class Link::Node {
   ros::Subscriber joint_states_;
   ros::Publisher ghost_;
   std::optional<sensor_msgs::JointState> last_ghost_;
+  ros::Publisher workspace_;
+  std::optional<visualization_msgs::MarkerArray> last_workspace_;
   std::unique_ptr<TrajectoryClient> trajectory_;
   bool trajectory_active_ = false;
   std::unique_ptr<GripperClient> gripper_client_;
@@ -331,6 +387,11 @@ bool Link::send_gripper(double position, double max_effort) {
 void Link::publish_ghost(const std::vector<std::string>& names,
                          const std::vector<double>& position) {
   node_->publish_ghost(names, position);
+}
+
+void Link::publish_workspace(const std::string& frame_id,
+                             const std::vector<WorkspaceMarker>& markers) {
+  node_->publish_workspace(frame_id, markers);
 }
 
 }  // namespace telear::drivers::ros1

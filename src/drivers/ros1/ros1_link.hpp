@@ -14,6 +14,7 @@
 //
 // One link per process: roscpp's node is process-wide (ros::init once, ros::shutdown once).
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -29,6 +30,7 @@ struct LinkOptions {
   std::string controller_ns = "/arm_controller/follow_joint_trajectory";
   std::string gripper_ns;                  // control_msgs/GripperCommand; empty: none
   std::string ghost_topic = "/telear/ghost/joint_states";
+  std::string workspace_topic = "/telear/workspace";
 };
 
 struct JointStateMessage {
@@ -45,6 +47,18 @@ struct TrajectoryGoal {
   std::vector<std::string> joint_names;
   std::vector<std::int64_t> times_ns;
   std::vector<std::vector<double>> positions;
+};
+
+// One workspace object as a visualization_msgs/Marker (RViz's shapes).
+struct WorkspaceMarker {
+  enum class Shape { kBox, kCylinder, kSphere, kMesh };
+  Shape shape = Shape::kBox;
+  std::string name;                  // the marker's namespace
+  std::array<double, 3> scale{};     // box: edges; cylinder: 2r, 2r, length; sphere: 2r x 3; mesh: scale
+  std::array<double, 3> position{};  // in frame_id, m
+  std::array<double, 4> orientation{0.0, 0.0, 0.0, 1.0};  // quaternion x, y, z, w
+  std::array<float, 3> colour{};                           // RGB 0..1
+  std::string mesh_resource;                               // mesh: file:///absolute/path
 };
 
 enum class GoalEnd { kSucceeded, kAborted, kPreempted, kRejected, kLost };
@@ -92,6 +106,8 @@ class Link {
 
   // sensor_msgs/JointState on the ghost topic (latched: a late subscriber sees the last one).
   void publish_ghost(const std::vector<std::string>& names, const std::vector<double>& position);
+  // visualization_msgs/MarkerArray on the workspace topic (latched), in frame_id.
+  void publish_workspace(const std::string& frame_id, const std::vector<WorkspaceMarker>& markers);
 
  private:
   class Node;

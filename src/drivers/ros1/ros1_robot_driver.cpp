@@ -17,6 +17,7 @@
 #include "telear/core/motion_command.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/trajectory.hpp"
+#include "telear/core/workspace.hpp"
 
 namespace telear::drivers {
 namespace {
@@ -49,6 +50,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
       : model_(description.model),
         urdf_(core::urdf_text_for_clients(description)),
         tip_link_(description.tip_link),
+        root_link_(description.root_link.empty() ? "base_link" : description.root_link),
         options_(std::move(options)),
         epoch_ns_(core::monotonic_ns()) {
     const int dof = model_->dof();
@@ -65,6 +67,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
     link.controller_ns = options_.controller_ns;
     link.gripper_ns = options_.gripper_ns;
     link.ghost_topic = options_.ghost_topic;
+    link.workspace_topic = options_.workspace_topic;
     std::string error;
     link_ = ros1::Link::start(
         link, [this](const ros1::JointStateMessage& message) { on_joint_state(message); },
@@ -251,7 +254,54 @@ class Ros1RobotDriver final : public core::RobotDriver {
     return Status::Ok();
   }
 
+  void show_preview(const std::string& plan_id, const core::TimedWaypoints& samples) override {
+    if (samples.q.empty()) return;
+    std::lock_guard lock(mutex_);
+    preview_ = Preview{plan_id, samples, core::monotonic_ns(), 0};
+    timer_wake_.notify_all();
+  }
+
+  void show_workspace(const core::Workspace& workspace) override {
+    std::vector<ros1::WorkspaceMarker> markers;
+    for (const core::WorkspaceObject& object : workspace.objects) {
+      ros1::WorkspaceMarker marker;
+      marker.name = object.name;
+      switch (object.shape) {
+        case core::ShapeKind::kBox:
+          marker.shape = ros1::WorkspaceMarker::Shape::kBox;
+          marker.scale = {object.size_m.x(), object.size_m.y(), object.size_m.z()};
+          break;
+        case core::ShapeKind::kCylinder:
+          marker.shape = ros1::WorkspaceMarker::Shape::kCylinder;
+          marker.scale = {2 * object.radius_m, 2 * object.radius_m, object.length_m};
+          break;
+        case core::ShapeKind::kSphere:
+          marker.shape = ros1::WorkspaceMarker::Shape::kSphere;
+          marker.scale = {2 * object.radius_m, 2 * object.radius_m, 2 * object.radius_m};
+          break;
+        case core::ShapeKind::kMesh:
+          marker.shape = ros1::WorkspaceMarker::Shape::kMesh;
+          marker.scale = {object.mesh_scale.x(), object.mesh_scale.y(), object.mesh_scale.z()};
+          marker.mesh_resource = "file://" + object.mesh_path;
+          break;
+      }
+      const Eigen::Vector3d p = object.T_base_object.translation();
+      const Eigen::Quaterniond r(object.T_base_object.linear());
+      marker.position = {p.x(), p.y(), p.z()};
+      marker.orientation = {r.x(), r.y(), r.z(), r.w()};
+      marker.colour = {object.colour.x(), object.colour.y(), object.colour.z()};
+      markers.push_back(std::move(marker));
+    }
+    link_->publish_workspace(root_link_, markers);
+  }
+
  private:
+  struct Preview {
+    std::string plan_id;
+    core::TimedWaypoints samples;
+    std::int64_t started_ns = 0;
+    std::size_t next = 0;  // the next sample to publish
+  };
   struct Active {
     std::string id;
     std::uint64_t goal = 0;
@@ -451,7 +501,25 @@ class Ros1RobotDriver final : public core::RobotDriver {
     if (!jog_) stop_reason_.clear();
   }
 
-  // Jog expiries and a plan's gripper events, on the server clock.
+  // Plays the previewed plan on the ghost topic; says when the next frame is due (or nothing
+  // when the last sample was published).
+  std::optional<std::int64_t> play_preview_locked(std::int64_t now) {
+    Preview& preview = *preview_;
+    const std::vector<double>& times = preview.samples.times;
+    const double t = times.front() + core::ns_to_s(now - preview.started_ns);
+    std::size_t k = preview.next;
+    while (k + 1 < times.size() && times[k + 1] <= t) ++k;
+    const Eigen::VectorXd& q = preview.samples.q[k];
+    link_->publish_ghost(joint_names_, std::vector<double>(q.data(), q.data() + q.size()));
+    if (k + 1 >= times.size()) {
+      preview_.reset();
+      return std::nullopt;
+    }
+    preview.next = k + 1;
+    return now + core::s_to_ns(1.0 / options_.ghost_rate_hz);
+  }
+
+  // Jog expiries, a plan's gripper events and the ghost's frames, on the server clock.
   void run_timer() {
     std::unique_lock lock(mutex_);
     while (!stopping_) {
@@ -465,6 +533,9 @@ class Ros1RobotDriver final : public core::RobotDriver {
         if (Status s = send_gripper_locked(opening); !s) spdlog::warn("ros1: {}", s.error().message);
       }
       std::int64_t next = now + 100'000'000;
+      if (preview_) {
+        if (auto frame = play_preview_locked(now)) next = std::min(next, *frame);
+      }
       if (jog_ && stop_reason_.empty()) next = std::min(next, jog_->expires_ns);
       if (!gripper_events_.empty()) next = std::min(next, gripper_events_.front().at_ns);
       timer_wake_.wait_for(lock, std::chrono::nanoseconds(std::max<std::int64_t>(next - now, 0)));
@@ -472,7 +543,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
   }
 
   core::RobotModelPtr model_;
-  std::string urdf_, tip_link_;
+  std::string urdf_, tip_link_, root_link_;
   Ros1DriverOptions options_;
   std::int64_t epoch_ns_;
   std::vector<std::string> joint_names_;
@@ -493,6 +564,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
   std::optional<Active> active_;
   std::optional<Jog> jog_;
   std::vector<TimedGripperEvent> gripper_events_;  // in time order
+  std::optional<Preview> preview_;                 // being played on the ghost topic
   std::map<std::string, core::TrajectoryRecord> records_;
   std::map<std::string, std::int64_t> accepted_ns_;
 
