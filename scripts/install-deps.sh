@@ -37,7 +37,7 @@ packages=(
   ros-std-msgs ros-trajectory-msgs ros-actionlib-msgs ros-geometry-msgs ros-sensor-msgs
   ros-visualization-msgs python3-genmsg python3-gencpp ros-message-generation
   python3-rosmaster python3-rostopic python3-rospy python3-sensor-msgs python3-std-msgs
-  python3-visualization-msgs python3-geometry-msgs
+  python3-visualization-msgs python3-geometry-msgs python3-tf2-msgs ros-robot-state-publisher
   ros-image-publisher
   # tests: the shipped arms' check (tests/data/check_arms.py) reads the robot files
   python3-yaml

@@ -279,6 +279,29 @@ class Ros1DriverTest(unittest.TestCase):
         self.assertAlmostEqual(table[0]["scale"]["z"], 0.03, places=9)
         # Nothing moved: a preview is not a command.
         self.assertEqual(list(server.state().q), Q0)
+        # Debian's robot_state_publisher beside the ghost topic, as docs/ros.md says to run it
+        # for RViz: the robot's URDF is there, and the ghost's links come out as ghost/ frames.
+        env = h.ros_master.loopback_environment(self.dir)
+        env["ROS_MASTER_URI"] = fixture_master_uri()
+        publisher = subprocess.Popen(
+            ["/usr/lib/robot_state_publisher/robot_state_publisher", "__ns:=/telear/ghost",
+             "_tf_prefix:=ghost", "joint_states:=/telear/ghost/joint_states"], env=env,
+            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        try:
+            tf = subprocess.Popen(["/usr/bin/python3", "/usr/bin/rostopic", "echo", "-n", "1",
+                                   "/tf"], env=env, stdout=subprocess.PIPE,
+                                  stderr=subprocess.PIPE, text=True)
+            time.sleep(1.0)  # both subscribed before the next preview plays
+            server.preview(server.plan("ros1-ghost-2", [Q0, Q1], velocity_scale=1.0))
+            out, err = tf.communicate(timeout=20)
+            self.assertEqual(tf.returncode, 0, err)
+            frames = yaml.safe_load(out.split("\n---")[0])["transforms"]
+            children = {t["child_frame_id"] for t in frames}
+            self.assertIn("ghost/link1", children)
+            self.assertTrue(all(c.startswith("ghost/") for c in children), children)
+        finally:
+            publisher.terminate()
+            publisher.wait(10)
 
     # --- the master --------------------------------------------------------------------------
 

@@ -21,7 +21,9 @@
 //   rehearsal   what the operator previews, for RViz: each previewed plan's samples played on
 //               --ghost-topic (sensor_msgs/JointState, latched, 30 Hz in real time, then its last
 //               sample held) and the server's workspace as a visualization_msgs/MarkerArray on
-//               the workspace topic (latched), in the robot's root link frame.
+//               the workspace topic (latched), in the robot's root link frame; the robot's URDF
+//               as the parameter robot_description beside the ghost topic, so that Debian's
+//               robot_state_publisher run there (tf_prefix ghost) gives RViz the ghost's frames.
 //   faults      the master not answering, no joint states for silence_timeout_s, a missing
 //               joint, the action server not connected: every motion is refused with that
 //               reason and the state's `fault` says it; all clear themselves when ROS is back

@@ -268,6 +268,11 @@ class Link::Node {
     workspace_ = handle_->advertise<visualization_msgs::MarkerArray>(options_.workspace_topic, 1,
                                                                      true);
     if (last_workspace_) workspace_.publish(*last_workspace_);
+    if (!options_.robot_description.empty()) {
+      const std::string& topic = options_.ghost_topic;
+      const std::string ns = topic.substr(0, topic.find_last_of('/'));
+      ros::param::set(ns + "/robot_description", options_.robot_description);
+    }
     registered_ = true;
   }
 

@@ -31,6 +31,9 @@ struct LinkOptions {
   std::string gripper_ns;                  // control_msgs/GripperCommand; empty: none
   std::string ghost_topic = "/telear/ghost/joint_states";
   std::string workspace_topic = "/telear/workspace";
+  // Set as the parameter robot_description beside the ghost topic (/telear/ghost/...), so a
+  // robot_state_publisher in that namespace draws the ghost in RViz (docs/ros.md).
+  std::string robot_description;
 };
 
 struct JointStateMessage {

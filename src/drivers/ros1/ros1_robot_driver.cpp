@@ -68,6 +68,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
     link.gripper_ns = options_.gripper_ns;
     link.ghost_topic = options_.ghost_topic;
     link.workspace_topic = options_.workspace_topic;
+    link.robot_description = urdf_;
     std::string error;
     link_ = ros1::Link::start(
         link, [this](const ros1::JointStateMessage& message) { on_joint_state(message); },
