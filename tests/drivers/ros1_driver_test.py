@@ -182,6 +182,28 @@ class Ros1DriverTest(unittest.TestCase):
         self.assertIn("error_code -4", state.last_trajectory_message)
         self.assertEqual(state.mode, pb.ROBOT_MODE_IDLE)
 
+    def test_gripper_events_without_a_gripper_action(self):
+        controller, server = self.start()
+        state = self.wait_ready(server)
+        server.acquire()
+        # The opening the state reports, carried by every waypoint: no-ops, the plan runs.
+        keep = server.plan("ros1-keep-gripper", [Q0, Q1])
+        for waypoint in keep.waypoints:
+            waypoint.has_gripper, waypoint.gripper_opening = True, state.gripper_opening
+        server.execute(keep, server.preview(keep))
+        h.wait_for(lambda: controller.events("goal"), 5, "the goal")
+        server.wait_state(lambda s: s.last_trajectory_status == pb.TRAJECTORY_STATUS_COMPLETED,
+                          10, "the plan to complete")
+        # A plan that closes or opens the gripper is refused: no arm motion without its grasp.
+        grasp = server.plan("ros1-grasp", [Q1, Q0])
+        grasp.waypoints[1].has_gripper, grasp.waypoints[1].gripper_opening = True, 1.0
+        with self.assertRaises(grpc.RpcError) as refused:
+            server.execute(grasp, server.preview(grasp))
+        self.assertIn("it moves the gripper to 1.000", refused.exception.details())
+        self.assertIn("no gripper action (telear robot-server --gripper-action NS)",
+                      refused.exception.details())
+        self.assertEqual(len(controller.events("goal")), 1)
+
     # --- faults ------------------------------------------------------------------------------
 
     def test_silent_arm_is_a_fault(self):

@@ -186,9 +186,18 @@ class Ros1RobotDriver final : public core::RobotDriver {
     if (waypoints.q.empty() || waypoints.q.size() != waypoints.times.size()) {
       return Error{what + " rejected: no samples"};
     }
-    if (!waypoints.gripper.empty() && options_.gripper_ns.empty()) {
-      return Error{what + " rejected: it moves the gripper, and this robot server has no "
-                          "gripper action (telear robot-server --gripper-action NS)"};
+    // Without a gripper action the opening stays what the state reports: events that keep it
+    // (a plan's waypoints carry the opening even when it does not change) are no-ops, one
+    // that changes it is refused rather than run without the grasp it was planned for.
+    const bool has_gripper = !options_.gripper_ns.empty();
+    for (const core::GripperEvent& event : waypoints.gripper) {
+      if (!has_gripper && std::abs(event.opening - gripper_opening_) > 1e-9) {
+        return Error{what + " rejected: it moves the gripper to " +
+                     core::format_number(event.opening, "%.3f") + " at " +
+                     core::format_number(event.time, "%.3f s") +
+                     ", and this robot server has no gripper action (telear robot-server "
+                     "--gripper-action NS)"};
+      }
     }
     ros1::TrajectoryGoal goal;
     goal.joint_names = joint_names_;
@@ -215,7 +224,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
     active_ = Active{id, number, now};
     stop_reason_.clear();
     for (const core::GripperEvent& event : waypoints.gripper) {
-      gripper_events_.push_back({now + core::s_to_ns(event.time - t0), event.opening});
+      if (has_gripper) gripper_events_.push_back({now + core::s_to_ns(event.time - t0), event.opening});
     }
     timer_wake_.notify_all();
     return core::DriverAcceptance{false, record, now};
