@@ -87,9 +87,11 @@ class Controller:
 
 
 class RobotServer:
-    """`telear robot-server --driver ros1` as a process, and a gRPC client of it."""
+    """`telear robot-server` (by default --driver ros1) as a process, and a gRPC client of it."""
 
-    def __init__(self, telear, master_uri, directory, extra=(), robot="puma560"):
+    def __init__(self, telear, master_uri, directory, extra=(), robot="puma560",
+                 driver_args=None):
+        """driver_args: the --driver options; None: ROS 1 on master_uri."""
         self.token = "ros1-test-token"
         token_file = os.path.join(directory, "token")
         with open(token_file, "w") as f:
@@ -97,8 +99,10 @@ class RobotServer:
         self.err_path = os.path.join(directory, f"robot-server-{monotonic_ns()}.err")
         self.err = open(self.err_path, "wb")
         env = ros_master.loopback_environment(directory)
-        args = [telear, "robot-server", "--driver", "ros1", "--ros-master", master_uri,
-                "--robot", robot, "--listen", "127.0.0.1:0", "--token-file", token_file]
+        if driver_args is None:
+            driver_args = ["--driver", "ros1", "--ros-master", master_uri]
+        args = [telear, "robot-server"] + list(driver_args) + [
+            "--robot", robot, "--listen", "127.0.0.1:0", "--token-file", token_file]
         self.process = subprocess.Popen(args + list(extra), env=env, stdout=subprocess.PIPE,
                                         stderr=self.err, text=True)
         line = self.process.stdout.readline()
@@ -134,7 +138,10 @@ class RobotServer:
         return wait_for(lambda: (lambda s: s if predicate(s) else None)(self.state()),
                         timeout_s, what)
 
-    def acquire(self, heartbeat_ns=0, renew=True):
+    def acquire(self, heartbeat_ns=1_000_000_000, renew=True):
+        """The lease, renewed at a third of its period by a thread. 1 s by default: the
+        server's 250 ms leaves a Python renewal thread on a loaded 2-core machine too little
+        room (a lapse is tested on purpose with a short period)."""
         self.lease = self.call("AcquireLease", pb.AcquireLeaseRequest(
             client_name="ros1-test", heartbeat_period_ns=heartbeat_ns))
         if renew:
