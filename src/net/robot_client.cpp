@@ -79,6 +79,10 @@ struct RobotClient::Impl {
   bool heartbeat_stop = false;
   std::string lease_error;
   std::int64_t heartbeat_ns = 0;
+  Eigen::VectorXd ghost_q;  // the latest set_ghost
+  double ghost_gripper = 0.0;
+  std::uint64_t ghost_version = 0;  // counts changes; 0: no ghost yet
+  std::uint64_t ghost_sent = 0;     // the version a renewal the server accepted carried
   std::thread heartbeat_thread;
 
   std::atomic<std::uint64_t> command_bytes{0};
@@ -177,12 +181,25 @@ void RobotClient::Impl::heartbeat_loop() {
     }
     v1::RenewLeaseRequest request;
     request.set_lease_id(id);
+    std::uint64_t ghost = 0;
+    {
+      std::lock_guard lock(mutex);
+      if (ghost_version != ghost_sent) {
+        ghost = ghost_version;
+        request.mutable_ghost_q()->Assign(ghost_q.data(), ghost_q.data() + ghost_q.size());
+        request.set_ghost_gripper(ghost_gripper);
+      }
+    }
     v1::Lease response;
     // Renewals are not counted as command bytes: both ways of moving the arm renew alike.
     const grpc::Status status = call(&Stub::RenewLease, request, &response, false);
     const std::int64_t now = core::monotonic_ns();
     if (status.ok()) {
       last_renewal = now;
+      if (ghost != 0) {
+        std::lock_guard lock(mutex);
+        ghost_sent = std::max(ghost_sent, ghost);
+      }
       continue;
     }
     const bool refused = status.error_code() == grpc::StatusCode::PERMISSION_DENIED ||
@@ -290,6 +307,7 @@ Status RobotClient::acquire_lease(double heartbeat_period_s) {
     impl_->lease_held = true;
     impl_->lease_error.clear();
     impl_->heartbeat_stop = false;
+    impl_->ghost_sent = 0;  // a new lease: the server has not seen this client's ghost
     previous = std::move(impl_->heartbeat_thread);  // a lost lease's thread has returned
   }
   if (previous.joinable()) previous.join();
@@ -454,6 +472,17 @@ Status RobotClient::cancel(const std::string& reason) {
   const grpc::Status status = impl_->call(&Stub::Cancel, request, &response, true);
   if (!status.ok()) return impl_->error("cancel", status);
   return Status::Ok();
+}
+
+void RobotClient::set_ghost(const Eigen::VectorXd& q, double gripper) {
+  std::lock_guard lock(impl_->mutex);
+  if (impl_->ghost_version != 0 && q.size() == impl_->ghost_q.size() && q == impl_->ghost_q &&
+      gripper == impl_->ghost_gripper) {
+    return;
+  }
+  impl_->ghost_q = q;
+  impl_->ghost_gripper = gripper;
+  ++impl_->ghost_version;
 }
 
 Status RobotClient::set_gripper(double opening) {

@@ -200,6 +200,22 @@ Status check_jog_expiry(std::int64_t expires_ns, std::int64_t now_ns, const Comm
   return Status::Ok();
 }
 
+Status check_ghost(const core::RobotModel& model, const Eigen::VectorXd& q, double gripper) {
+  if (q.size() != model.dof()) {
+    return Error{"ghost rejected: " + std::to_string(q.size()) + " joint values for a " +
+                 std::to_string(model.dof()) + "-joint arm"};
+  }
+  if (!q.allFinite()) return Error{"ghost rejected: a joint value is not a finite number"};
+  if (const auto violation = core::first_limit_violation(model, q)) {
+    return Error{"ghost rejected: " + core::describe_violation(model, *violation)};
+  }
+  if (!(std::isfinite(gripper) && gripper >= 0.0 && gripper <= 1.0)) {
+    return Error{"ghost rejected: gripper opening " + core::format_number(gripper, kValue) +
+                 " is outside [0, 1]"};
+  }
+  return Status::Ok();
+}
+
 Status check_gripper_opening(double opening) {
   if (!(std::isfinite(opening) && opening >= 0.0 && opening <= 1.0)) {
     return Error{"gripper command rejected: opening " + core::format_number(opening, kValue) +

@@ -252,6 +252,15 @@ grpc::Status RobotService::RenewLease(grpc::ServerContext* context,
   if (grpc::Status s = auth_.authorize_command(*context); !s.ok()) {
     return finish(context, "renew lease", s);
   }
+  std::optional<Eigen::VectorXd> ghost;
+  if (request->ghost_q_size() > 0) {
+    const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(request->ghost_q().data(),
+                                                                 request->ghost_q_size());
+    if (Status s = check_ghost(*driver_.model(), q, request->ghost_gripper()); !s) {
+      return finish(context, "renew lease", invalid(Error{"renew lease: " + s.error().message}));
+    }
+    ghost = q;
+  }
   auto grant = lease_.renew(request->lease_id());
   if (!grant) {
     return finish(context, "renew lease",
@@ -261,6 +270,7 @@ grpc::Status RobotService::RenewLease(grpc::ServerContext* context,
   response->set_holder(grant->holder);
   response->set_heartbeat_period_ns(grant->heartbeat_ns);
   response->set_expires_ns(grant->expires_ns);
+  if (ghost) driver_.show_ghost(*ghost, request->ghost_gripper());
   return grpc::Status::OK;
 }
 

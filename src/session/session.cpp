@@ -388,6 +388,9 @@ void Session::update(double dt) {
     view_.ghost_gripper = ghost_.gripper();
   }
   update_clearance(view_.ghost_q, view_.ghost_gripper);
+  // The rehearsed ghost rides on the lease's heartbeat, for drivers that show it to the arm's
+  // own tools (RViz through the ROS driver); only changes are sent.
+  if (ghost_synced_ && robot_->lease_held()) robot_->set_ghost(ghost_.q(), ghost_.gripper());
 
   update_frame(t);
   update_registration(t);

@@ -325,6 +325,21 @@ class Ros1DriverTest(unittest.TestCase):
             publisher.terminate()
             publisher.wait(10)
 
+    def test_the_operators_ghost_for_rviz(self):
+        _, server = self.start()
+        self.wait_ready(server)
+        lease = server.acquire(renew=False)
+        ghost = [0.2, -0.1, 0.3, 0.0, -0.5, 0.1]
+        # The console's heartbeat carries its ghost (RobotClient::set_ghost); here by hand.
+        server.call("RenewLease", pb.RenewLeaseRequest(lease_id=lease.lease_id, ghost_q=ghost,
+                                                       ghost_gripper=0.5))
+        echoed = self.rostopic_echo("/telear/ghost/joint_states", fixture_master_uri())
+        self.assertEqual(echoed.returncode, 0, echoed.stderr)
+        message = yaml.safe_load(echoed.stdout.split("\n---")[0])
+        self.assertEqual(message["name"], h.PUMA_JOINTS)
+        self.assertEqual(message["position"], ghost)
+        self.assertEqual(list(server.state().q), Q0)  # the ghost moves nothing
+
     # --- the master --------------------------------------------------------------------------
 
     def test_master_restart_reconnects(self):
@@ -368,9 +383,9 @@ class Ros1DriverTest(unittest.TestCase):
                                   list(args), capture_output=True, text=True, timeout=30,
                                   env=env)
 
-        bad_driver = run("--driver", "ros2")
+        bad_driver = run("--driver", "ros3")
         self.assertEqual(bad_driver.returncode, 2)
-        self.assertIn("--driver must be sim or ros1, got 'ros2'", bad_driver.stderr)
+        self.assertIn("--driver must be sim, ros1 or ros2, got 'ros3'", bad_driver.stderr)
         with_q = run("--driver", "ros1", "--q", "ready")
         self.assertEqual(with_q.returncode, 2)
         self.assertIn("--q sets the simulated robot's start", with_q.stderr)

@@ -6,7 +6,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <mutex>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "robot_test_support.hpp"
 
@@ -166,6 +170,132 @@ TEST(RobotClient, JogsAndStopsWithTheServersReasons) {
   ASSERT_TRUE(alice.reset_estop());
   ASSERT_TRUE(alice.set_gripper(0.5));
   ASSERT_TRUE(alice.cancel());
+}
+
+// The simulated driver, recording what the server shows it of the operator's rehearsal.
+class GhostRecordingDriver final : public core::RobotDriver {
+ public:
+  explicit GhostRecordingDriver(std::unique_ptr<core::RobotDriver> inner)
+      : inner_(std::move(inner)) {}
+  const core::RobotModelPtr& model() const override { return inner_->model(); }
+  std::string name() const override { return inner_->name(); }
+  std::string urdf() const override { return inner_->urdf(); }
+  double start_tolerance() const override { return inner_->start_tolerance(); }
+  core::DriverSnapshot snapshot() const override { return inner_->snapshot(); }
+  std::optional<core::TrajectoryRecord> trajectory_record(const std::string& id) const override {
+    return inner_->trajectory_record(id);
+  }
+  Result<core::MotionOutcome> jog(const core::MotionCommand& c, std::int64_t e) override {
+    return inner_->jog(c, e);
+  }
+  Status jog_velocity(const Eigen::VectorXd& qd, std::int64_t e) override {
+    return inner_->jog_velocity(qd, e);
+  }
+  Result<core::DriverAcceptance> execute(const std::string& id,
+                                         const core::TimedWaypoints& w) override {
+    return inner_->execute(id, w);
+  }
+  void stop(const std::string& reason) override { inner_->stop(reason); }
+  Status set_gripper(double opening) override { return inner_->set_gripper(opening); }
+  void estop(const std::string& reason) override { inner_->estop(reason); }
+  Status reset_estop() override { return inner_->reset_estop(); }
+  void show_ghost(const Eigen::VectorXd& q, double gripper) override {
+    std::lock_guard lock(mutex_);
+    ghosts_.emplace_back(q, gripper);
+  }
+  std::vector<std::pair<Eigen::VectorXd, double>> ghosts() const {
+    std::lock_guard lock(mutex_);
+    return ghosts_;
+  }
+
+ private:
+  std::unique_ptr<core::RobotDriver> inner_;
+  mutable std::mutex mutex_;
+  std::vector<std::pair<Eigen::VectorXd, double>> ghosts_;
+};
+
+struct GhostServer {
+  GhostRecordingDriver* driver = nullptr;
+  std::unique_ptr<RobotServer> server;
+};
+
+GhostServer start_ghost_server() {
+  auto sim = sim::SimRobotDriver::create(telear::test::puma560());
+  EXPECT_TRUE(sim) << sim.error().message;
+  auto driver = std::make_unique<GhostRecordingDriver>(std::move(sim).value());
+  GhostServer started{driver.get(), nullptr};
+  auto server = RobotServer::create(std::move(driver), server_options());
+  EXPECT_TRUE(server) << server.error().message;
+  started.server = std::move(server).value();
+  return started;
+}
+
+}  // namespace
+}  // namespace telear::net::test
+
+namespace telear::net::test {
+namespace {
+
+TEST(RobotClient, TheGhostRidesOnTheLeaseHeartbeat) {
+  GhostServer ghost = start_ghost_server();
+  RobotClient client(client_options(*ghost.server, "alice"));
+  client.start();
+  Eigen::VectorXd q(6);
+  q << 0.1, 0.2, -0.3, 0.0, 0.4, 0.0;
+  client.set_ghost(q, 0.5);  // no lease yet: nothing is sent
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  EXPECT_TRUE(ghost.driver->ghosts().empty());
+  ASSERT_TRUE(client.acquire_lease(0.1));
+  auto seen = [&](std::size_t n) {
+    const std::int64_t deadline = core::monotonic_ns() + 2'000'000'000;
+    while (ghost.driver->ghosts().size() < n && core::monotonic_ns() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return ghost.driver->ghosts();
+  };
+  auto ghosts = seen(1);
+  ASSERT_EQ(ghosts.size(), 1u);
+  EXPECT_EQ(ghosts[0].first, q);
+  EXPECT_EQ(ghosts[0].second, 0.5);
+  // Unchanged: not sent again, though the heartbeat goes on (every 33 ms).
+  client.set_ghost(q, 0.5);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(ghost.driver->ghosts().size(), 1u);
+  // A change rides on the next renewal; the gripper alone is a change.
+  client.set_ghost(q, 1.0);
+  ghosts = seen(2);
+  ASSERT_EQ(ghosts.size(), 2u);
+  EXPECT_EQ(ghosts[1].second, 1.0);
+  EXPECT_TRUE(client.lease_held()) << client.lease_error();
+}
+
+TEST(RobotServer, RefusesAnInvalidGhostOnARenewal) {
+  GhostServer ghost = start_ghost_server();
+  auto stub = stub_for(*ghost.server);
+  const v1::Lease lease = acquire(*stub);
+  auto renew = [&](std::vector<double> q, double gripper) {
+    v1::RenewLeaseRequest request;
+    request.set_lease_id(lease.lease_id());
+    request.mutable_ghost_q()->Assign(q.begin(), q.end());
+    request.set_ghost_gripper(gripper);
+    v1::Lease response;
+    return stub->RenewLease(context().get(), request, &response);
+  };
+  grpc::Status s = renew({0, 0, 0, 0, 0}, 0.0);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(s.error_message(), "renew lease: ghost rejected: 5 joint values for a 6-joint arm");
+  s = renew({0, 0, std::nan(""), 0, 0, 0}, 0.0);
+  EXPECT_EQ(s.error_message(), "renew lease: ghost rejected: a joint value is not a finite number");
+  s = renew({0, 2.5, 0, 0, 0, 0}, 0.0);
+  EXPECT_THAT(s.error_message(), HasSubstr("ghost rejected: joint 2 (shoulder)"));
+  EXPECT_THAT(s.error_message(), HasSubstr("upper limit"));
+  s = renew({0, 0, 0, 0, 0, 0}, 1.5);
+  EXPECT_EQ(s.error_message(),
+            "renew lease: ghost rejected: gripper opening 1.5 is outside [0, 1]");
+  EXPECT_TRUE(ghost.driver->ghosts().empty());
+  s = renew({0, 0, 0, 0, 0, 0}, 1.0);
+  EXPECT_TRUE(s.ok()) << s.error_message();
+  ASSERT_EQ(ghost.driver->ghosts().size(), 1u);
 }
 
 }  // namespace

@@ -70,9 +70,13 @@ class RobotDriver {
 
   // What the operator rehearses, for a driver that can show it to the arm's own tools (the
   // ROS driver publishes it for RViz, docs/ros.md); nothing by default. The server calls
-  // show_preview after each PreviewPlan it answered (the samples ExecutePlan would run) and
+  // show_preview after each PreviewPlan it answered (the samples ExecutePlan would run),
+  // show_ghost with the operator's ghost as the lease's heartbeat carries it, and
   // show_workspace once with the workspace it checks motions against. Must not block.
   virtual void show_preview(const std::string& /*plan_id*/, const TimedWaypoints& /*samples*/) {}
+  // The lease holder's ghost, with each lease renewal that carries it (validated: dof finite
+  // values within the limits, the opening in [0, 1]).
+  virtual void show_ghost(const Eigen::VectorXd& /*q*/, double /*gripper*/) {}
   virtual void show_workspace(const Workspace& /*workspace*/) {}
 };
 

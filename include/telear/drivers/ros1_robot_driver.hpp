@@ -18,9 +18,10 @@
 //               controller's own controlled stop).
 //   gripper     control_msgs/GripperCommand with --gripper-action: the opening fraction as the
 //               gap in metres (the robot file's max opening), also for a plan's gripper events.
-//   rehearsal   what the operator previews, for RViz: each previewed plan's samples played on
-//               --ghost-topic (sensor_msgs/JointState, latched, 30 Hz in real time, then its last
-//               sample held) and the server's workspace as a visualization_msgs/MarkerArray on
+//   rehearsal   what the operator rehearses, for RViz, on the ghost topic (sensor_msgs/JointState,
+//               latched): the lease holder's ghost as the console's heartbeat carries it (about
+//               12 Hz while it changes), and each previewed plan's samples played in real time at
+//               30 Hz (the ghost waits until the plan has played) and the server's workspace as a visualization_msgs/MarkerArray on
 //               the workspace topic (latched), in the robot's root link frame; the robot's URDF
 //               as the parameter robot_description beside the ghost topic, so that Debian's
 //               robot_state_publisher run there (tf_prefix ghost) gives RViz the ghost's frames.

@@ -169,6 +169,10 @@ class RobotClient {
                                const std::string& plan_hash);
   Status cancel(const std::string& reason = "cancelled by the operator");
   Status set_gripper(double opening);
+  // The ghost the lease's heartbeat carries from now on (each renewal sends the latest), so a
+  // driver can show the operator's rehearsal to the arm's own tools (docs/ros.md); sent only
+  // while the lease is held, and only when it changed.
+  void set_ghost(const Eigen::VectorXd& q, double gripper);
   Status estop(const std::string& reason = "e-stop from the operator");
   Status reset_estop();
 

@@ -69,4 +69,8 @@ Status check_jog_expiry(std::int64_t expires_ns, std::int64_t now_ns, const Comm
 
 Status check_gripper_opening(double opening);
 
+// The operator's ghost on a lease renewal: dof() finite values within the limits, the opening
+// in [0, 1]. "ghost rejected: 5 joint values for a 6-joint arm"
+Status check_ghost(const core::RobotModel& model, const Eigen::VectorXd& q, double gripper);
+
 }  // namespace telear::net

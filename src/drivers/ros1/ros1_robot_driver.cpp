@@ -271,6 +271,13 @@ class Ros1RobotDriver final : public core::RobotDriver {
     timer_wake_.notify_all();
   }
 
+  void show_ghost(const Eigen::VectorXd& q, double /*gripper*/) override {
+    std::lock_guard lock(mutex_);
+    // A preview being played shows the plan; the rehearsed pose takes over after it.
+    if (preview_) return;
+    link_->publish_ghost(joint_names_, std::vector<double>(q.data(), q.data() + q.size()));
+  }
+
   void show_workspace(const core::Workspace& workspace) override {
     std::vector<ros1::WorkspaceMarker> markers;
     for (const core::WorkspaceObject& object : workspace.objects) {
