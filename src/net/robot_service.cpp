@@ -254,8 +254,8 @@ grpc::Status RobotService::RenewLease(grpc::ServerContext* context,
   }
   std::optional<Eigen::VectorXd> ghost;
   if (request->ghost_q_size() > 0) {
-    const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(request->ghost_q().data(),
-                                                                 request->ghost_q_size());
+    const Eigen::VectorXd q =
+        Eigen::Map<const Eigen::VectorXd>(request->ghost_q().data(), request->ghost_q_size());
     if (Status s = check_ghost(*driver_.model(), q, request->ghost_gripper()); !s) {
       return finish(context, "renew lease", invalid(Error{"renew lease: " + s.error().message}));
     }

@@ -2,7 +2,8 @@
 // (as ros_control's joint_trajectory_controller offers) and a sensor_msgs/JointState publisher,
 // written here because Debian packages no controller. C++17 (ROS 1 headers).
 //
-//   ros1_test_controller --joints a,b,c [--initial 0,0,0] [--ns /arm_controller/follow_joint_trajectory]
+//   ros1_test_controller --joints a,b,c [--initial 0,0,0] [--ns
+//   /arm_controller/follow_joint_trajectory]
 //                        [--log FILE] [--abort-after S --abort-message TEXT] [--silent-file FILE]
 //                        [--rate HZ] [--gripper-ns NS]
 //
@@ -71,9 +72,7 @@ struct Options {
 class Controller {
  public:
   explicit Controller(Options options)
-      : options_(std::move(options)),
-        q_(options_.initial),
-        server_(handle_, options_.ns, false) {
+      : options_(std::move(options)), q_(options_.initial), server_(handle_, options_.ns, false) {
     server_.registerGoalCallback([this] { accept(); });
     server_.registerPreemptCallback([this] { on_preempt(); });
     publisher_ = handle_.advertise<sensor_msgs::JointState>("/joint_states", 10);
@@ -159,8 +158,8 @@ class Controller {
   void on_gripper() {
     auto goal = gripper_->acceptNewGoal();
     std::ostringstream line;
-    line << R"({"event":"gripper","received_ns":)" << monotonic_ns()
-         << R"(,"position":)" << goal->command.position << "}";
+    line << R"({"event":"gripper","received_ns":)" << monotonic_ns() << R"(,"position":)"
+         << goal->command.position << "}";
     log(line.str());
     control_msgs::GripperCommandResult result;
     result.position = goal->command.position;

@@ -21,10 +21,11 @@
 //   rehearsal   what the operator rehearses, for RViz, on the ghost topic (sensor_msgs/JointState,
 //               latched): the lease holder's ghost as the console's heartbeat carries it (about
 //               12 Hz while it changes), and each previewed plan's samples played in real time at
-//               30 Hz (the ghost waits until the plan has played) and the server's workspace as a visualization_msgs/MarkerArray on
-//               the workspace topic (latched), in the robot's root link frame; the robot's URDF
-//               as the parameter robot_description beside the ghost topic, so that Debian's
-//               robot_state_publisher run there (tf_prefix ghost) gives RViz the ghost's frames.
+//               30 Hz (the ghost waits until the plan has played); the server's workspace as a
+//               visualization_msgs/MarkerArray on the workspace topic (latched), in the robot's
+//               root link frame; the robot's URDF as the parameter robot_description beside the
+//               ghost topic, so that Debian's robot_state_publisher run there (tf_prefix ghost)
+//               gives RViz the ghost's frames.
 //   faults      the master not answering, no joint states for silence_timeout_s, a missing
 //               joint, the action server not connected: every motion is refused with that
 //               reason and the state's `fault` says it; all clear themselves when ROS is back
@@ -49,7 +50,7 @@ struct Ros1DriverOptions {
   std::string gripper_ns;  // control_msgs/GripperCommand action; empty: no gripper
   std::string ghost_topic = "/telear/ghost/joint_states";
   std::string workspace_topic = "/telear/workspace";
-  double ghost_rate_hz = 30.0;  // the previewed plan played at this rate
+  double ghost_rate_hz = 30.0;     // the previewed plan played at this rate
   double silence_timeout_s = 0.5;  // no joint states for longer: a fault
   double start_tolerance = 0.01;   // rad or m, a trajectory's start against the arm
   double jog_sample_rate_hz = 100.0;

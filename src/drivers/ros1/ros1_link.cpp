@@ -80,9 +80,7 @@ class Link::Node {
     ros::shutdown();
   }
 
-  LinkHealth health() const {
-    return {master_.load(), controller_.load(), gripper_.load()};
-  }
+  LinkHealth health() const { return {master_.load(), controller_.load(), gripper_.load()}; }
 
   std::uint64_t send_trajectory(const TrajectoryGoal& goal) {
     control_msgs::FollowJointTrajectoryGoal message;
@@ -99,12 +97,12 @@ class Link::Node {
     const std::uint64_t number = ++last_goal_;
     trajectory_active_ = true;
     trajectory_->sendGoal(
-        message,
-        [this, number](const actionlib::SimpleClientGoalState& state,
-                       const control_msgs::FollowJointTrajectoryResultConstPtr& result) {
+        message, [this, number](const actionlib::SimpleClientGoalState& state,
+                                const control_msgs::FollowJointTrajectoryResultConstPtr& result) {
           GoalOutcome outcome;
           outcome.end = goal_end(state);
-          outcome.state = state.toString() + (state.getText().empty() ? "" : ": " + state.getText());
+          outcome.state =
+              state.toString() + (state.getText().empty() ? "" : ": " + state.getText());
           if (result) {
             outcome.error_code = result->error_code;
             outcome.error_string = result->error_string;
@@ -140,8 +138,7 @@ class Link::Node {
     if (ghost_) ghost_.publish(message);
   }
 
-  void publish_workspace(const std::string& frame_id,
-                         const std::vector<WorkspaceMarker>& markers) {
+  void publish_workspace(const std::string& frame_id, const std::vector<WorkspaceMarker>& markers) {
     visualization_msgs::MarkerArray array;
     const ros::Time now = ros::Time::now();
     for (std::size_t i = 0; i < markers.size(); ++i) {
@@ -265,8 +262,8 @@ class Link::Node {
     }
     ghost_ = handle_->advertise<sensor_msgs::JointState>(options_.ghost_topic, 1, true);
     if (last_ghost_) ghost_.publish(*last_ghost_);
-    workspace_ = handle_->advertise<visualization_msgs::MarkerArray>(options_.workspace_topic, 1,
-                                                                     true);
+    workspace_ =
+        handle_->advertise<visualization_msgs::MarkerArray>(options_.workspace_topic, 1, true);
     if (last_workspace_) workspace_.publish(*last_workspace_);
     if (!options_.robot_description.empty()) {
       const std::string& topic = options_.ghost_topic;
@@ -360,8 +357,8 @@ std::unique_ptr<Link> Link::start(const LinkOptions& options, JointStatesHandler
   // A registration with a master that went away gives up after this instead of blocking the
   // monitor forever; the monitor tries again on its next round.
   ros::master::setRetryTimeout(ros::WallDuration(1.0));
-  auto node = std::make_unique<Node>(options, std::move(on_state), std::move(on_goal_done),
-                                     std::move(log));
+  auto node =
+      std::make_unique<Node>(options, std::move(on_state), std::move(on_goal_done), std::move(log));
   node->start();
   return std::unique_ptr<Link>(new Link(std::move(node)));
 }

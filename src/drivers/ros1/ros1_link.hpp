@@ -24,11 +24,11 @@
 namespace telear::drivers::ros1 {
 
 struct LinkOptions {
-  std::string master_uri;                  // http://HOST:PORT; empty: $ROS_MASTER_URI
+  std::string master_uri;  // http://HOST:PORT; empty: $ROS_MASTER_URI
   std::string node_name = "telear_robot_server";
   std::string joint_states_topic = "/joint_states";
   std::string controller_ns = "/arm_controller/follow_joint_trajectory";
-  std::string gripper_ns;                  // control_msgs/GripperCommand; empty: none
+  std::string gripper_ns;  // control_msgs/GripperCommand; empty: none
   std::string ghost_topic = "/telear/ghost/joint_states";
   std::string workspace_topic = "/telear/workspace";
   // Set as the parameter robot_description beside the ghost topic (/telear/ghost/...), so a
@@ -56,12 +56,13 @@ struct TrajectoryGoal {
 struct WorkspaceMarker {
   enum class Shape { kBox, kCylinder, kSphere, kMesh };
   Shape shape = Shape::kBox;
-  std::string name;                  // the marker's namespace
-  std::array<double, 3> scale{};     // box: edges; cylinder: 2r, 2r, length; sphere: 2r x 3; mesh: scale
-  std::array<double, 3> position{};  // in frame_id, m
+  std::string name;  // the marker's namespace
+  // box: edges; cylinder: 2r, 2r, length; sphere: 2r x 3; mesh: its scale
+  std::array<double, 3> scale{};
+  std::array<double, 3> position{};                       // in frame_id, m
   std::array<double, 4> orientation{0.0, 0.0, 0.0, 1.0};  // quaternion x, y, z, w
-  std::array<float, 3> colour{};                           // RGB 0..1
-  std::string mesh_resource;                               // mesh: file:///absolute/path
+  std::array<float, 3> colour{};                          // RGB 0..1
+  std::string mesh_resource;                              // mesh: file:///absolute/path
 };
 
 enum class GoalEnd { kSucceeded, kAborted, kPreempted, kRejected, kLost };

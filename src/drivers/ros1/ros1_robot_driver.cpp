@@ -224,7 +224,8 @@ class Ros1RobotDriver final : public core::RobotDriver {
     active_ = Active{id, number, now};
     stop_reason_.clear();
     for (const core::GripperEvent& event : waypoints.gripper) {
-      if (has_gripper) gripper_events_.push_back({now + core::s_to_ns(event.time - t0), event.opening});
+      if (has_gripper)
+        gripper_events_.push_back({now + core::s_to_ns(event.time - t0), event.opening});
     }
     timer_wake_.notify_all();
     return core::DriverAcceptance{false, record, now};
@@ -255,9 +256,10 @@ class Ros1RobotDriver final : public core::RobotDriver {
     std::lock_guard lock(mutex_);
     if (!estop_) return Status::Ok();
     if (active_) {
-      return Error{"cannot reset the e-stop while the controller has not confirmed the stop of "
-                   "trajectory " +
-                   quoted(active_->id) + "; wait until it is at rest"};
+      return Error{
+          "cannot reset the e-stop while the controller has not confirmed the stop of "
+          "trajectory " +
+          quoted(active_->id) + "; wait until it is at rest"};
     }
     estop_ = false;
     estop_reason_.clear();
@@ -439,8 +441,9 @@ class Ros1RobotDriver final : public core::RobotDriver {
 
   Status send_gripper_locked(double opening) {
     if (options_.gripper_ns.empty()) {
-      return Error{"gripper command rejected: this robot server has no gripper action "
-                   "(telear robot-server --gripper-action NS)"};
+      return Error{
+          "gripper command rejected: this robot server has no gripper action "
+          "(telear robot-server --gripper-action NS)"};
     }
     const double gap_m = std::clamp(opening, 0.0, 1.0) * gripper_max_opening_m_;
     if (!link_->send_gripper(gap_m, options_.gripper_max_effort_n)) {
@@ -474,7 +477,8 @@ class Ros1RobotDriver final : public core::RobotDriver {
         return;
       }
       q[static_cast<Eigen::Index>(j)] = message.position[index];
-      if (index < message.velocity.size()) qd[static_cast<Eigen::Index>(j)] = message.velocity[index];
+      if (index < message.velocity.size())
+        qd[static_cast<Eigen::Index>(j)] = message.velocity[index];
     }
     missing_joint_.clear();
     q_ = q;
@@ -498,17 +502,16 @@ class Ros1RobotDriver final : public core::RobotDriver {
         record.status = core::TrajectoryStatus::kCompleted;
         break;
       case ros1::GoalEnd::kPreempted:
-        record.status = estop_ ? core::TrajectoryStatus::kAborted
-                               : core::TrajectoryStatus::kCancelled;
+        record.status =
+            estop_ ? core::TrajectoryStatus::kAborted : core::TrajectoryStatus::kCancelled;
         record.message = stop_reason_.empty() ? "preempted by the controller" : stop_reason_;
         break;
       default:
         record.status = core::TrajectoryStatus::kAborted;
-        record.message = std::string("the controller ") + goal_end_text(outcome.end) +
-                         " the goal" +
-                         (outcome.error_string.empty() ? std::string()
-                                                       : ": " + outcome.error_string) +
-                         " (error_code " + std::to_string(outcome.error_code) + ")";
+        record.message =
+            std::string("the controller ") + goal_end_text(outcome.end) + " the goal" +
+            (outcome.error_string.empty() ? std::string() : ": " + outcome.error_string) +
+            " (error_code " + std::to_string(outcome.error_code) + ")";
         break;
     }
     spdlog::info("ros1: trajectory '{}' {} ({})", record.id, core::to_string(record.status),
@@ -547,7 +550,8 @@ class Ros1RobotDriver final : public core::RobotDriver {
       while (!gripper_events_.empty() && gripper_events_.front().at_ns <= now) {
         const double opening = gripper_events_.front().opening;
         gripper_events_.erase(gripper_events_.begin());
-        if (Status s = send_gripper_locked(opening); !s) spdlog::warn("ros1: {}", s.error().message);
+        if (Status s = send_gripper_locked(opening); !s)
+          spdlog::warn("ros1: {}", s.error().message);
       }
       std::int64_t next = now + 100'000'000;
       if (preview_) {
@@ -597,8 +601,9 @@ Result<std::unique_ptr<core::RobotDriver>> make_ros1_robot_driver(
     const core::RobotDescription& description, const Ros1DriverOptions& options) {
   if (!(options.silence_timeout_s > 0.0) || !(options.start_tolerance > 0.0) ||
       !(options.jog_sample_rate_hz > 0.0)) {
-    return Error{"ROS 1 driver: the silence timeout, start tolerance and jog sample rate must be "
-                 "positive"};
+    return Error{
+        "ROS 1 driver: the silence timeout, start tolerance and jog sample rate must be "
+        "positive"};
   }
   for (const core::Joint& joint : description.model->joints()) {
     if (joint.name.empty()) {
