@@ -212,6 +212,30 @@ std::vector<Eigen::VectorXd> choose_capture_poses(
   return ordered;
 }
 
+// The move to the finishing pose. A straight move from the last pose may sweep a link through
+// another where the one from the start does not (the demo chooses its start so): refused, the
+// arm goes back the way it came and tries again from each pose on the way.
+Status finish_capture(const core::RobotModel& model, net::RobotClient& robot,
+                      const Eigen::VectorXd& finish, const std::vector<Eigen::VectorXd>& reached,
+                      const RegistrationCaptureOptions& options) {
+  auto plan_id = [](const std::string& what) {
+    return "capture-" + std::to_string(core::monotonic_ns()) + "-" + what;
+  };
+  auto direct = move_to(model, robot, finish, plan_id("finish"), options);
+  if (direct) return Status::Ok();
+  std::string last_refusal = direct.error().message;
+  for (std::size_t k = reached.size(); k-- > 1;) {
+    if (auto back = move_to(model, robot, reached[k - 1], plan_id("back"), options); !back) {
+      return Error{"capture: the move to the finishing pose failed: " + last_refusal +
+                   "; going back the way the arm came failed too: " + back.error().message};
+    }
+    auto again = move_to(model, robot, finish, plan_id("finish"), options);
+    if (again) return Status::Ok();
+    last_refusal = again.error().message;
+  }
+  return Error{"capture: the move to the finishing pose failed: " + last_refusal};
+}
+
 Result<RegistrationCaptureResult> capture_for_registration(
     const core::RobotModel& model, net::RobotClient& robot, net::VisionClient& vision,
     const RegistrationCaptureOptions& options,
@@ -271,6 +295,11 @@ Result<RegistrationCaptureResult> capture_for_registration(
   } release{robot, !lease_was_held};
   const int count = static_cast<int>(poses.size());
   std::uint64_t last_frame_id = 0;
+  // The poses the arm reached, from where it started: each move between two of them was
+  // accepted, so the way back along them is too (the server checks a straight move the same
+  // way in both directions).
+  std::vector<Eigen::VectorXd> reached;
+  if (const auto state = robot.wait_state(0, 5.0)) reached.push_back(state->state.q);
   for (int p = 0; p < count; ++p) {
     CaptureProgress report{p + 1, count, false, ""};
     const std::string label = "pose " + std::to_string(p + 1) + "/" + std::to_string(count);
@@ -283,6 +312,7 @@ Result<RegistrationCaptureResult> capture_for_registration(
       if (progress) progress(report);
       continue;
     }
+    reached.push_back(poses[static_cast<std::size_t>(p)]);
     const int index = static_cast<int>(out.capture.poses.size());
     vision::CapturedPose pose;
     pose.q_commanded = poses[static_cast<std::size_t>(p)];
@@ -309,9 +339,8 @@ Result<RegistrationCaptureResult> capture_for_registration(
     if (progress) progress(report);
   }
   if (options.finish_pose) {
-    const std::string plan_id = "capture-" + std::to_string(core::monotonic_ns()) + "-finish";
-    if (auto rest = move_to(model, robot, *options.finish_pose, plan_id, options); !rest) {
-      return Error{"capture: the move to the finishing pose failed: " + rest.error().message};
+    if (Status s = finish_capture(model, robot, *options.finish_pose, reached, options); !s) {
+      return s.error();
     }
   }
   if (out.capture.poses.empty()) {

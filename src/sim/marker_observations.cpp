@@ -11,6 +11,7 @@
 #include "telear/core/arm_body.hpp"
 #include "telear/core/random_configuration.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/geometry/collision_checker.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/sim/calibration_targets.hpp"
 #include "telear/sim/scene_renderer.hpp"
@@ -90,6 +91,14 @@ Result<MarkerObservations> simulate_marker_observations(const MarkerObservations
   if (!scene->marker()) return Error{"the scene has no marker on the gripper"};
   const ArucoMarker& marker = *scene->marker();
 
+  // Only configurations the robot server would accept: a configuration in contact with the arm
+  // itself or the rig's scene is refused as a start or a pose (the capture workflow starts at
+  // the first one), and the random draw over a UR-type arm's +-360 deg joints hits them often.
+  geometry::CollisionSetupOptions setup;
+  setup.geometry = options.geometry;
+  auto checker = geometry::make_collision_checker(loaded->description, rig->workspace, setup);
+  if (!checker) return Error{"collision checker: " + checker.error().message};
+
   const core::RobotModel& robot = *model;
   std::mt19937_64 rng(options.seed);
 
@@ -106,12 +115,13 @@ Result<MarkerObservations> simulate_marker_observations(const MarkerObservations
       if (++draws > max_draws) {
         return Error{"found only " + std::to_string(c) + " of " +
                      std::to_string(options.configurations) +
-                     " configurations at which the marker faces both cameras; check the "
-                     "rig's pose"};
+                     " collision-free configurations at which the marker faces both cameras; "
+                     "check the rig's pose"};
       }
       q = core::random_configuration(robot, rng);
       scene->set_configuration(q);
-    } while (!marker_well_seen(*scene, min_cos, options.margin_px));
+    } while (!marker_well_seen(*scene, min_cos, options.margin_px) ||
+             !checker->check(q).collision_free());
 
     vision::ObservedConfiguration observed;
     observed.q = q;

@@ -7,8 +7,11 @@
 
 #include <filesystem>
 
+#include "telear/geometry/collision_checker.hpp"
+#include "telear/geometry/robot_assets.hpp"
 #include "telear/sim/calibration_capture.hpp"
 #include "telear/sim/marker_observations.hpp"
+#include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/camera_file.hpp"
 #include "test_util/temp_dir.hpp"
 #include "test_util/test_util.hpp"
@@ -95,6 +98,33 @@ TEST(MarkerObservations, DetectsTheMarkerAtSeededConfigurations) {
   ASSERT_TRUE(again.ok());
   ASSERT_EQ(again->observations.configurations.size(), o.configurations.size());
   EXPECT_TRUE(again->observations.configurations[0].q.isApprox(o.configurations[0].q));
+}
+
+// Issue 26: the UR-type arm's +-360 deg joints put a random draw's arm through itself (seed 1's
+// first configuration had the base in the upper arm), and the capture workflow starts at that
+// configuration, where the robot server refuses every move. Each one is now free of contact,
+// with itself and with the rig's scene.
+TEST(MarkerObservations, EveryConfigurationIsFreeOfContact) {
+  MarkerObservationsOptions options;
+  options.rig_file = test::data_path("rigs/ur6_rig.yaml");
+  options.robot = "ur6";
+  options.configurations = 3;
+  options.supersample = 1;
+  options.seed = 1;  // the demo's
+  auto result = simulate_marker_observations(options);
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  auto rig = load_stereo_rig(options.rig_file);
+  ASSERT_TRUE(rig.ok());
+  auto robot = geometry::load_robot_assets({"ur6", "", {}});
+  ASSERT_TRUE(robot.ok()) << robot.error().message;
+  auto checker = geometry::make_collision_checker(robot->description, rig->workspace);
+  ASSERT_TRUE(checker.ok()) << checker.error().message;
+  ASSERT_FALSE(result->observations.configurations.empty());
+  for (const auto& c : result->observations.configurations) {
+    const geometry::CollisionReport report = checker->check(c.q);
+    EXPECT_TRUE(report.collision_free())
+        << report.contacts.front().body << " touches " << report.contacts.front().other;
+  }
 }
 
 TEST(MarkerObservations, BadOptionsAndRigsAreErrorsNamingThem) {

@@ -3,8 +3,9 @@
 // what `telear sim observations` writes, and a step of the demo's calibration pipeline
 // (include/telear/lab/calibration_pipeline.hpp).
 //
-// Draws seeded random in-limit joint configurations and keeps those at which the gripper's
-// ArUco marker (include/telear/sim/calibration_targets.hpp) faces both cameras -- its face
+// Draws seeded random in-limit joint configurations, free of contact between the arm's links
+// and with the rig's scene (what the robot server would accept: the capture workflow starts at
+// the first one), and keeps those at which the gripper's ArUco marker (include/telear/sim/calibration_targets.hpp) faces both cameras -- its face
 // normal within `max_view_angle_deg` of the direction to each optical centre -- and all four
 // corners project, with the true cameras, at least `margin_px` inside both images. At each
 // kept configuration the "real" images are rendered per eye (include/telear/sim/
