@@ -39,6 +39,12 @@ packages=(
   python3-rosmaster python3-rostopic python3-rospy python3-sensor-msgs python3-std-msgs
   python3-visualization-msgs python3-geometry-msgs python3-tf2-msgs ros-robot-state-publisher
   ros-image-publisher
+  # the camera tests (tests/drivers/ros1_camera_test.py): image_publisher is a nodelet, which
+  # pluginlib finds only through its own and nodelet's package.xml (in these two); PIL writes
+  # the test images and decodes the served JPEGs
+  libimage-publisher-dev libnodeletlib-tools python3-pil
+  # drivers: ROS 2 over DDS (docs/ros2.md): Cyclone DDS's C library and its IDL compiler (idlc)
+  cyclonedds-dev cyclonedds-tools
   # tests: the shipped arms' check (tests/data/check_arms.py) reads the robot files
   python3-yaml
   # tests: OpenCV's real stereo chessboard images (examples/data), ~95 MB, not needed to build

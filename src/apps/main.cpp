@@ -36,7 +36,8 @@ void add_robot_server_command(CLI::App& app, Commands& commands) {
   add_robot_arguments(robot_server_app, robot_server, false);
   robot_server_app
       ->add_option("--driver", robot_server.driver,
-                   "sim (the simulated robot) or ros1 (an arm driven through ROS 1, docs/ros.md)")
+                   "sim (the simulated robot), ros1 (an arm driven through ROS 1, docs/ros.md) or "
+                   "ros2 (a ros2_control arm over DDS, docs/ros2.md)")
       ->capture_default_str();
   robot_server_app->add_option("--ros-master", robot_server.ros.master_uri,
                                "ros1: the master's URI (default: $ROS_MASTER_URI)");
@@ -50,6 +51,17 @@ void add_robot_server_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   robot_server_app->add_option("--gripper-action", robot_server.ros.gripper_ns,
                                "ros1: a control_msgs/GripperCommand action namespace (optional)");
+  robot_server_app->add_option("--ros-domain", robot_server.ros2.domain_id,
+                               "ros2: the ROS domain id, 0..232 (default: $ROS_DOMAIN_ID or 0)");
+  robot_server_app
+      ->add_option("--ros2-joint-states", robot_server.ros2.joint_states_topic,
+                   "ros2: the arm's sensor_msgs/msg/JointState topic")
+      ->capture_default_str();
+  robot_server_app
+      ->add_option("--ros2-controller", robot_server.ros2.controller,
+                   "ros2: the JointTrajectoryController whose ~/joint_trajectory topic takes "
+                   "the trajectories")
+      ->capture_default_str();
   robot_server_app
       ->add_option("--heartbeat-ms", robot_server.heartbeat_ms,
                    "default lease heartbeat period: a lease not renewed within it stops the arm")
@@ -81,7 +93,9 @@ void add_vision_server_command(CLI::App& app, Commands& commands) {
       "vision-server", "the stereo vision stream over gRPC (sim rig, video files, cameras)");
   vision_server_app->add_option("--listen", vision_server.listen, "HOST:PORT; port 0: ephemeral")
       ->capture_default_str();
-  vision_server_app->add_option("--source", vision_server.source, "sim, files, v4l2 or synthetic")
+  vision_server_app
+      ->add_option("--source", vision_server.source,
+                   "sim, files, v4l2, synthetic or ros (ROS 1 camera topics, docs/ros.md)")
       ->capture_default_str();
   vision_server_app->add_option("--rig", vision_server.rig, "sim: rig file (data/rigs/*.yaml)")
       ->capture_default_str();
@@ -91,14 +105,25 @@ void add_vision_server_command(CLI::App& app, Commands& commands) {
                                 "calls need this bearer token (also sent to the robot server)");
   vision_server_app->add_option("--robot-token-file", vision_server.robot_token_file,
                                 "token for the robot server, when it differs");
-  vision_server_app->add_option("--left", vision_server.left, "files: the left eye's video");
-  vision_server_app->add_option("--right", vision_server.right, "files: the right eye's video");
+  vision_server_app->add_option("--left", vision_server.left,
+                                "files: the left eye's video; ros: its image topic");
+  vision_server_app->add_option("--right", vision_server.right,
+                                "files: the right eye's video; ros: its image topic");
+  vision_server_app->add_option("--ros-master", vision_server.ros_master,
+                                "ros: the master's URI (default: $ROS_MASTER_URI)");
+  vision_server_app
+      ->add_option("--sync-tolerance-ms", vision_server.sync_tolerance_ms,
+                   "ros: the largest stamp difference of a left-right pair")
+      ->capture_default_str();
   vision_server_app->add_option("--cameras", vision_server.cameras, "v4l2: L,R device indices")
       ->capture_default_str();
-  vision_server_app->add_option("--calibration", vision_server.calibration,
-                                "stereo camera file returned by GetCameraInfo");
-  vision_server_app->add_option("--fps", vision_server.fps,
-                                "capture rate (0: the source's default, 30 or a file's own)");
+  vision_server_app->add_option(
+      "--calibration", vision_server.calibration,
+      "stereo camera file returned by GetCameraInfo (ros: instead of the cameras' camera_info)");
+  vision_server_app->add_option(
+      "--fps", vision_server.fps,
+      "capture rate (0: the source's default, 30 or a file's own; ros: the rate reported, 0 "
+      "measured)");
   vision_server_app
       ->add_option("--resolution", vision_server.resolution,
                    "WIDTHxHEIGHT capture size (v4l2, files, synthetic)")

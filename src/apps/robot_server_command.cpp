@@ -6,6 +6,7 @@
 #include "telear/core/joint_values.hpp"
 #include "telear/core/robot_description.hpp"
 #include "telear/drivers/ros1_robot_driver.hpp"
+#include "telear/drivers/ros2_robot_driver.hpp"
 #include "telear/lab/simulated_robot_server.hpp"
 #include "telear/net/server_log.hpp"
 
@@ -17,6 +18,7 @@ Result<std::unique_ptr<core::RobotDriver>> make_driver(const RobotServerCommandO
                                                        const core::RobotDescription& description,
                                                        const Eigen::VectorXd& initial_q) {
   if (options.driver == "sim") return lab::make_simulated_robot_driver(description, initial_q);
+  if (options.driver == "ros2") return drivers::make_ros2_robot_driver(description, options.ros2);
   return drivers::make_ros1_robot_driver(description, options.ros);
 }
 
@@ -27,12 +29,11 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   const CommandFailure fail{err, "telear robot-server"};
   auto log_level = net::parse_log_level(options.log_level);
   if (!log_level) return fail("--log-level " + log_level.error().message, 2);
-  if (options.driver != "sim" && options.driver != "ros1") {
-    return fail("--driver must be sim or ros1, got '" + options.driver + "'", 2);
+  if (options.driver != "sim" && options.driver != "ros1" && options.driver != "ros2") {
+    return fail("--driver must be sim, ros1 or ros2, got '" + options.driver + "'", 2);
   }
   if (options.driver != "sim" && !options.initial_q.empty()) {
-    return fail("--q sets the simulated robot's start; a " + options.driver +
-                    " arm is where it is",
+    return fail("--q sets the simulated robot's start; a " + options.driver + " arm is where it is",
                 2);
   }
   auto description = core::load_robot_description(options.robot_spec());

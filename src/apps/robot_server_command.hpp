@@ -1,7 +1,8 @@
 #pragma once
 // `telear robot-server`: the robot service (telear/net/robot_server.hpp) with the driver --driver
 // names (sim: the simulated robot; ros1: an arm driven through ROS 1, telear/drivers/
-// ros1_robot_driver.hpp, docs/ros.md), until SIGINT or SIGTERM. The service cannot tell them
+// ros1_robot_driver.hpp, docs/ros.md; ros2: a ros2_control arm over DDS, telear/drivers/
+// ros2_robot_driver.hpp, docs/ros2.md), until SIGINT or SIGTERM. The service cannot tell them
 // apart: the choice is made here and nowhere else. Prints "robot server listening on HOST:PORT" on
 // `out` once it accepts connections (scripts wait for that line; with port 0 it carries the
 // ephemeral port), and shuts down cleanly on the signal: streams are ended, the arm stops.
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "telear/drivers/ros1_robot_driver.hpp"
+#include "telear/drivers/ros2_robot_driver.hpp"
 #include "telear/geometry/robot_selection.hpp"
 #include "telear/net/motion_collision_guard.hpp"
 
@@ -22,8 +24,9 @@ namespace telear::cli {
 
 struct RobotServerCommandOptions : geometry::RobotSelection {
   std::string listen = "127.0.0.1:50051";
-  std::string driver = "sim";       // sim | ros1
-  drivers::Ros1DriverOptions ros;  // --ros-master, --joint-states, --controller, ...
+  std::string driver = "sim";       // sim | ros1 | ros2
+  drivers::Ros1DriverOptions ros;   // --ros-master, --joint-states, --controller, ...
+  drivers::Ros2DriverOptions ros2;  // --ros-domain, --ros2-joint-states, --ros2-controller
   std::string token_file;
   bool allow_observers = true;
   std::string tls_cert, tls_key;

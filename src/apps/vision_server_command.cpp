@@ -3,12 +3,14 @@
 #include <spdlog/spdlog.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 
 #include "apps/command_failure.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/number_list.hpp"
+#include "telear/drivers/ros1_stereo_source.hpp"
 #include "telear/lab/vision_source.hpp"
 #include "telear/net/server_log.hpp"
 #include "telear/net/vision_server.hpp"
@@ -22,6 +24,52 @@ Result<std::optional<core::ImageSize>> parse_resolution(const std::string& text)
   auto size = core::parse_image_size(text, {16, 16}, {8192, 8192});
   if (!size) return Error{"--resolution: " + size.error().message};
   return std::optional<core::ImageSize>(*size);
+}
+
+// The ros source is telear::drivers' (lab does not link it): lab calls this for it.
+Result<lab::VisionSource> open_ros_source(const lab::VisionSourceOptions& options) {
+  drivers::Ros1StereoSourceOptions ros;
+  ros.master_uri = options.ros_master;
+  ros.left_topic = options.left;
+  ros.right_topic = options.right;
+  ros.sync_tolerance_s = options.sync_tolerance_ms * 1e-3;
+  ros.camera_info = options.camera_info;
+  ros.fps = options.fps;
+  auto opened = drivers::open_ros1_stereo_source(ros);
+  if (!opened) return opened.error();
+  lab::VisionSource source;
+  source.source = std::move(opened->source);
+  source.calibration_yaml = std::move(opened->calibration_yaml);
+  source.warnings = std::move(opened->warnings);
+  return source;
+}
+
+// The ros source's options, checked before its node starts (usage errors, exit 2).
+Status check_ros_options(const VisionServerCommandOptions& options) {
+  if (options.left.empty() || options.right.empty()) {
+    return Error{
+        "--source ros needs --left and --right, the cameras' image topics (e.g. "
+        "/stereo/left/image_raw)"};
+  }
+  if (options.left == options.right) {
+    return Error{"--left and --right name the same topic, " + options.left};
+  }
+  if (!(options.sync_tolerance_ms >= 0.0 && options.sync_tolerance_ms <= 1000.0)) {
+    return Error{"--sync-tolerance-ms must be in [0, 1000]"};
+  }
+  std::string master = options.ros_master;
+  if (const char* environment = std::getenv("ROS_MASTER_URI"); master.empty() && environment) {
+    master = environment;
+  }
+  if (master.empty()) {
+    return Error{
+        "--source ros needs a ROS master: give --ros-master http://HOST:PORT or set "
+        "ROS_MASTER_URI"};
+  }
+  if (master.rfind("http://", 0) != 0) {
+    return Error{"--ros-master must look like http://HOST:PORT, got '" + master + "'"};
+  }
+  return Status::Ok();
 }
 
 }  // namespace
@@ -45,6 +93,9 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   auto resolution = parse_resolution(options.resolution);
   if (!resolution) return fail(resolution.error().message, 2);
   if (!(options.fps >= 0.0 && options.fps <= 1000.0)) return fail("--fps must be in [0, 1000]", 2);
+  if (options.source == "ros") {
+    if (Status ros = check_ros_options(options); !ros) return fail(ros.error().message, 2);
+  }
 
   lab::VisionSourceOptions source_options;
   source_options.kind = options.source;
@@ -58,6 +109,10 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   source_options.size = *resolution;
   source_options.supersample = options.supersample;
   source_options.noise = options.noise;
+  source_options.ros_master = options.ros_master;
+  source_options.sync_tolerance_ms = options.sync_tolerance_ms;
+  source_options.camera_info = options.calibration.empty();  // a file overrides camera_info
+  source_options.open_ros = open_ros_source;
   if (options.source == "v4l2") {
     auto indices = core::parse_number_list(options.cameras, "--cameras", 2);
     if (!indices) return fail(indices.error().message, 2);
@@ -67,8 +122,10 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   // Outlives the server (declared first): the simulated rig reads the robot it follows.
   auto opened = lab::open_vision_source(source_options);
   if (!opened) {
-    // A camera that does not open is a failure to start; anything else, a bad option.
-    const bool device = options.source == "v4l2" && options.robot_server.empty();
+    // A camera (or camera topic) that does not open is a failure to start; anything else, a
+    // bad option.
+    const bool device =
+        (options.source == "v4l2" || options.source == "ros") && options.robot_server.empty();
     return fail(opened.error().message, device ? 1 : 2);
   }
   for (const std::string& warning : opened->warnings)
@@ -78,6 +135,7 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   server_options.listen_address = options.listen;
   server_options.source = std::move(opened->source);
   server_options.calibration_file = options.calibration;
+  if (options.calibration.empty()) server_options.calibration_yaml = opened->calibration_yaml;
   server_options.token_file = options.token_file;
   server_options.jpeg_quality = options.quality;
   auto server = net::VisionServer::create(std::move(server_options));

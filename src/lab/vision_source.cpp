@@ -84,8 +84,21 @@ Result<VisionSource> open_vision_source(const VisionSourceOptions& options) {
     auto created = vision::SyntheticSource::create(synthetic);
     if (!created) return created.error();
     opened.source = std::move(*created);
+  } else if (options.kind == "ros" && options.open_ros) {
+    if (options.left.empty() || options.right.empty()) {
+      return Error{"the ros source needs a left and a right image topic"};
+    }
+    auto ros = options.open_ros(options);
+    if (!ros) return ros.error();
+    opened = std::move(*ros);
+    if (options.size) {
+      opened.warnings.emplace_back(
+          "the size is ignored for the ros source (the camera topics set it); clients may ask "
+          "for a scaled stream");
+    }
   } else {
-    return Error{"source '" + options.kind + "' is not one of sim, files, v4l2, synthetic"};
+    return Error{"source '" + options.kind + "' is not one of sim, files, v4l2, synthetic" +
+                 (options.open_ros ? ", ros" : "")};
   }
   return opened;
 }

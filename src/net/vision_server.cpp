@@ -46,18 +46,26 @@ Result<std::unique_ptr<VisionServer>> VisionServer::create(VisionServerOptions o
     if (!token) return Error{"vision server: " + token.error().message};
     config.auth.emplace(*token, false);
   }
-  if (!options.calibration_file.empty()) {
-    auto file = vision::load_camera_file(options.calibration_file);
+  if (!options.calibration_file.empty() || !options.calibration_yaml.empty()) {
+    const bool from_file = !options.calibration_file.empty();
+    const std::string name =
+        from_file ? options.calibration_file : options.source->name() + " source's calibration";
+    auto file = from_file ? vision::load_camera_file(options.calibration_file)
+                          : vision::parse_camera_yaml(options.calibration_yaml, name);
     if (!file) return Error{"vision server: " + file.error().message};
     if (!file->is_stereo()) {
-      return Error{"vision server: calibration '" + options.calibration_file +
+      return Error{"vision server: calibration '" + name +
                    "' is a mono camera file; a stereo file (left: and right:) is needed"};
     }
-    std::ifstream in(options.calibration_file);
-    std::ostringstream text;
-    text << in.rdbuf();
+    std::string text = options.calibration_yaml;
+    if (from_file) {
+      std::ifstream in(options.calibration_file);
+      std::ostringstream read;
+      read << in.rdbuf();
+      text = read.str();
+    }
     config.calibration = std::move(*file);
-    config.calibration_yaml = text.str();
+    config.calibration_yaml = std::move(text);
   }
 
   std::unique_ptr<VisionServer> server(new VisionServer());

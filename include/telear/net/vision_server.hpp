@@ -29,6 +29,9 @@ struct VisionServerOptions {
   int jpeg_quality = 85;         // the shared encode's quality
   int max_streams = 16;
   double shutdown_grace_s = 0.5;  // how long streaming calls get to finish before cancellation
+  // Without calibration_file: the text of a stereo camera file the source knows itself (the ROS
+  // source's, from camera_info), read and checked as a file would be; empty: none.
+  std::string calibration_yaml;
 };
 
 class VisionServer {

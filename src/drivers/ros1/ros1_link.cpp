@@ -347,8 +347,10 @@ std::unique_ptr<Link> Link::start(const LinkOptions& options, JointStatesHandler
       return nullptr;
     }
   }
-  if (g_link_started.exchange(true)) {
-    *error = "a ROS 1 link was already started in this process (roscpp allows one node)";
+  // roscpp's node is the process's: a second link (or the camera link's node, which checks
+  // the same) would silently share the first one's name and master.
+  if (g_link_started.exchange(true) || ros::isInitialized()) {
+    *error = "a ROS 1 node was already started in this process (roscpp allows one)";
     return nullptr;
   }
   ros::M_string remappings{{"__master", master_uri}};
