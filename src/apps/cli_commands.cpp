@@ -376,6 +376,10 @@ void add_sim_commands(CLI::App& app, Commands& commands) {
       ->add_option("--supersample", sim_observations.supersample,
                    "anti-aliasing samples per pixel and axis (1..8)")
       ->capture_default_str();
+  sim_observations_app->add_flag(
+      "--collision-free", sim_observations.collision_free,
+      "only configurations free of contact (the arm with itself and the rig's scene), as the "
+      "robot server accepts them");
 
   commands.push_back(
       {sim_capture_app, [capture] { return run_sim_capture(*capture, std::cout, std::cerr); }});

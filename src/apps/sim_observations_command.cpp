@@ -22,6 +22,7 @@ int run_sim_observations(const SimObservationsOptions& options, std::ostream& ou
   simulation.seed = options.seed;
   simulation.noise_grey = options.noise;
   simulation.supersample = options.supersample;
+  simulation.collision_free = options.collision_free;
   simulation.max_view_angle_deg = options.max_view_angle_deg;
   simulation.margin_px = options.margin_px;
   if (Status s = simulation.validate(); !s) return fail(s.error().message);

@@ -28,6 +28,7 @@ struct SimObservationsOptions : geometry::RobotSelection {
   std::uint64_t seed = 1;                     // configurations and sensor noise
   double noise = 1.0;                         // sensor noise, grey levels (Gaussian sigma)
   int supersample = 4;                        // anti-aliasing factor per axis
+  bool collision_free = false;                // only configurations free of contact
   double max_view_angle_deg = 55.0;
   double margin_px = 20.0;
 };

@@ -201,6 +201,8 @@ Result<CalibrationPipelineResult> run_calibration_pipeline(
     observe_options.configurations = options.configurations;
     observe_options.seed = options.seed;
     observe_options.supersample = options.supersample;
+    // The demo's capture starts at one of them, on the robot server (lab/capture_start.hpp).
+    observe_options.collision_free = true;
     auto observed = sim::simulate_marker_observations(observe_options);
     if (!observed) return step_error("observe", observed.error().message);
     const std::string observations_file = (cache / "observations.yaml").string();

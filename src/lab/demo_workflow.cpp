@@ -12,14 +12,11 @@
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
-#include "telear/core/trajectory.hpp"
 #include "telear/core/workspace.hpp"
-#include "telear/geometry/carried_objects.hpp"
-#include "telear/geometry/collision_checker.hpp"
 #include "telear/geometry/robot_assets.hpp"
-#include "telear/geometry/trajectory_collision.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/lab/calibration_pipeline.hpp"
+#include "telear/lab/capture_start.hpp"
 #include "telear/lab/demo_report.hpp"
 #include "telear/lab/embedded_servers.hpp"
 #include "telear/lab/session_recorder.hpp"
@@ -40,41 +37,6 @@ namespace telear::lab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// The operator's jog before capturing, simulated: the first configuration at which the
-// calibration pipeline's rendered images showed the marker to both cameras.
-// Where the capture starts: an observation where both cameras see the marker (the operator's
-// jog before capturing) and from which the straight move to the task's ready pose, which ends
-// the capture, is free of contact as the robot server checks it (its static scene). The first
-// such observation; a UR-type arm's +-360 deg joints make many straight moves sweep a link
-// through another.
-Result<Eigen::VectorXd> capture_start_pose(const std::string& observations_file,
-                                           const core::RobotDescription& description,
-                                           const core::Workspace& workspace,
-                                           const Eigen::VectorXd& ready_q) {
-  auto observations = vision::load_observations_file(observations_file);
-  if (!observations) return observations.error();
-  auto checker =
-      geometry::make_collision_checker(description, geometry::static_obstacles(workspace));
-  if (!checker) return Error{"the capture's start: " + checker.error().message};
-  int seen = 0;
-  for (const auto& c : observations->configurations) {
-    if (c.left_pixels.empty() || c.right_pixels.empty()) continue;
-    ++seen;
-    auto move = core::Trajectory::create(*description.model, {{c.q}, {ready_q}});
-    if (!move) continue;
-    auto report = geometry::check_trajectory(*checker, *move);
-    if (report && report->collision_free()) return c.q;
-  }
-  if (seen == 0) {
-    return Error{"no configuration in '" + observations_file +
-                 "' shows the marker to both cameras: nowhere to start the capture"};
-  }
-  return Error{"from none of the " + std::to_string(seen) + " configurations in '" +
-               observations_file +
-               "' that show the marker to both cameras is the straight move to the ready pose "
-               "free of contact: nowhere to start the capture"};
-}
 
 struct ServerRegistration {
   vision::StereoCameraModel cameras;  // the intrinsics served, T_cam_base registered
@@ -289,8 +251,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   // The arm starts where both cameras see its marker (the operator's jog before capturing);
   // the capture ends at the ready pose the task starts from. The capture's cameras render
   // with options.supersample (finer corners).
-  auto capture_start = capture_start_pose(pipeline.cache_dir + "/observations.yaml",
-                                          robot->description, *workspace, ready_q);
+  auto observations = vision::load_observations_file(pipeline.cache_dir + "/observations.yaml");
+  if (!observations) return observations.error();
+  auto capture_start = capture_start_pose(*observations, robot->description, *workspace, ready_q);
   if (!capture_start) return capture_start.error();
   server_options.initial_q = *capture_start;
   auto servers = EmbeddedServers::create(model, server_options);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <random>
 
 #include "telear/core/angles.hpp"
@@ -91,13 +92,17 @@ Result<MarkerObservations> simulate_marker_observations(const MarkerObservations
   if (!scene->marker()) return Error{"the scene has no marker on the gripper"};
   const ArucoMarker& marker = *scene->marker();
 
-  // Only configurations the robot server would accept: a configuration in contact with the arm
-  // itself or the rig's scene is refused as a start or a pose (the capture workflow starts at
-  // the first one), and the random draw over a UR-type arm's +-360 deg joints hits them often.
-  geometry::CollisionSetupOptions setup;
-  setup.geometry = options.geometry;
-  auto checker = geometry::make_collision_checker(loaded->description, rig->workspace, setup);
-  if (!checker) return Error{"collision checker: " + checker.error().message};
+  // collision_free: only configurations the robot server would accept. One in contact with the
+  // arm itself or the rig's scene is refused as a start or a pose (the demo's capture starts at
+  // one), and the random draw over a UR-type arm's +-360 deg joints hits them often.
+  std::optional<geometry::CollisionChecker> checker;
+  if (options.collision_free) {
+    geometry::CollisionSetupOptions setup;
+    setup.geometry = options.geometry;
+    auto made = geometry::make_collision_checker(loaded->description, rig->workspace, setup);
+    if (!made) return Error{"collision checker: " + made.error().message};
+    checker.emplace(std::move(made).value());
+  }
 
   const core::RobotModel& robot = *model;
   std::mt19937_64 rng(options.seed);
@@ -115,13 +120,14 @@ Result<MarkerObservations> simulate_marker_observations(const MarkerObservations
       if (++draws > max_draws) {
         return Error{"found only " + std::to_string(c) + " of " +
                      std::to_string(options.configurations) +
-                     " collision-free configurations at which the marker faces both cameras; "
+                     std::string(checker ? " collision-free" : "") +
+                     " configurations at which the marker faces both cameras; "
                      "check the rig's pose"};
       }
       q = core::random_configuration(robot, rng);
       scene->set_configuration(q);
     } while (!marker_well_seen(*scene, min_cos, options.margin_px) ||
-             !checker->check(q).collision_free());
+             (checker && !checker->check(q).collision_free()));
 
     vision::ObservedConfiguration observed;
     observed.q = q;

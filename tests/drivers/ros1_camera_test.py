@@ -299,8 +299,9 @@ class Ros1CameraTest(unittest.TestCase):
         self.assertTrue(info.found)
         self.assertEqual((info.source, info.source_width, info.source_height),
                          ("ros", camera.WIDTH, camera.HEIGHT))
-        # From the first pairs' stamps (a pair lost on a loaded machine costs 10 %).
-        self.assertAlmostEqual(info.source_fps, 30.0, delta=4.5)
+        # From the median interval of the first pairs' stamps: a pair lost on a loaded machine
+        # does not change it (counting pairs over the span measured 24.6 fps in a CI run).
+        self.assertAlmostEqual(info.source_fps, 30.0, delta=3.0)
         self.assert_intrinsics(info.left, left)
         self.assert_intrinsics(info.right, right)
         # The baseline from the right camera's P (Tx = -fx B), in the served calibration.

@@ -126,6 +126,23 @@ class Ros1DriverTest(unittest.TestCase):
         time.sleep(0.2)
         self.assertEqual(len(controller.events("goal")), 1)
 
+    def test_feedback_gives_the_controllers_setpoint(self):
+        # The arm 0.2 s behind its setpoint: the state shows both, so a monitor sees the lag.
+        _, server = self.start(controller_args=["--lag", "0.2"])
+        self.wait_ready(server)
+        server.acquire()
+        preview, _ = self.run_plan(server, "ros1-feedback", [Q0, Q1], velocity_scale=0.1)
+        state = server.wait_state(
+            lambda s: s.trajectory_id == "ros1-feedback" and 0.5 < s.trajectory_time_s < 1.0,
+            5, "the middle of the plan")
+        self.assertEqual(len(state.q_commanded), 6)
+        # Moving the waist up: the setpoint is ahead of the arm, the elbow's down.
+        self.assertGreater(state.q_commanded[0] - state.q[0], 0.002)
+        self.assertLess(state.q_commanded[2] - state.q[2], -0.002)
+        self.assertEqual(state.q_commanded[1], Q0[1])
+        server.wait_state(lambda s: s.last_trajectory_status == pb.TRAJECTORY_STATUS_COMPLETED,
+                          preview.duration_s + 5, "the plan to complete")
+
     def test_lease_lapse_cancels_the_goal(self):
         controller, server = self.start()
         self.wait_ready(server)

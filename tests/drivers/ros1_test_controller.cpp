@@ -5,13 +5,15 @@
 //   ros1_test_controller --joints a,b,c [--initial 0,0,0] [--ns
 //   /arm_controller/follow_joint_trajectory]
 //                        [--log FILE] [--abort-after S --abort-message TEXT] [--silent-file FILE]
-//                        [--rate HZ] [--gripper-ns NS]
+//                        [--rate HZ] [--gripper-ns NS] [--lag S]
 //
 // It publishes the joints in an order of its own (reversed) with an extra joint in the middle,
 // as a real robot's joint_states often carries the gripper or other joints. A goal is executed
 // by interpolating its points linearly in time (names mapped into its own order). With
 // --abort-after it aborts each goal after S seconds with error_code PATH_TOLERANCE_VIOLATED and
-// --abort-message as error_string. While --silent-file exists it publishes nothing.
+// --abort-message as error_string. While --silent-file exists it publishes nothing. The action's
+// feedback carries the setpoint (desired), the arm (actual) and their difference; with --lag
+// the arm follows its setpoint S seconds late, as a real servo lags.
 //
 // --log appends one JSON object per line: {"event":"goal","received_ns":..,"joint_names":[..],
 // "times_ns":[..],"positions":[[..],..]}, {"event":"cancel","received_ns":..},
@@ -67,6 +69,7 @@ struct Options {
   std::string abort_message;
   std::string silent_file;
   double rate_hz = 100.0;
+  double lag_s = 0.0;  // the arm follows its setpoint this much later
 };
 
 class Controller {
@@ -171,9 +174,10 @@ class Controller {
   void step() {
     End end = End::kNone;
     sensor_msgs::JointState message;
+    control_msgs::FollowJointTrajectoryFeedback feedback;
     {
       std::lock_guard lock(mutex_);
-      if (active_) end = follow();
+      if (active_) end = follow(feedback);
       if (end != End::kNone) active_ = false;
       // Reversed, with a joint the robot description does not have in the middle.
       for (std::size_t j = q_.size(); j-- > 0;) {
@@ -187,6 +191,7 @@ class Controller {
         }
       }
     }
+    if (!feedback.joint_names.empty()) server_.publishFeedback(feedback);
     if (end == End::kSucceeded) server_.setSucceeded(control_msgs::FollowJointTrajectoryResult());
     if (end == End::kAborted) {
       control_msgs::FollowJointTrajectoryResult result;
@@ -199,24 +204,42 @@ class Controller {
     publisher_.publish(message);
   }
 
-  // Moves q_ along the goal (under mutex_); says how the goal ended, if it did.
-  End follow() {
+  // The goal's positions at t (s from its start), in this controller's joint order.
+  std::vector<double> setpoint(double t) const {
+    const auto& points = trajectory_.points;
+    std::vector<double> q(q_.size());
+    std::size_t k = 1;
+    while (k + 1 < points.size() && points[k].time_from_start.toSec() < t) ++k;
+    const double t0 = k > 0 ? points[k - 1].time_from_start.toSec() : 0.0;
+    const double t1 = points[std::min(k, points.size() - 1)].time_from_start.toSec();
+    const double s = t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      const double a = points[k > 0 ? k - 1 : 0].positions[columns_[j]];
+      const double b = points[std::min(k, points.size() - 1)].positions[columns_[j]];
+      q[j] = a + (b - a) * s;
+    }
+    return q;
+  }
+
+  // Moves q_ along the goal, --lag seconds behind its setpoint (under mutex_), fills the
+  // action's feedback; says how the goal ended, if it did.
+  End follow(control_msgs::FollowJointTrajectoryFeedback& feedback) {
     const double t = (ros::WallTime::now() - start_).toSec();
     const auto& points = trajectory_.points;
     if (options_.abort_after_s >= 0.0 && t >= options_.abort_after_s) return End::kAborted;
-    if (t >= points.back().time_from_start.toSec()) {
+    const double end_s = points.back().time_from_start.toSec();
+    if (t >= end_s + options_.lag_s) {
       for (std::size_t j = 0; j < q_.size(); ++j) q_[j] = points.back().positions[columns_[j]];
       return End::kSucceeded;
     }
-    std::size_t k = 1;
-    while (k + 1 < points.size() && points[k].time_from_start.toSec() < t) ++k;
-    const double t0 = points[k - 1].time_from_start.toSec();
-    const double t1 = points[k].time_from_start.toSec();
-    const double s = t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
+    q_ = setpoint(std::max(t - options_.lag_s, 0.0));
+    feedback.header.stamp = ros::Time::now();
+    feedback.joint_names = options_.joints;
+    feedback.desired.positions = setpoint(std::min(t, end_s));
+    feedback.desired.time_from_start = ros::Duration(std::min(t, end_s));
+    feedback.actual.positions = q_;
     for (std::size_t j = 0; j < q_.size(); ++j) {
-      const double a = points[k - 1].positions[columns_[j]];
-      const double b = points[k].positions[columns_[j]];
-      q_[j] = a + (b - a) * s;
+      feedback.error.positions.push_back(feedback.desired.positions[j] - q_[j]);
     }
     return End::kNone;
   }
@@ -258,6 +281,8 @@ int main(int argc, char** argv) {
       options.abort_message = value;
     } else if (flag == "--silent-file") {
       options.silent_file = value;
+    } else if (flag == "--lag") {
+      options.lag_s = std::stod(value);
     } else if (flag == "--rate") {
       options.rate_hz = std::stod(value);
     } else {

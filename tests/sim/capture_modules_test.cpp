@@ -101,9 +101,9 @@ TEST(MarkerObservations, DetectsTheMarkerAtSeededConfigurations) {
 }
 
 // Issue 26: the UR-type arm's +-360 deg joints put a random draw's arm through itself (seed 1's
-// first configuration had the base in the upper arm), and the capture workflow starts at that
-// configuration, where the robot server refuses every move. Each one is now free of contact,
-// with itself and with the rig's scene.
+// first configuration had the base in the upper arm), and the demo's capture started at that
+// configuration, where the robot server refuses every move. With collision_free (the demo's
+// pipeline asks for it) each one is free of contact, with itself and with the rig's scene.
 TEST(MarkerObservations, EveryConfigurationIsFreeOfContact) {
   MarkerObservationsOptions options;
   options.rig_file = test::data_path("rigs/ur6_rig.yaml");
@@ -111,6 +111,7 @@ TEST(MarkerObservations, EveryConfigurationIsFreeOfContact) {
   options.configurations = 3;
   options.supersample = 1;
   options.seed = 1;  // the demo's
+  options.collision_free = true;
   auto result = simulate_marker_observations(options);
   ASSERT_TRUE(result.ok()) << result.error().message;
   auto rig = load_stereo_rig(options.rig_file);

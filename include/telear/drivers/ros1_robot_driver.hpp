@@ -8,9 +8,11 @@
 //               age (ROS time now minus its stamp).
 //   trajectory  one control_msgs/FollowJointTrajectory goal per accepted trajectory or plan: the
 //               samples exactly as the server accepted them (PreviewPlan's), names in model
-//               order, time_from_start from the samples. The record follows the action: running
-//               until the result; succeeded -> completed; aborted or rejected -> aborted with the
-//               controller's error_string; preempted -> cancelled with the reason telear gave.
+//               order, time_from_start from the samples. The record follows the action: its
+//               feedback gives the state's q_commanded (the controller's setpoint, so a monitor
+//               sees the tracking error) and trajectory time; running until the result; succeeded
+//               -> completed; aborted or rejected -> aborted with the controller's error_string;
+//               preempted -> cancelled with the reason telear gave.
 //   stop        Cancel, a lapsed lease, the e-stop: actionlib's cancel at once.
 //   jogs        short goals from the measured position to the jog's target (a motion command's,
 //               or the velocity held until the expiry), timed by core's trajectory

@@ -48,12 +48,8 @@ GoalEnd goal_end(const actionlib::SimpleClientGoalState& state) {
 
 class Link::Node {
  public:
-  Node(LinkOptions options, JointStatesHandler on_state, GoalDoneHandler on_goal_done,
-       LogHandler log)
-      : options_(std::move(options)),
-        on_state_(std::move(on_state)),
-        on_goal_done_(std::move(on_goal_done)),
-        log_(std::move(log)) {}
+  Node(LinkOptions options, LinkHandlers handlers)
+      : options_(std::move(options)), handlers_(std::move(handlers)), log_(handlers_.log) {}
 
   void start() {
     handle_ = std::make_unique<ros::NodeHandle>();
@@ -97,8 +93,9 @@ class Link::Node {
     const std::uint64_t number = ++last_goal_;
     trajectory_active_ = true;
     trajectory_->sendGoal(
-        message, [this, number](const actionlib::SimpleClientGoalState& state,
-                                const control_msgs::FollowJointTrajectoryResultConstPtr& result) {
+        message,
+        [this, number](const actionlib::SimpleClientGoalState& state,
+                       const control_msgs::FollowJointTrajectoryResultConstPtr& result) {
           GoalOutcome outcome;
           outcome.end = goal_end(state);
           outcome.state =
@@ -107,7 +104,16 @@ class Link::Node {
             outcome.error_code = result->error_code;
             outcome.error_string = result->error_string;
           }
-          post([this, number, outcome] { on_goal_done_(number, outcome); });
+          post([this, number, outcome] { handlers_.on_goal_done(number, outcome); });
+        },
+        TrajectoryClient::SimpleActiveCallback(),
+        [this, number](const control_msgs::FollowJointTrajectoryFeedbackConstPtr& message) {
+          if (!handlers_.on_goal_feedback) return;
+          GoalFeedback feedback;
+          feedback.joint_names = message->joint_names;
+          feedback.desired = message->desired.positions;
+          feedback.time_from_start_s = message->desired.time_from_start.toSec();
+          post([this, number, feedback] { handlers_.on_goal_feedback(number, feedback); });
         });
     return number;
   }
@@ -292,13 +298,12 @@ class Link::Node {
     state.name = message.name;
     state.position = message.position;
     state.velocity = message.velocity;
-    on_state_(state);
+    handlers_.on_state(state);
   }
 
   LinkOptions options_;
-  JointStatesHandler on_state_;
-  GoalDoneHandler on_goal_done_;
-  LogHandler log_;
+  LinkHandlers handlers_;
+  std::function<void(const std::string&)> log_;
 
   std::unique_ptr<ros::NodeHandle> handle_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;
@@ -324,8 +329,7 @@ class Link::Node {
   std::thread dispatcher_, monitor_;
 };
 
-std::unique_ptr<Link> Link::start(const LinkOptions& options, JointStatesHandler on_state,
-                                  GoalDoneHandler on_goal_done, LogHandler log,
+std::unique_ptr<Link> Link::start(const LinkOptions& options, LinkHandlers handlers,
                                   std::string* error) {
   std::string master_uri = options.master_uri;
   if (master_uri.empty()) {
@@ -359,8 +363,7 @@ std::unique_ptr<Link> Link::start(const LinkOptions& options, JointStatesHandler
   // A registration with a master that went away gives up after this instead of blocking the
   // monitor forever; the monitor tries again on its next round.
   ros::master::setRetryTimeout(ros::WallDuration(1.0));
-  auto node =
-      std::make_unique<Node>(options, std::move(on_state), std::move(on_goal_done), std::move(log));
+  auto node = std::make_unique<Node>(options, std::move(handlers));
   node->start();
   return std::unique_ptr<Link>(new Link(std::move(node)));
 }

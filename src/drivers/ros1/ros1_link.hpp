@@ -80,17 +80,29 @@ struct LinkHealth {
   bool gripper = false;     // the GripperCommand server is connected (false without one)
 };
 
+// The action's feedback: where the controller wants the joints now (its setpoint) and how far
+// into the goal it is.
+struct GoalFeedback {
+  std::vector<std::string> joint_names;
+  std::vector<double> desired;  // positions, in joint_names' order
+  double time_from_start_s = 0.0;
+};
+
+// What the link calls. on_goal_done and on_goal_feedback come from a thread of the link's own,
+// never with a ROS lock held (see ros1_link.cpp); on_state from a ROS thread.
+struct LinkHandlers {
+  std::function<void(const JointStateMessage&)> on_state;
+  // Once per goal, with its number from send_trajectory.
+  std::function<void(std::uint64_t goal, const GoalOutcome&)> on_goal_done;
+  std::function<void(std::uint64_t goal, const GoalFeedback&)> on_goal_feedback;
+  std::function<void(const std::string&)> log;
+};
+
 class Link {
  public:
-  using JointStatesHandler = std::function<void(const JointStateMessage&)>;
-  // Called once per goal, on a ROS thread, with the goal's number from send_trajectory.
-  using GoalDoneHandler = std::function<void(std::uint64_t goal, const GoalOutcome&)>;
-  using LogHandler = std::function<void(const std::string&)>;
-
   // Starts the node and its monitor; the master need not be up yet. Fails (message in
   // *error) on an invalid option, or when a link was started before in this process.
-  static std::unique_ptr<Link> start(const LinkOptions& options, JointStatesHandler on_state,
-                                     GoalDoneHandler on_goal_done, LogHandler log,
+  static std::unique_ptr<Link> start(const LinkOptions& options, LinkHandlers handlers,
                                      std::string* error);
   ~Link();  // cancels a running goal, shuts the node down
   Link(const Link&) = delete;

@@ -70,12 +70,16 @@ class Ros1RobotDriver final : public core::RobotDriver {
     link.workspace_topic = options_.workspace_topic;
     link.robot_description = urdf_;
     std::string error;
-    link_ = ros1::Link::start(
-        link, [this](const ros1::JointStateMessage& message) { on_joint_state(message); },
-        [this](std::uint64_t goal, const ros1::GoalOutcome& outcome) {
-          on_goal_done(goal, outcome);
-        },
-        [](const std::string& line) { spdlog::info("ros1: {}", line); }, &error);
+    ros1::LinkHandlers handlers;
+    handlers.on_state = [this](const ros1::JointStateMessage& message) { on_joint_state(message); };
+    handlers.on_goal_done = [this](std::uint64_t goal, const ros1::GoalOutcome& outcome) {
+      on_goal_done(goal, outcome);
+    };
+    handlers.on_goal_feedback = [this](std::uint64_t goal, const ros1::GoalFeedback& feedback) {
+      on_goal_feedback(goal, feedback);
+    };
+    handlers.log = [](const std::string& line) { spdlog::info("ros1: {}", line); };
+    link_ = ros1::Link::start(link, std::move(handlers), &error);
     if (!link_) return Error{"ROS 1 driver: " + error};
     timer_ = std::thread([this] { run_timer(); });
     return Status::Ok();
@@ -118,8 +122,10 @@ class Ros1RobotDriver final : public core::RobotDriver {
       const core::TrajectoryRecord& record = records_.at(active_->id);
       state.trajectory_id = active_->id;
       state.trajectory_duration = record.duration;
-      state.trajectory_time =
-          std::clamp(core::ns_to_s(now - active_->accepted_ns), 0.0, record.duration);
+      const double elapsed_s =
+          active_->feedback_time_s.value_or(core::ns_to_s(now - active_->accepted_ns));
+      state.trajectory_time = std::clamp(elapsed_s, 0.0, record.duration);
+      if (active_->desired) state.q_commanded = *active_->desired;
       state.trajectory_progress =
           record.duration > 0.0 ? state.trajectory_time / record.duration : 1.0;
     }
@@ -221,7 +227,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
     record.duration = waypoints.times.back() - t0;
     records_[id] = record;
     accepted_ns_[id] = now;
-    active_ = Active{id, number, now};
+    active_ = Active{id, number, now, std::nullopt, std::nullopt};
     stop_reason_.clear();
     for (const core::GripperEvent& event : waypoints.gripper) {
       if (has_gripper)
@@ -325,6 +331,10 @@ class Ros1RobotDriver final : public core::RobotDriver {
     std::string id;
     std::uint64_t goal = 0;
     std::int64_t accepted_ns = 0;
+    // From the action's feedback: the controller's setpoint (model order) and its time into
+    // the goal; until the first, the samples' time since acceptance and the measured q.
+    std::optional<Eigen::VectorXd> desired;
+    std::optional<double> feedback_time_s;
   };
   struct Jog {
     std::uint64_t goal = 0;
@@ -484,6 +494,21 @@ class Ros1RobotDriver final : public core::RobotDriver {
     q_ = q;
     qd_ = qd;
     capture_ns_ = now - core::s_to_ns(std::max(message.age_s, 0.0));
+  }
+
+  void on_goal_feedback(std::uint64_t goal, const ros1::GoalFeedback& feedback) {
+    std::lock_guard lock(mutex_);
+    if (!active_ || active_->goal != goal) return;
+    Eigen::VectorXd desired(q_.size());
+    for (std::size_t j = 0; j < joint_names_.size(); ++j) {
+      const auto at =
+          std::find(feedback.joint_names.begin(), feedback.joint_names.end(), joint_names_[j]);
+      const auto index = static_cast<std::size_t>(at - feedback.joint_names.begin());
+      if (at == feedback.joint_names.end() || index >= feedback.desired.size()) return;
+      desired[static_cast<Eigen::Index>(j)] = feedback.desired[index];
+    }
+    active_->desired = desired;
+    active_->feedback_time_s = feedback.time_from_start_s;
   }
 
   void on_goal_done(std::uint64_t goal, const ros1::GoalOutcome& outcome) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "drivers/ros1/camera_info_calibration.hpp"
 #include "drivers/ros1/ros1_camera_link.hpp"
@@ -200,19 +201,25 @@ Result<FirstPairs> first_pairs(ros1::CameraLink& link, const Ros1StereoSourceOpt
                first->right.width, first->right.height, first->right.encoding,
                ms_text(static_cast<double>(first->pairing_error_ns()) * 1e-6));
   if (out.fps > 0.0) return out;
-  // A few more pairs, for up to a second: the rate between the first and the last stamp.
-  const std::int64_t first_stamp = first->left.stamp_ns;
-  std::int64_t last_stamp = first_stamp;
+  // A few more pairs, for up to a second: the rate from the median interval between
+  // consecutive stamps, so that a pair lost on a loaded machine (an interval twice as long)
+  // does not lower it, as a count over the time span would.
+  std::vector<std::int64_t> stamps{first->left.stamp_ns};
   const std::int64_t until = core::monotonic_ns() + core::s_to_ns(1.0);
   while (out.last_number - first->number < 10) {
     auto next = link.next_pair(out.last_number, ns(until - core::monotonic_ns()));
     if (!next) break;
     out.last_number = next->number;
-    last_stamp = next->left.stamp_ns;
+    stamps.push_back(next->left.stamp_ns);
   }
-  if (last_stamp > first_stamp) {
-    out.fps = static_cast<double>(out.last_number - first->number) /
-              core::ns_to_s(last_stamp - first_stamp);
+  std::vector<std::int64_t> intervals;
+  for (std::size_t k = 1; k < stamps.size(); ++k) {
+    if (stamps[k] > stamps[k - 1]) intervals.push_back(stamps[k] - stamps[k - 1]);
+  }
+  if (!intervals.empty()) {
+    const auto middle = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
+    std::nth_element(intervals.begin(), middle, intervals.end());
+    out.fps = 1.0 / core::ns_to_s(*middle);
   }
   return out;
 }
