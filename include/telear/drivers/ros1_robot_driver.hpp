@@ -4,8 +4,8 @@
 //
 //   state       sensor_msgs/JointState on --joint-states, mapped by joint name into the model's
 //               (the URDF's) order: any order, extra joints ignored, a missing one a fault that
-//               names it. capture_ns is the receipt time on the server clock less the message's
-//               age (ROS time now minus its stamp).
+//               names it. capture_ns is the message's stamp on the server clock
+//               (src/drivers/ros1/ros_clock_offset.hpp), its receipt when it has none.
 //   trajectory  one control_msgs/FollowJointTrajectory goal per accepted trajectory or plan: the
 //               samples exactly as the server accepted them (PreviewPlan's), names in model
 //               order, time_from_start from the samples. The record follows the action: its

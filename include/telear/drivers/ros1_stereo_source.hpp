@@ -10,8 +10,8 @@
 //                error (left stamp minus right stamp) is what the two eyes' capture times
 //                differ by, and its mean and maximum are logged every stats period and at
 //                the end
-//   capture time each eye's header stamp on this machine's CLOCK_MONOTONIC (receipt time
-//                less the message's age in ROS time)
+//   capture time each eye's header stamp on this machine's CLOCK_MONOTONIC
+//                (drivers/ros1/ros_clock_offset.hpp)
 //   calibration  from the cameras' camera_info (drivers/ros1/camera_info_calibration.hpp):
 //                intrinsics, lens model, and the pose between the cameras where the two P
 //                state a rectified pair; read once, at start

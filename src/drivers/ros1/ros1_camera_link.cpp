@@ -1,5 +1,6 @@
 // C++17: ROS 1 headers (see ros1_camera_link.hpp).
 #include "drivers/ros1/ros1_camera_link.hpp"
+#include "drivers/ros1/ros_clock_offset.hpp"
 
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -29,11 +30,6 @@ std::atomic<bool> g_camera_link_started{false};
 constexpr auto kMonitorPeriod = std::chrono::milliseconds(100);
 constexpr char kCompressedSuffix[] = "/compressed";
 
-std::int64_t monotonic_now_ns() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1000000000 + now.tv_nsec;
-}
 
 std::string milliseconds(std::int64_t ns) {
   char text[32];
@@ -314,30 +310,24 @@ class CameraLink::Node {
     registered_ = false;
   }
 
-  struct Receipt {
-    std::int64_t monotonic_ns;
-    ros::Time ros;
-  };
-  static Receipt now() { return {monotonic_now_ns(), ros::Time::now()}; }
+  using Receipt = RosClockOffset::Reading;
+  Receipt now() { return clock_offset_.read(); }
 
   void on_frame(bool right, const ros::Time& stamp, const Receipt& receipt, EyeFrame frame,
                 const std::string& error) {
     const int eye = right ? 1 : 0;
     const std::string& topic = topics_[eye];
-    if (stamp.isZero() && !warned_no_stamp_.exchange(true)) {
+    // Each warning once per topic.
+    if (stamp.isZero() && !warned_no_stamp_[eye].exchange(true)) {
       log_(topic + " has no header stamps: its images are paired and timed by their receipt");
     }
-    frame.stamp_ns = static_cast<std::int64_t>((stamp.isZero() ? receipt.ros : stamp).toNSec());
-    std::int64_t age_ns = static_cast<std::int64_t>(receipt.ros.toNSec()) - frame.stamp_ns;
-    if (age_ns < 0) {
-      if (!warned_future_.exchange(true)) {
-        log_("stamps on " + topic + " are " + milliseconds(-age_ns) +
-             " ahead of this machine's ROS clock (the camera's machine and this one are not "
-             "synchronised: chrony, NTP?): capture times are taken at receipt");
-      }
-      age_ns = 0;
+    frame.stamp_ns = stamp.isZero() ? receipt.ros_ns : static_cast<std::int64_t>(stamp.toNSec());
+    if (frame.stamp_ns > receipt.ros_ns && !warned_future_[eye].exchange(true)) {
+      log_("stamps on " + topic + " are " + milliseconds(frame.stamp_ns - receipt.ros_ns) +
+           " ahead of this machine's ROS clock (the camera's machine and this one are not "
+           "synchronised: chrony, NTP?): capture times are taken at receipt");
     }
-    frame.capture_ns = receipt.monotonic_ns - age_ns;
+    frame.capture_ns = RosClockOffset::capture_ns(frame.stamp_ns, receipt);
     {
       std::lock_guard lock(health_mutex_);
       EyeHealth& health = eyes_[eye];
@@ -390,7 +380,9 @@ class CameraLink::Node {
   bool stopping_ = false;
 
   std::atomic<bool> master_{false};
-  std::atomic<bool> warned_no_stamp_{false}, warned_future_{false};
+  std::atomic<bool> warned_no_stamp_[2] = {false, false};
+  std::atomic<bool> warned_future_[2] = {false, false};
+  RosClockOffset clock_offset_;
   std::thread monitor_;
 };
 

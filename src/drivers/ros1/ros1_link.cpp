@@ -1,5 +1,6 @@
 // C++17: ROS 1 headers (see ros1_link.hpp).
 #include "drivers/ros1/ros1_link.hpp"
+#include "drivers/ros1/ros_clock_offset.hpp"
 
 #include <actionlib/client/simple_action_client.h>
 #include <control_msgs/FollowJointTrajectoryAction.h>
@@ -290,11 +291,11 @@ class Link::Node {
   }
 
   void on_joint_state(const sensor_msgs::JointState& message) {
+    const RosClockOffset::Reading receipt = clock_offset_.read();
     JointStateMessage state;
-    if (!message.header.stamp.isZero()) {
-      state.stamp_s = message.header.stamp.toSec();
-      state.age_s = (ros::Time::now() - message.header.stamp).toSec();
-    }
+    const auto stamp_ns = static_cast<std::int64_t>(message.header.stamp.toNSec());
+    state.stamp_s = message.header.stamp.toSec();
+    state.capture_ns = RosClockOffset::capture_ns(stamp_ns, receipt);
     state.name = message.name;
     state.position = message.position;
     state.velocity = message.velocity;
@@ -303,6 +304,7 @@ class Link::Node {
 
   LinkOptions options_;
   LinkHandlers handlers_;
+  RosClockOffset clock_offset_;
   std::function<void(const std::string&)> log_;
 
   std::unique_ptr<ros::NodeHandle> handle_;

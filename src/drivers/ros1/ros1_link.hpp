@@ -38,7 +38,9 @@ struct LinkOptions {
 
 struct JointStateMessage {
   double stamp_s = 0.0;  // header stamp, ROS time (s); 0 when the publisher left it unset
-  double age_s = 0.0;    // ROS time at receipt minus the stamp (0 without a stamp)
+  // The stamp on CLOCK_MONOTONIC (ros_clock_offset.hpp); the receipt without a stamp or with
+  // one ahead of this machine's ROS clock.
+  std::int64_t capture_ns = 0;
   std::vector<std::string> name;
   std::vector<double> position, velocity;
 };

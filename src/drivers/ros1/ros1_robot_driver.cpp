@@ -493,7 +493,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
     missing_joint_.clear();
     q_ = q;
     qd_ = qd;
-    capture_ns_ = now - core::s_to_ns(std::max(message.age_s, 0.0));
+    capture_ns_ = std::min(message.capture_ns, now);
   }
 
   void on_goal_feedback(std::uint64_t goal, const ros1::GoalFeedback& feedback) {
