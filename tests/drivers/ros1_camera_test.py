@@ -519,8 +519,11 @@ class Ros1CameraTest(unittest.TestCase):
         right = f"{self.ns}/cam/right/image_raw"
         # 10 Hz: the right stamps are half a frame after the left ones, 50 ms from either
         # (and, 200 ms old, still in the past).
+        # Periodic stamps: a right stamp then is 50 ms from the left one of its frame and from
+        # the next frame's (the clock's reading at each frame would add the loop's jitter to
+        # the second: 1.7 ms on a loaded machine).
         self.test_camera(left, right, ["--rate", "10", "--right-offset-ms", "50",
-                                       "--age-ms", "200"])
+                                       "--age-ms", "200", "--periodic-stamps"])
         code, err = self.failing_vision_server(["--ros-master", self.master_uri, "--left", left,
                                                 "--right", right, "--sync-tolerance-ms", "20"])
         self.assertEqual(code, 1, err)

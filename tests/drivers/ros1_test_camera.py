@@ -5,7 +5,7 @@ do: compressed topics (no image_transport plugins are packaged), encodings other
 stamps in the past or apart by a chosen offset.
 
     ros1_test_camera.py --left TOPIC --right TOPIC [--encoding rgb8|bgr8|mono8|bayer_rggb8]
-        [--format jpeg|png] [--rate HZ] [--age-ms MS] [--right-offset-ms MS]
+        [--format jpeg|png] [--rate HZ] [--age-ms MS] [--right-offset-ms MS] [--periodic-stamps]
         [--left-info YAML --right-info YAML] [--log FILE]
 
 A topic ending in /compressed gets sensor_msgs/CompressedImage in --format, any other
@@ -97,6 +97,9 @@ def main():
     parser.add_argument("--left-info")
     parser.add_argument("--right-info")
     parser.add_argument("--log")
+    parser.add_argument("--periodic-stamps", action="store_true",
+                        help="stamps exactly 1/rate apart (from the first), not the clock's "
+                             "reading at each frame, which a loaded machine makes jitter")
     args = parser.parse_args()
 
     rospy.init_node("telear_test_camera", anonymous=True)
@@ -121,9 +124,14 @@ def main():
     age = rospy.Duration.from_sec(args.age_ms * 1e-3)
     offset = rospy.Duration.from_sec(args.right_offset_ms * 1e-3)
     next_time = time.monotonic()
+    first_stamp = rospy.Time.now() - age
+    frame_number = 0
     while not rospy.is_shutdown():
         monotonic_ns = time.clock_gettime_ns(time.CLOCK_MONOTONIC)
         stamp = rospy.Time.now() - age
+        if args.periodic_stamps:
+            stamp = first_stamp + rospy.Duration.from_sec(frame_number * period)
+        frame_number += 1
         for k, (message, publisher, info, info_publisher) in enumerate(eyes):
             message.header.stamp = stamp + offset if k == 1 else stamp
             publisher.publish(message)
