@@ -30,7 +30,6 @@ std::atomic<bool> g_camera_link_started{false};
 constexpr auto kMonitorPeriod = std::chrono::milliseconds(100);
 constexpr char kCompressedSuffix[] = "/compressed";
 
-
 std::string milliseconds(std::int64_t ns) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f ms", static_cast<double>(ns) * 1e-6);
