@@ -12,6 +12,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "drivers/driver_support.hpp"
 #include "drivers/ros1/ros1_link.hpp"
 #include "telear/core/clock.hpp"
 #include "telear/core/motion_command.hpp"
@@ -21,10 +22,6 @@
 
 namespace telear::drivers {
 namespace {
-
-std::string quoted(const std::string& text) {
-  return "'" + text + "'";
-}
 
 const char* goal_end_text(ros1::GoalEnd end) {
   switch (end) {
@@ -54,7 +51,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
         options_(std::move(options)),
         epoch_ns_(core::monotonic_ns()) {
     const int dof = model_->dof();
-    for (int j = 0; j < dof; ++j) joint_names_.push_back(model_->joints()[j].name);
+    joint_names_ = joint_names(*model_);
     if (description.gripper) gripper_max_opening_m_ = description.gripper->max_opening_m;
     q_ = Eigen::VectorXd::Zero(dof);
     qd_ = Eigen::VectorXd::Zero(dof);
@@ -147,7 +144,9 @@ class Ros1RobotDriver final : public core::RobotDriver {
     std::lock_guard lock(mutex_);
     const std::int64_t now = core::monotonic_ns();
     if (Status s = check_can_move_locked("jog", now); !s) return s.error();
-    if (Status s = check_jog_expiry(expires_ns, now); !s) return s.error();
+    if (Status s = check_jog_expiry(expires_ns, now, options_.max_jog_duration_s); !s) {
+      return s.error();
+    }
     // A jog while a jog's goal runs adds to that jog's target, as on the simulated arm.
     const Eigen::VectorXd base = jog_ ? jog_->target : q_;
     core::MotionOutcome outcome = core::apply_motion(*model_, base, command);
@@ -164,7 +163,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
                    " finite values"};
     }
     if (Status s = check_can_move_locked("jog", now); !s) return s;
-    if (Status s = check_jog_expiry(expires_ns, now); !s) return s;
+    if (Status s = check_jog_expiry(expires_ns, now, options_.max_jog_duration_s); !s) return s;
     if (qd.isZero()) {
       stop_locked("jog at zero velocity");
       return Status::Ok();
@@ -192,29 +191,20 @@ class Ros1RobotDriver final : public core::RobotDriver {
     if (waypoints.q.empty() || waypoints.q.size() != waypoints.times.size()) {
       return Error{what + " rejected: no samples"};
     }
-    // Without a gripper action the opening stays what the state reports: events that keep it
-    // (a plan's waypoints carry the opening even when it does not change) are no-ops, one
-    // that changes it is refused rather than run without the grasp it was planned for.
+    // Without a gripper action the opening stays what the state reports (no-op events only).
     const bool has_gripper = !options_.gripper_ns.empty();
-    for (const core::GripperEvent& event : waypoints.gripper) {
-      if (!has_gripper && std::abs(event.opening - gripper_opening_) > 1e-9) {
-        return Error{what + " rejected: it moves the gripper to " +
-                     core::format_number(event.opening, "%.3f") + " at " +
-                     core::format_number(event.time, "%.3f s") +
-                     ", and this robot server has no gripper action (telear robot-server "
-                     "--gripper-action NS)"};
+    if (!has_gripper) {
+      if (Status s = check_gripper_events_keep(
+              what, waypoints.gripper, gripper_opening_,
+              "this robot server has no gripper action (telear robot-server --gripper-action NS)");
+          !s) {
+        return s.error();
       }
     }
-    ros1::TrajectoryGoal goal;
-    goal.joint_names = joint_names_;
-    // time_from_start is each sample's time less the first's (0 for the server's samples),
-    // rounded to whole nanoseconds as PreviewPlan's answer and ExecuteTrajectory's wire are.
+    GoalPoints points = goal_points(waypoints);
+    ros1::TrajectoryGoal goal{joint_names_, std::move(points.times_ns),
+                              std::move(points.positions)};
     const double t0 = waypoints.times.front();
-    for (std::size_t k = 0; k < waypoints.q.size(); ++k) {
-      goal.times_ns.push_back(std::llround((waypoints.times[k] - t0) * 1e9));
-      const Eigen::VectorXd& q = waypoints.q[k];
-      goal.positions.emplace_back(q.data(), q.data() + q.size());
-    }
     const std::uint64_t number = link_->send_trajectory(goal);
     if (number == 0) {
       return Error{what + " rejected: the action server " + options_.controller_ns +
@@ -275,14 +265,15 @@ class Ros1RobotDriver final : public core::RobotDriver {
   void show_preview(const std::string& plan_id, const core::TimedWaypoints& samples) override {
     if (samples.q.empty()) return;
     std::lock_guard lock(mutex_);
-    preview_ = Preview{plan_id, samples, core::monotonic_ns(), 0};
+    spdlog::debug("ros1: playing preview '{}' on {}", plan_id, options_.ghost_topic);
+    preview_.start(samples, core::monotonic_ns());
     timer_wake_.notify_all();
   }
 
   void show_ghost(const Eigen::VectorXd& q, double /*gripper*/) override {
     std::lock_guard lock(mutex_);
     // A preview being played shows the plan; the rehearsed pose takes over after it.
-    if (preview_) return;
+    if (preview_.playing()) return;
     link_->publish_ghost(joint_names_, std::vector<double>(q.data(), q.data() + q.size()));
   }
 
@@ -321,12 +312,6 @@ class Ros1RobotDriver final : public core::RobotDriver {
   }
 
  private:
-  struct Preview {
-    std::string plan_id;
-    core::TimedWaypoints samples;
-    std::int64_t started_ns = 0;
-    std::size_t next = 0;  // the next sample to publish
-  };
   struct Active {
     std::string id;
     std::uint64_t goal = 0;
@@ -365,7 +350,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
     }
     if (!missing_joint_.empty()) {
       return options_.joint_states_topic + " has no joint " + quoted(missing_joint_) +
-             " (the robot's joints: " + joint_list() + ")";
+             " (the robot's joints: " + joint_list(joint_names_) + ")";
     }
     const double silent_s = core::ns_to_s(now - last_receipt_ns_);
     if (silent_s > options_.silence_timeout_s) {
@@ -384,60 +369,20 @@ class Ros1RobotDriver final : public core::RobotDriver {
     return options_.master_uri.empty() ? std::string("$ROS_MASTER_URI") : options_.master_uri;
   }
 
-  std::string joint_list() const {
-    std::string list;
-    for (const std::string& name : joint_names_) list += (list.empty() ? "" : ", ") + name;
-    return list;
-  }
-
   Status check_can_move_locked(const std::string& what, std::int64_t now) const {
-    if (estop_) {
-      return Error{what + " rejected: the e-stop is engaged (" + estop_reason_ +
-                   "); reset it once the arm is at rest"};
-    }
-    if (active_) {
-      return Error{what + " rejected: trajectory " + quoted(active_->id) +
-                   " is running; cancel it first or wait until it completes"};
-    }
-    if (auto fault = fault_locked(now)) return Error{what + " rejected: " + *fault};
-    return Status::Ok();
-  }
-
-  Status check_jog_expiry(std::int64_t expires_ns, std::int64_t now) const {
-    if (expires_ns <= now) {
-      return Error{"jog ignored: it expired " +
-                   core::format_number(core::ns_to_s(now - expires_ns), "%.3f s") +
-                   " before it arrived"};
-    }
-    if (core::ns_to_s(expires_ns - now) > options_.max_jog_duration_s) {
-      return Error{"jog rejected: it expires " +
-                   core::format_number(core::ns_to_s(expires_ns - now), "%.3f s") +
-                   " from now, later than the maximum of " +
-                   core::format_number(options_.max_jog_duration_s, "%.3f s")};
-    }
-    return Status::Ok();
+    return check_can_move(what, estop_, estop_reason_,
+                          active_ ? std::optional<std::string>(active_->id) : std::nullopt,
+                          fault_locked(now));
   }
 
   // A goal from the measured position to `target`: over `duration_s` (a velocity jog), or
   // timed by core's parameterization at the joints' limits.
   Status send_jog_locked(const Eigen::VectorXd& target, std::optional<double> duration_s,
                          std::int64_t expires_ns) {
-    ros1::TrajectoryGoal goal;
-    goal.joint_names = joint_names_;
-    auto push = [&goal](double t, const Eigen::VectorXd& q) {
-      goal.times_ns.push_back(std::llround(t * 1e9));
-      goal.positions.emplace_back(q.data(), q.data() + q.size());
-    };
-    if (duration_s) {
-      push(0.0, q_);
-      push(*duration_s, target);
-    } else {
-      auto timed = core::Trajectory::create(*model_, {{q_}, {target}});
-      if (!timed) return Error{"jog rejected: " + timed.error().message};
-      auto samples = timed->sampled(options_.jog_sample_rate_hz);
-      if (!samples) return Error{"jog rejected: " + samples.error().message};
-      for (std::size_t k = 0; k < samples->q.size(); ++k) push(samples->times[k], samples->q[k]);
-    }
+    auto points = jog_points(*model_, q_, target, duration_s, options_.jog_sample_rate_hz);
+    if (!points) return points.error();
+    ros1::TrajectoryGoal goal{joint_names_, std::move(points->times_ns),
+                              std::move(points->positions)};
     const std::uint64_t number = link_->send_trajectory(goal);
     if (number == 0) {
       return Error{"jog rejected: the action server " + options_.controller_ns +
@@ -478,20 +423,14 @@ class Ros1RobotDriver final : public core::RobotDriver {
     have_state_ = true;
     // Map by name; a message that lacks one of the model's joints changes nothing but the
     // fault (a partial vector would put a stale value beside fresh ones).
-    Eigen::VectorXd q(q_.size()), qd = Eigen::VectorXd::Zero(q_.size());
-    for (std::size_t j = 0; j < joint_names_.size(); ++j) {
-      const auto at = std::find(message.name.begin(), message.name.end(), joint_names_[j]);
-      const auto index = static_cast<std::size_t>(at - message.name.begin());
-      if (at == message.name.end() || index >= message.position.size()) {
-        missing_joint_ = joint_names_[j];
-        return;
-      }
-      q[static_cast<Eigen::Index>(j)] = message.position[index];
-      if (index < message.velocity.size())
-        qd[static_cast<Eigen::Index>(j)] = message.velocity[index];
-    }
+    const auto q = values_by_name(joint_names_, message.name, message.position, &missing_joint_);
+    if (!q) return;
+    // Velocities are optional in a JointState (zero where absent).
+    const Eigen::VectorXd qd =
+        values_by_name(joint_names_, message.name, message.velocity)
+            .value_or(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(joint_names_.size())));
     missing_joint_.clear();
-    q_ = q;
+    q_ = *q;
     qd_ = qd;
     capture_ns_ = std::min(message.capture_ns, now);
   }
@@ -499,15 +438,9 @@ class Ros1RobotDriver final : public core::RobotDriver {
   void on_goal_feedback(std::uint64_t goal, const ros1::GoalFeedback& feedback) {
     std::lock_guard lock(mutex_);
     if (!active_ || active_->goal != goal) return;
-    Eigen::VectorXd desired(q_.size());
-    for (std::size_t j = 0; j < joint_names_.size(); ++j) {
-      const auto at =
-          std::find(feedback.joint_names.begin(), feedback.joint_names.end(), joint_names_[j]);
-      const auto index = static_cast<std::size_t>(at - feedback.joint_names.begin());
-      if (at == feedback.joint_names.end() || index >= feedback.desired.size()) return;
-      desired[static_cast<Eigen::Index>(j)] = feedback.desired[index];
-    }
-    active_->desired = desired;
+    auto desired = values_by_name(joint_names_, feedback.joint_names, feedback.desired);
+    if (!desired) return;
+    active_->desired = std::move(desired);
     active_->feedback_time_s = feedback.time_from_start_s;
   }
 
@@ -546,24 +479,6 @@ class Ros1RobotDriver final : public core::RobotDriver {
     if (!jog_) stop_reason_.clear();
   }
 
-  // Plays the previewed plan on the ghost topic; says when the next frame is due (or nothing
-  // when the last sample was published).
-  std::optional<std::int64_t> play_preview_locked(std::int64_t now) {
-    Preview& preview = *preview_;
-    const std::vector<double>& times = preview.samples.times;
-    const double t = times.front() + core::ns_to_s(now - preview.started_ns);
-    std::size_t k = preview.next;
-    while (k + 1 < times.size() && times[k + 1] <= t) ++k;
-    const Eigen::VectorXd& q = preview.samples.q[k];
-    link_->publish_ghost(joint_names_, std::vector<double>(q.data(), q.data() + q.size()));
-    if (k + 1 >= times.size()) {
-      preview_.reset();
-      return std::nullopt;
-    }
-    preview.next = k + 1;
-    return now + core::s_to_ns(1.0 / options_.ghost_rate_hz);
-  }
-
   // Jog expiries, a plan's gripper events and the ghost's frames, on the server clock.
   void run_timer() {
     std::unique_lock lock(mutex_);
@@ -579,8 +494,11 @@ class Ros1RobotDriver final : public core::RobotDriver {
           spdlog::warn("ros1: {}", s.error().message);
       }
       std::int64_t next = now + 100'000'000;
-      if (preview_) {
-        if (auto frame = play_preview_locked(now)) next = std::min(next, *frame);
+      if (preview_.playing()) {
+        const PreviewPlayback::Frame frame = preview_.advance(now, options_.ghost_rate_hz);
+        link_->publish_ghost(joint_names_,
+                             std::vector<double>(frame.q.data(), frame.q.data() + frame.q.size()));
+        if (frame.next_ns) next = std::min(next, *frame.next_ns);
       }
       if (jog_ && stop_reason_.empty()) next = std::min(next, jog_->expires_ns);
       if (!gripper_events_.empty()) next = std::min(next, gripper_events_.front().at_ns);
@@ -610,7 +528,7 @@ class Ros1RobotDriver final : public core::RobotDriver {
   std::optional<Active> active_;
   std::optional<Jog> jog_;
   std::vector<TimedGripperEvent> gripper_events_;  // in time order
-  std::optional<Preview> preview_;                 // being played on the ghost topic
+  PreviewPlayback preview_;                        // played on the ghost topic
   std::map<std::string, core::TrajectoryRecord> records_;
   std::map<std::string, std::int64_t> accepted_ns_;
 
