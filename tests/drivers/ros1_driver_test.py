@@ -282,9 +282,9 @@ class Ros1DriverTest(unittest.TestCase):
         server.call("SetGripper", pb.SetGripperRequest(lease_id=server.lease.lease_id,
                                                        opening=0.5))
         event = h.wait_for(lambda: controller.events("gripper"), 3, "the gripper goal")[0]
-        # Half of the PUMA gripper's opening (data/robots/puma560.yaml), in metres.
-        self.assertGreater(event["position"], 0.0)
-        self.assertLess(event["position"], 0.2)
+        # Half the maximum opening, in metres: the PUMA's DH table names no gripper joints, so
+        # the robot description's default of 80 mm (core::Gripper::max_opening_m).
+        self.assertAlmostEqual(event["position"], 0.04, places=12)
 
     # --- what the operator rehearses, seen by ROS tools ------------------------------------
 
