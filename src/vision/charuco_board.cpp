@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <opencv2/aruco.hpp>
 #include <opencv2/aruco/charuco.hpp>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
@@ -40,6 +42,118 @@ int charuco_half_window(const std::vector<cv::Point2f>& points, const std::vecto
   return std::clamp(static_cast<int>(std::lround(0.8 * margin * nearest)), 2, 15);
 }
 
+// Bilinear grey level of a CV_8UC1 image at p (pixel centres at integers); p at least one
+// pixel inside the image.
+double charuco_grey_at(const cv::Mat& grey, const cv::Point2d& p) {
+  const int x0 = static_cast<int>(std::floor(p.x)), y0 = static_cast<int>(std::floor(p.y));
+  const double fx = p.x - x0, fy = p.y - y0;
+  const auto at = [&grey](int x, int y) {
+    return static_cast<double>(grey.at<std::uint8_t>(y, x));
+  };
+  return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+         fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+}
+
+double charuco_median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+cv::Point2d charuco_apply(const cv::Matx33d& H, const cv::Point2d& q) {
+  const cv::Vec3d r = H * cv::Vec3d(q.x, q.y, 1.0);
+  return {r[0] / r[2], r[1] / r[2]};
+}
+
+// The total-least-squares line a x + b y + c = 0 ((a, b) a unit normal) through `points`.
+cv::Vec3d charuco_fit_line(const std::vector<cv::Point2d>& points) {
+  cv::Point2d mean(0.0, 0.0);
+  for (const cv::Point2d& q : points) mean += q / static_cast<double>(points.size());
+  double sxx = 0.0, sxy = 0.0, syy = 0.0;
+  for (const cv::Point2d& q : points) {
+    const cv::Point2d d = q - mean;
+    sxx += d.x * d.x;
+    sxy += d.x * d.y;
+    syy += d.y * d.y;
+  }
+  // The normal is the eigenvector of the scatter's smaller eigenvalue: the direction at
+  // angle theta + 90 deg, theta the principal axis' angle.
+  const double theta = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  const cv::Point2d normal(-std::sin(theta), std::cos(theta));
+  return {normal.x, normal.y, -normal.dot(mean)};
+}
+
+bool charuco_inside(const cv::Mat& grey, const cv::Point2d& p) {
+  return p.x >= 1.0 && p.y >= 1.0 && p.x <= grey.cols - 2.0 && p.y <= grey.rows - 2.0;
+}
+
+// Edge points of one half of a board line: from board point c (square units, y down) along
+// unit axis u by side (+-1), the black square on the `black_dir` side of it. `to_image` maps
+// board points to the image around the current corner estimate. Appends the points found and
+// returns their share of the points looked for; -1 when the edge cannot be measured (too near
+// the image border, too little contrast).
+template <typename ToImage>
+double charuco_half_edge(const cv::Mat& grey, const ToImage& to_image, const cv::Point2d& c,
+                         const cv::Point2d& u, double side, const cv::Point2d& black_dir,
+                         double margin, std::vector<cv::Point2d>& edge) {
+  const cv::Point2d start = to_image(c), end = to_image(c + side * u);
+  const double length_px = cv::norm(end - start);
+  const int samples = std::max(6, static_cast<int>(1.4 * length_px));
+  struct Base {
+    cv::Point2d point, normal;  // normal: from the black square towards the white margin
+    double into_black, into_white;
+  };
+  std::vector<Base> bases;
+  for (int i = 0; i < samples; ++i) {
+    const cv::Point2d q = c + side * (0.15 + 0.7 * (i + 0.5) / samples) * u;
+    Base base;
+    base.point = to_image(q);
+    const cv::Point2d white_point = to_image(q - margin * black_dir);
+    base.into_white = cv::norm(white_point - base.point);
+    base.into_black = cv::norm(to_image(q + 0.4 * black_dir) - base.point);
+    if (base.into_white < 1e-6) return -1.0;
+    base.normal = (white_point - base.point) / base.into_white;
+    if (!charuco_inside(grey, base.point - (base.into_black + 1.0) * base.normal) ||
+        !charuco_inside(grey, base.point + (base.into_white + 1.0) * base.normal)) {
+      return -1.0;
+    }
+    bases.push_back(base);
+  }
+  // The levels: the black square's inside, and the white margin's brightest.
+  constexpr double kStep = 0.05;
+  std::vector<double> dark, light;
+  for (const Base& b : bases) {
+    dark.push_back(charuco_grey_at(grey, b.point - 0.75 * b.into_black * b.normal));
+    double brightest = 0.0;
+    for (double s = -0.5 * b.into_black; s <= b.into_white; s += kStep) {
+      brightest = std::max(brightest, charuco_grey_at(grey, b.point + s * b.normal));
+    }
+    light.push_back(brightest);
+  }
+  const double black = charuco_median(dark), white = charuco_median(light);
+  if (white - black < 20.0) return -1.0;
+  const double level = 0.5 * (black + white);
+  int found = 0;
+  for (const Base& b : bases) {
+    // The dark -> light crossing nearest to the current line, from inside the black square to
+    // the far side of the white margin (beyond it the marker's black border only darkens).
+    double best = std::numeric_limits<double>::infinity();
+    double previous = charuco_grey_at(grey, b.point - b.into_black * b.normal);
+    for (double s = -b.into_black; s < b.into_white; s += kStep) {
+      const double next = charuco_grey_at(grey, b.point + (s + kStep) * b.normal);
+      if (previous < level && next >= level) {
+        const double crossing = s + kStep * (level - previous) / (next - previous);
+        if (std::abs(crossing) < std::abs(best)) best = crossing;
+      }
+      previous = next;
+    }
+    if (std::isfinite(best)) {
+      edge.push_back(b.point + best * b.normal);
+      ++found;
+    }
+  }
+  return static_cast<double>(found) / static_cast<double>(bases.size());
+}
+
 std::string count_text(std::size_t n, const char* what) {
   return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
 }
@@ -67,6 +181,95 @@ double CharucoLayout::reflectance(double x, double y) const {
   return marker.cells.at<std::uint8_t>(static_cast<int>(v * n), static_cast<int>(u * n)) > 127
              ? 1.0
              : 0.0;
+}
+
+void refine_charuco_corners(const cv::Mat& grey, int squares_x, double marker_ratio,
+                            std::vector<int>& ids, std::vector<cv::Point2f>& corners) {
+  assert(grey.type() == CV_8UC1 && ids.size() == corners.size() && squares_x >= 2 &&
+         marker_ratio > 0.0 && marker_ratio < 1.0 &&
+         "refine_charuco_corners(): a grey image, an id per corner, a valid board");
+  // (1) cv::aruco's +(0.5, 0.5).
+  for (cv::Point2f& corner : corners) corner -= cv::Point2f(0.5f, 0.5f);
+  if (corners.size() < 4) return;
+  // Board points in squares (x right, y down, the board's top-left outer corner at 0): corner
+  // id k at ((k mod (X - 1)) + 1, (k div (X - 1)) + 1); square (i, j) is black when i + j is
+  // even (the top-left one is).
+  const int per_row = squares_x - 1;
+  std::vector<cv::Point2f> board;
+  for (const int id : ids) {
+    board.emplace_back(static_cast<float>(id % per_row + 1), static_cast<float>(id / per_row + 1));
+  }
+  const cv::Mat H_found = cv::findHomography(board, corners);
+  if (H_found.empty()) return;  // the corners on a line
+  const cv::Matx33d H(H_found);
+  const double margin = 0.5 * (1.0 - marker_ratio);  // in squares
+  const auto black_square = [](int i, int j) { return ((i + j) % 2 + 2) % 2 == 0; };
+  enum class Outcome { kRefined, kUnmeasured, kHidden };
+  std::vector<Outcome> outcomes(corners.size(), Outcome::kRefined);
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const cv::Point2d c(board[k].x, board[k].y);
+    const cv::Point2d initial(corners[k].x, corners[k].y);
+    const cv::Point2d c_image = charuco_apply(H, c);
+    const double square_px = cv::norm(charuco_apply(H, c + cv::Point2d(1.0, 0.0)) - c_image);
+    cv::Point2d p = initial;
+    Outcome& outcome = outcomes[k];
+    for (int pass = 0; pass < 3 && outcome == Outcome::kRefined; ++pass) {
+      const auto to_image = [&](const cv::Point2d& q) { return charuco_apply(H, q) - c_image + p; };
+      cv::Vec3d lines[2];
+      for (int axis = 0; axis < 2 && outcome == Outcome::kRefined; ++axis) {
+        const cv::Point2d u = axis == 0 ? cv::Point2d(1.0, 0.0) : cv::Point2d(0.0, 1.0);
+        const cv::Point2d v(u.y, u.x);
+        std::vector<cv::Point2d> edge;
+        for (const double side : {-1.0, 1.0}) {
+          // The square on the +v side of this half of the line.
+          const cv::Point2d plus = c + 0.5 * side * u + 0.5 * v;
+          const bool black_plus = black_square(static_cast<int>(std::floor(plus.x)),
+                                               static_cast<int>(std::floor(plus.y)));
+          const double share =
+              charuco_half_edge(grey, to_image, c, u, side, black_plus ? v : -v, margin, edge);
+          if (share < 0.0) {
+            outcome = Outcome::kUnmeasured;
+          } else if (share < 0.5) {
+            outcome = Outcome::kHidden;
+          }
+          if (outcome != Outcome::kRefined) break;
+        }
+        if (outcome != Outcome::kRefined) break;
+        // Once more without the points off the line; most of them must be on it, else
+        // something covers the edge (the gripper in front of the board).
+        const cv::Vec3d line = charuco_fit_line(edge);
+        std::vector<cv::Point2d> kept;
+        for (const cv::Point2d& q : edge) {
+          if (std::abs(line[0] * q.x + line[1] * q.y + line[2]) < 0.5) kept.push_back(q);
+        }
+        if (kept.size() < 0.8 * static_cast<double>(edge.size())) {
+          outcome = Outcome::kHidden;
+          break;
+        }
+        lines[axis] = charuco_fit_line(kept);
+      }
+      if (outcome != Outcome::kRefined) break;
+      const cv::Vec3d crossing = lines[0].cross(lines[1]);
+      if (std::abs(crossing[2]) < 1e-9) {
+        outcome = Outcome::kUnmeasured;
+        break;
+      }
+      p = cv::Point2d(crossing[0] / crossing[2], crossing[1] / crossing[2]);
+      if (cv::norm(p - initial) > 0.25 * square_px) outcome = Outcome::kHidden;
+    }
+    if (outcome == Outcome::kRefined) {
+      corners[k] = cv::Point2f(static_cast<float>(p.x), static_cast<float>(p.y));
+    }
+  }
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    if (outcomes[k] == Outcome::kHidden) continue;
+    ids[kept] = ids[k];
+    corners[kept] = corners[k];
+    ++kept;
+  }
+  ids.resize(kept);
+  corners.resize(kept);
 }
 
 CharucoLayout charuco_layout(const CalibrationPattern& pattern) {

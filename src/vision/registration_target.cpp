@@ -4,7 +4,6 @@
 #include <cassert>
 #include <cctype>
 #include <cmath>
-#include <limits>
 #include <opencv2/aruco.hpp>
 #include <opencv2/aruco/charuco.hpp>
 #include <opencv2/imgproc.hpp>
@@ -132,33 +131,6 @@ cv::Mat grey_of(const cv::Mat& image) {
   cv::Mat grey;
   cv::cvtColor(image, grey, image.type() == CV_8UC4 ? cv::COLOR_RGBA2GRAY : cv::COLOR_RGB2GRAY);
   return grey;
-}
-
-// cv::aruco's own cornerSubPix (OpenCV 4.6) stops at 0.1 px steps with windows that can reach
-// the markers' corners beside a chessboard corner (0.8 px off on a 75 px square in
-// registration_target_test). Each corner is refined again with a window inside the white gap
-// between the square's corner and the nearest markers: the gap, (square - marker) / 2, in
-// pixels from the distance to the nearest other corner (one square, or more on a partial view).
-void refine_board_corners(const cv::Mat& grey, const RegistrationTarget& target,
-                          const std::vector<int>& ids, std::vector<cv::Point2f>& corners) {
-  const double gap_ratio = 0.5 * (target.square_m - target.marker_m) / target.square_m;
-  const int row = target.squares_x - 1;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    double square_px = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < corners.size(); ++j) {
-      const int dx = std::abs(ids[j] % row - ids[i] % row),
-                dy = std::abs(ids[j] / row - ids[i] / row);
-      if (j == i || dx + dy == 0) continue;
-      square_px = std::min(square_px, cv::norm(corners[j] - corners[i]) / std::hypot(dx, dy));
-    }
-    if (!std::isfinite(square_px)) continue;
-    const int half = static_cast<int>(std::floor(0.8 * gap_ratio * square_px));
-    if (half < 2) continue;  // too small a gap to refine in: keep cv::aruco's
-    std::vector<cv::Point2f> one = {corners[i]};
-    cv::cornerSubPix(grey, one, cv::Size(half, half), cv::Size(-1, -1),
-                     cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-3));
-    if (cv::norm(one[0] - corners[i]) < half) corners[i] = one[0];
-  }
 }
 
 }  // namespace
@@ -351,7 +323,8 @@ TargetDetection detect_registration_target(const cv::Mat& image, const Registrat
   std::vector<int> charuco_ids;
   cv::aruco::interpolateCornersCharuco(board_corners, board_ids, grey, board, charuco_corners,
                                        charuco_ids);
-  refine_board_corners(grey, target, charuco_ids, charuco_corners);
+  refine_charuco_corners(grey, target.squares_x, target.marker_m / target.square_m, charuco_ids,
+                         charuco_corners);
   out.corners_seen = static_cast<int>(charuco_ids.size());
   if (out.corners_seen < std::max(options.min_corners, 1)) return out;
   std::vector<std::size_t> order(charuco_ids.size());

@@ -58,6 +58,39 @@ CharucoLayout charuco_layout(const CalibrationPattern& pattern);
 // square, inside a white margin of `margin_px` pixels. 8-bit grey.
 cv::Mat draw_charuco_board(const CalibrationPattern& pattern, int pixels_per_square, int margin_px);
 
+// Moves ChArUco corners from cv::aruco::interpolateCornersCharuco (OpenCV 4.6) onto the
+// board's lines, in place, and drops those found hidden. `ids` are the corners' ids ((X - 1) per
+// row, row by row), `corners` their pixels as cv::aruco gives them; `squares_x` the board's squares
+// across, `marker_ratio` its marker side over its square side.
+//
+// Two faults of cv::aruco's corners are undone here. (1) Its refinement moves each corner by
+// -(0.5, 0.5) px, calls cv::cornerSubPix and moves it back by +(0.5, 0.5): every corner it
+// refines comes out half a pixel off in x and in y (cornerSubPix, like telear, puts pixel
+// centres at integers). (2) Its cornerSubPix window is 1 px on a board whose white margin
+// between a corner and the markers, (square - marker) / 2, is ~2 px in the image, and it stops
+// at 0.1 px steps: its corners scatter by ~0.4 px RMS. A wider cornerSubPix window reaches the
+// markers' edges and is pulled off the corner instead.
+//
+// So each corner is taken back by (0.5, 0.5) and then put where the board's row line and
+// column line through it cross. Each line is the edge between the two black squares meeting
+// at the corner and their white neighbours: on each half of it (from the corner towards the
+// next corner, 15 % .. 85 % of the way) the edge is located, like a marker's border
+// (telear/vision/marker_detection.hpp), where the grey profile along the edge's normal crosses
+// the level midway between the black square and the white margin, searching from the black
+// square outwards within 60 % of the margin (so that the marker beyond it is not reached: a
+// margin of 1 px still works). A line is fitted to both halves' points by total least squares
+// (black lies on opposite sides of the two halves, so a level set a little too low or too high
+// moves them in opposite directions and the crossing stays put), and the two lines are
+// intersected; three passes. The directions along and across each line come from the
+// homography of the corners found (at least 4, not all on a line; fewer are only shifted). A
+// corner keeps its shifted cv::aruco position when its edges cannot be measured (near the
+// image border, too little contrast). A corner is dropped, with its id, when something covers
+// its edges (the gripper in front of the board): an edge half found at fewer than half its
+// points, fewer than 80 % of a line's points within 0.5 px of it, or the crossing more than a
+// quarter square from cv::aruco's corner.
+void refine_charuco_corners(const cv::Mat& grey, int squares_x, double marker_ratio,
+                            std::vector<int>& ids, std::vector<cv::Point2f>& corners);
+
 // The corners of a ChArUco pattern seen in an 8-bit grey image (see above), with their ids.
 // Errors say what was found: no marker, too few corners (fewer than `min_corners`), or
 // corners all on one row or column of the board (no homography from them).
