@@ -549,11 +549,13 @@ def write_marker(path, robot, comment, side_m, xyz, rpy):
 
 def acm_block(robot, pairs):
     """The allowed-collision matrix block of a robot file, as `telear robot acm --robot ROBOT`
-    prints it (default options: 2000 samples, seed 13, gripper at 0.5); the pairs are what
-    that command found (tests/geometry checks that sampling still finds them)."""
+    prints it (default options: 2000 samples, seed 13, gripper at 0.5, constant-distance pairs
+    allowed); the pairs are what that command found (tests/geometry checks that sampling still
+    finds them)."""
     lines = ["# The allowed-collision matrix of %s, found by `telear robot acm` "
              "(docs/collision.md):" % robot,
-             "# 2000 random configurations within the joint limits (seed 13), gripper at 0.5.",
+             "# 2000 random configurations within the joint limits (seed 13), gripper at 0.5, "
+             "constant-distance pairs (within 0.1 mm) allowed.",
              "allowed_collisions:"]
     lines += ["  - [%s, %s, %s]" % pair for pair in pairs]
     return lines
@@ -886,7 +888,7 @@ P7_CONFIGS = [
 ]
 
 # The allowed-collision matrices `telear robot acm --robot ur6|arm7` finds: the adjacent pairs
-# only (no other pair is in contact in every sample).
+# only (no other pair is in contact in every sample, nor at a constant distance).
 UR_ACM = [
     ("base_link", "shoulder_link", "adjacent"),
     ("finger_left", "finger_right", "adjacent"),

@@ -177,6 +177,14 @@ void add_robot_commands(CLI::App& app, Commands& commands) {
       ->check(CLI::Range(1, 10'000'000));
   acm_app->add_option("--seed", options->seed, "random seed")->capture_default_str();
   acm_app->add_flag("--never", options->never, "also allow pairs in contact in no sample");
+  acm_app->add_flag("!--no-constant", options->constant,
+                    "keep checking pairs whose distance is the same in every sample");
+  acm_app
+      ->add_option("--constant-tolerance", options->constant_tolerance_m,
+                   "m: a pair whose distance varies by at most this over the samples is at a "
+                   "constant distance")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.01));
   acm_app->add_option("-o,--output", options->output, "write the block to FILE");
   commands.push_back(
       {acm_app, [options] { return run_robot_acm(*options, std::cout, std::cerr); }});

@@ -20,6 +20,8 @@ int run_robot_acm(const RobotAcmOptions& options, std::ostream& out, std::ostrea
   setup.allowed.samples = options.samples;
   setup.allowed.seed = options.seed;
   setup.allowed.allow_never = options.never;
+  setup.allowed.allow_constant = options.constant;
+  setup.allowed.constant_tolerance_m = options.constant_tolerance_m;
   // The matrix is the links' own, stored for both checks: found on the meshes, not the hulls.
   setup.mesh_collision = geometry::MeshCollision::kExact;
   auto matrix = geometry::sample_allowed_collisions(*description, setup);

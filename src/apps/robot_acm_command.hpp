@@ -17,7 +17,9 @@ struct RobotAcmOptions : geometry::RobotSelection {
   int samples = 2000;       // random configurations within the joint limits
   std::uint64_t seed = 13;  // the same matrix every run
   bool never = false;       // also allow the pairs in contact in no sample
-  std::string output;       // -o FILE; empty: stdout
+  bool constant = true;     // also allow the pairs at a constant distance (--no-constant: not)
+  double constant_tolerance_m = 1e-4;  // the largest distance range still constant
+  std::string output;                  // -o FILE; empty: stdout
 };
 
 int run_robot_acm(const RobotAcmOptions& options, std::ostream& out, std::ostream& err);

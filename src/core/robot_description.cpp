@@ -341,10 +341,11 @@ Result<RobotDescription> from_robot_file(const std::string& path, const YAML::No
                                        [&](const RobotLink& l) { return l.name == *link; });
         if (!known) return Error{at + ": '" + *link + "' is not a link of the URDF"};
       }
-      static const std::vector<std::string> kReasons = {"adjacent", "always", "never", "user"};
+      static const std::vector<std::string> kReasons = {"adjacent", "always", "never", "constant",
+                                                        "user"};
       if (std::find(kReasons.begin(), kReasons.end(), entry.reason) == kReasons.end()) {
         return Error{at + ": unknown reason '" + entry.reason +
-                     "' (adjacent, always, never or user)"};
+                     "' (adjacent, always, never, constant or user)"};
       }
       entries.push_back(std::move(entry));
     }

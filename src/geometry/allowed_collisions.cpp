@@ -3,9 +3,12 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 
+#include "telear/core/number_format.hpp"
 #include "telear/core/random_configuration.hpp"
 #include "telear/core/yaml_reader.hpp"
 #include "telear/geometry/collision_checker.hpp"
@@ -31,6 +34,8 @@ const char* to_string(AllowedReason reason) {
       return "always";
     case AllowedReason::kNever:
       return "never";
+    case AllowedReason::kConstant:
+      return "constant";
     case AllowedReason::kUser:
       return "user";
   }
@@ -39,7 +44,7 @@ const char* to_string(AllowedReason reason) {
 
 std::optional<AllowedReason> allowed_reason_from_string(const std::string& text) {
   for (AllowedReason r : {AllowedReason::kAdjacent, AllowedReason::kAlways, AllowedReason::kNever,
-                          AllowedReason::kUser}) {
+                          AllowedReason::kConstant, AllowedReason::kUser}) {
     if (text == to_string(r)) return r;
   }
   return std::nullopt;
@@ -86,7 +91,8 @@ Result<AllowedCollisionMatrix> AllowedCollisionMatrix::from_yaml(const std::stri
       const std::string r = e[2].IsScalar() ? e[2].Scalar() : "?";
       const std::optional<AllowedReason> parsed = allowed_reason_from_string(r);
       if (!parsed) {
-        return Error{where + ": unknown reason '" + r + "' (adjacent, always, never or user)"};
+        return Error{where + ": unknown reason '" + r +
+                     "' (adjacent, always, never, constant or user)"};
       }
       reason = *parsed;
     }
@@ -99,6 +105,10 @@ Status AllowedCollisionOptions::validate() const {
   if (samples < 1) return Error{"samples must be at least 1, got " + std::to_string(samples)};
   if (!(gripper_fraction >= 0.0 && gripper_fraction <= 1.0)) {
     return Error{"gripper_fraction must lie in [0, 1]"};
+  }
+  if (!(constant_tolerance_m >= 0.0 && std::isfinite(constant_tolerance_m))) {
+    return Error{"constant_tolerance_m must be finite and at least 0, got " +
+                 core::format_number(constant_tolerance_m)};
   }
   return Status::Ok();
 }
@@ -124,13 +134,35 @@ Result<AllowedCollisionMatrix> compute_allowed_collisions(const RobotCollisionMo
   Result<CollisionChecker> checker = CollisionChecker::create(robot, core::Workspace{}, adjacent);
   if (!checker) return checker.error();
   const std::vector<CollisionPair> pairs = checker->pairs();
+  const auto rigid = [&](int body) {
+    return robot.bodies[static_cast<std::size_t>(body)].motion == CollisionBody::Motion::kRigid;
+  };
   std::vector<int> hits(pairs.size(), 0);
+  // Constant-distance candidates: rigid pairs (a finger also moves with the opening, which the
+  // samples hold fixed) not yet seen in contact or with a distance range above the tolerance.
+  // A pair drops out at its first sample outside the range, so only the constant pairs are
+  // measured at every sample.
+  std::vector<char> constant(pairs.size(), 0);
+  std::vector<double> d_min(pairs.size(), std::numeric_limits<double>::infinity());
+  std::vector<double> d_max(pairs.size(), -std::numeric_limits<double>::infinity());
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    constant[p] = options.allow_constant && rigid(pairs[p].body) && rigid(pairs[p].other_body);
+  }
   std::mt19937_64 rng(options.seed);
   for (int i = 0; i < options.samples; ++i) {
     checker->set_configuration(core::random_configuration(*robot.model, rng),
                                options.gripper_fraction);
     for (std::size_t p = 0; p < pairs.size(); ++p) {
-      if (checker->in_contact(pairs[p])) ++hits[p];
+      if (checker->in_contact(pairs[p])) {
+        ++hits[p];
+        constant[p] = 0;
+        continue;
+      }
+      if (!constant[p]) continue;
+      const double d = checker->distance(pairs[p]).distance_m;
+      d_min[p] = std::min(d_min[p], d);
+      d_max[p] = std::max(d_max[p], d);
+      if (!(d > 0.0) || d_max[p] - d_min[p] > options.constant_tolerance_m) constant[p] = 0;
     }
   }
   AllowedCollisionMatrix m = adjacent;
@@ -138,6 +170,7 @@ Result<AllowedCollisionMatrix> compute_allowed_collisions(const RobotCollisionMo
     const std::string& a = robot.bodies[static_cast<std::size_t>(pairs[p].body)].name;
     const std::string& b = robot.bodies[static_cast<std::size_t>(pairs[p].other_body)].name;
     if (hits[p] == options.samples) m.allow(a, b, AllowedReason::kAlways);
+    if (constant[p]) m.allow(a, b, AllowedReason::kConstant);
     if (hits[p] == 0 && options.allow_never) m.allow(a, b, AllowedReason::kNever);
   }
   return m;

@@ -35,8 +35,12 @@ std::string allowed_collisions_block(const AllowedCollisionMatrix& matrix,
   out << "# The allowed-collision matrix of " << robot_name
       << ", found by `telear robot acm` (docs/collision.md):\n"
       << "# " << options.samples << " random configurations within the joint limits (seed "
-      << options.seed << "), gripper at " << core::format_number(options.gripper_fraction)
-      << (options.allow_never ? ", never-in-contact pairs allowed" : "") << ".\n";
+      << options.seed << "), gripper at " << core::format_number(options.gripper_fraction);
+  if (options.allow_constant) {
+    out << ", constant-distance pairs (within "
+        << core::format_number(options.constant_tolerance_m * 1e3) << " mm) allowed";
+  }
+  out << (options.allow_never ? ", never-in-contact pairs allowed" : "") << ".\n";
   if (matrix.pairs().empty()) {
     out << "allowed_collisions: []\n";
     return out.str();

@@ -325,19 +325,42 @@ TEST(PlanCheckReport, TextAndJsonOfAContact) {
   geometry::TrajectoryCheckReport report;
   report.collisions.push_back({1.2345, "link6", "table_top", false, 0.0042, 2});
   report.min_clearance = {0.0, 1.2345, 2, "link6", "table_top", false};
+  report.min_workspace_clearance = report.min_clearance;
   report.evaluations = 321;
   const std::string text = session::plan_check_text("p.yaml", 9, 6.12, "ws.yaml", report);
   EXPECT_EQ(text,
             "plan p.yaml (9 waypoints, 6.120 s) in ws.yaml: COLLISION\n"
             "  contact at 1.234 s (segment 2): link6 with table_top, depth 4.2 mm\n"
-            "  min clearance 0.0 mm at 1.234 s: link6 to table_top\n");
+            "  min clearance to the workspace 0.0 mm at 1.234 s: link6 to table_top\n");
   const nlohmann::json j = nlohmann::json::parse(session::plan_check_json(report, 6.12));
   EXPECT_FALSE(j["collision_free"].get<bool>());
   EXPECT_EQ(j["collisions"][0]["link"], "link6");
   EXPECT_EQ(j["min_clearance_m"], 0.0);
-  EXPECT_TRUE(j["min_workspace_clearance"]["distance_m"].is_null());  // nothing measured
+  EXPECT_EQ(j["min_workspace_clearance"]["distance_m"], 0.0);
   EXPECT_EQ(j["configurations_checked"], 321);
   EXPECT_EQ(j["duration_s"], 6.12);
+  // Nothing measured: null.
+  const nlohmann::json none =
+      nlohmann::json::parse(session::plan_check_json(geometry::TrajectoryCheckReport{}, 0.0));
+  EXPECT_TRUE(none["min_clearance_m"].is_null());
+  EXPECT_TRUE(none["min_workspace_clearance"]["distance_m"].is_null());
+}
+
+// Issue 26: the arm's own nearest pair (the PUMA's wrist housings, 2.0 mm apart by design) is
+// not the clearance an operator acts on: min_clearance_m is the workspace's, as the demo
+// report's and the safety margin's; the arm's pair is still named, after it.
+TEST(PlanCheckReport, TheMinimumClearanceIsTheWorkspacesNotTheArmsOwn) {
+  geometry::TrajectoryCheckReport report;
+  report.min_clearance = {0.002, 0.099, 0, "link4", "link6", true};
+  report.min_workspace_clearance = {1.025, 0.0, 0, "link4", "crate", false};
+  const nlohmann::json j = nlohmann::json::parse(session::plan_check_json(report, 0.38));
+  EXPECT_EQ(j["min_clearance_m"], 1.025);
+  EXPECT_EQ(j["min_workspace_clearance"]["object"], "crate");
+  EXPECT_EQ(j["min_clearance"]["object"], "link6");  // over every pair, the arm's own included
+  EXPECT_EQ(session::plan_check_text("p.yaml", 2, 0.38, "ws.yaml", report),
+            "plan p.yaml (2 waypoints, 0.380 s) in ws.yaml: collision-free\n"
+            "  min clearance to the workspace 1025.0 mm at 0.000 s: link4 to crate\n"
+            "  nearest of the arm's own links 2.0 mm at 0.099 s: link4 to link link6\n");
 }
 
 // [SECTION] session: the vision server's source, chosen by name

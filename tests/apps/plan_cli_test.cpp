@@ -83,6 +83,35 @@ TEST_F(PlanCheckCli, AClearPlanPassesWithItsMinimumClearance) {
   EXPECT_GT(json["min_clearance_m"].get<double>(), 0.0);
 }
 
+// Issue 26: with the only object a metre and more away, the minimum clearance reported is the
+// workspace's, not the 2.0 mm between the PUMA's wrist housing and flange (a gap by design,
+// the same at every wrist angle short of the bend's last 7 deg): that pair is still named,
+// after it, as the arm's own nearest.
+TEST_F(PlanCheckCli, TheMinimumClearanceIsTheWorkspacesNotTheWristsGap) {
+  const std::string workspace = write("far.yaml", R"(name: far
+objects:
+  - {name: crate, shape: box, size: [0.2, 0.2, 0.2], pose: {xyz: [2.5, 0, 0.5]}}
+)");
+  const std::string plan = write("wrist.yaml", R"(robot: puma560
+waypoints:
+  - {q_rad: [0, 0.5, -1.2, 0, 0.7, 0]}
+  - {q_rad: [0.3, 0.7, -1.0, 0, 0.4, 0]}
+)");
+  const auto r = run_telear("plan check --robot puma560 --workspace " + workspace + " --plan " +
+                            plan + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const double workspace_m = j["min_workspace_clearance"]["distance_m"].get<double>();
+  EXPECT_GT(workspace_m, 1.0);
+  EXPECT_EQ(j["min_clearance_m"].get<double>(), workspace_m);
+  EXPECT_EQ(j["min_workspace_clearance"]["object"], "crate");
+  const auto text =
+      run_telear("plan check --robot puma560 --workspace " + workspace + " --plan " + plan);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("  min clearance to the workspace "));
+  EXPECT_THAT(text.out, HasSubstr("  nearest of the arm's own links 2.0 mm at "));
+}
+
 // ur6's STL links are checked as the convex hulls of their parts by default; --exact-meshes
 // checks their triangles. The hulls contain the links: the clearance can only shrink, and on
 // the shipped arm by no more than a couple of millimetres (docs/collision.md, "Performance").

@@ -36,8 +36,10 @@ TEST(RobotAcmCli, WritesTheSameBlockToAFile) {
   const std::string file = tmp.file("acm.yaml");
   const auto printed = run_telear("robot acm --robot ur6 --samples 100 --seed 4 --never");
   ASSERT_EQ(printed.exit_code, 0) << printed.err;
-  EXPECT_THAT(printed.out, HasSubstr("# 100 random configurations within the joint limits "
-                                     "(seed 4), gripper at 0.5, never-in-contact pairs allowed."));
+  EXPECT_THAT(printed.out,
+              HasSubstr("# 100 random configurations within the joint limits (seed 4), gripper at "
+                        "0.5, constant-distance pairs (within 0.1 mm) allowed, never-in-contact "
+                        "pairs allowed."));
   EXPECT_THAT(printed.out, HasSubstr(", never]\n"));
   const auto written =
       run_telear("robot acm --robot ur6 --samples 100 --seed 4 --never -o " + file);
@@ -45,6 +47,17 @@ TEST(RobotAcmCli, WritesTheSameBlockToAFile) {
   EXPECT_THAT(written.out, StartsWith("wrote "));
   EXPECT_THAT(written.out, HasSubstr(" allowed pairs of ur6 to " + file + "\n"));
   EXPECT_EQ(slurp(file), printed.out);
+}
+
+// Pairs at a constant distance are allowed unless --no-constant (the comment says which);
+// --constant-tolerance is that distance range in metres.
+TEST(RobotAcmCli, ConstantDistancePairsCanBeLeftChecked) {
+  const auto off = run_telear("robot acm --robot puma560 --samples 50 --no-constant");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_THAT(off.out, HasSubstr("(seed 13), gripper at 0.5.\nallowed_collisions:\n"));
+  const auto wide = run_telear("robot acm --robot puma560 --samples 50 --constant-tolerance 0.002");
+  ASSERT_EQ(wide.exit_code, 0) << wide.err;
+  EXPECT_THAT(wide.out, HasSubstr("constant-distance pairs (within 2 mm) allowed."));
 }
 
 TEST(RobotAcmCli, ADhTableIsPrintedWithANote) {
@@ -64,6 +77,8 @@ TEST(RobotAcmCli, BadInputIsOneLineAndExitCode2) {
            {"robot acm --robot nosuch_robot", "telear robot acm: "},
            {"robot acm --robot ur6 --samples 0",
             "telear robot acm: --samples: Value 0 not in range"},
+           {"robot acm --robot ur6 --constant-tolerance 1",
+            "telear robot acm: --constant-tolerance: Value 1 not in range"},
            {"robot acm --robot ur6 -o /nonexistent/dir/acm.yaml",
             "telear robot acm: cannot write '/nonexistent/dir/acm.yaml'"},
            {"robot", "telear robot: "},

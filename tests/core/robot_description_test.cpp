@@ -158,7 +158,8 @@ TEST(RobotFile, ErrorsNameTheFileAndTheKey) {
       {"urdf: " + gripper_urdf + "\ntip: tcp\nallowed_collisions: [[base, elbow, never]]\n",
        "allowed_collisions[0]: 'elbow' is not a link of the URDF"},
       {"urdf: " + gripper_urdf + "\ntip: tcp\nallowed_collisions: [[base, l1, sometimes]]\n",
-       "allowed_collisions[0]: unknown reason 'sometimes' (adjacent, always, never or user)"},
+       "allowed_collisions[0]: unknown reason 'sometimes' (adjacent, always, never, constant or "
+       "user)"},
       {"urdf: " + gripper_urdf + "\ntip: tcp\nallowed_collisions: [[base]]\n",
        "allowed_collisions[0]: must be [link, link] or [link, link, reason]"},
   };

@@ -95,12 +95,21 @@ TEST(AllowedCollisionsFile, TheBlockRoundTripsThroughTheRobotFile) {
   options.allow_never = true;
   auto sampled = sample_allowed_collisions(robot_description("arm7"), {{}, options});
   ASSERT_TRUE(sampled) << sampled.error().message;
-  AllowedCollisionMatrix m = *sampled;
+  // One never pair written as constant (arm7 has no pair at a constant distance), one as user:
+  // the block carries every reason.
+  AllowedCollisionMatrix m;
+  for (const AllowedPair& p : sampled->pairs()) {
+    const bool as_constant = p.a == "link0" && p.b == "link2";
+    ASSERT_TRUE(!as_constant || p.reason == AllowedReason::kNever);
+    m.allow(p.a, p.b, as_constant ? AllowedReason::kConstant : p.reason);
+  }
   m.allow("link0", "hand", AllowedReason::kUser);
   const std::string block = allowed_collisions_block(m, "arm7", options);
   EXPECT_THAT(block, HasSubstr("# 50 random configurations within the joint limits (seed 13), "
-                               "gripper at 0.5, never-in-contact pairs allowed.\n"
+                               "gripper at 0.5, constant-distance pairs (within 0.1 mm) allowed, "
+                               "never-in-contact pairs allowed.\n"
                                "allowed_collisions:\n  - ["));
+  EXPECT_THAT(block, HasSubstr("\n  - [link0, link2, constant]\n"));
   auto d = core::load_robot_description({robot_file(dir, "arm7", block), "", {}});
   ASSERT_TRUE(d) << d.error().message;
   auto checker = make_collision_checker(*d, core::Workspace{});
@@ -109,6 +118,7 @@ TEST(AllowedCollisionsFile, TheBlockRoundTripsThroughTheRobotFile) {
   bool never = false;
   for (const AllowedPair& p : m.pairs()) never = never || p.reason == AllowedReason::kNever;
   EXPECT_TRUE(never);
+  EXPECT_TRUE(checker->allowed().allowed("link2", "link0"));
 
   const std::string empty = allowed_collisions_block(AllowedCollisionMatrix{}, "arm7", {});
   EXPECT_THAT(empty, HasSubstr("\nallowed_collisions: []\n"));

@@ -314,6 +314,75 @@ TEST(AllowedCollisionsTest, TheRobotFilesMatrixIsUsedAsWritten) {
   EXPECT_TRUE(checker->check(Eigen::VectorXd::Zero(6)).collision_free());
 }
 
+// Two joints about the base's z axis (the second 0.3 m out): everything on frame 2 turns about
+// that axis. A post on the axis is 0.23 m from a ball on frame 2 whatever the joints do (a
+// pair at a constant distance: allowed, reason `constant`); a stop beside the axis is at a
+// varying distance; a hub (the post with a bump the ball runs into) is at the post's constant
+// distance except where the ball touches the bump: it stays checked.
+RobotCollisionModel turntable() {
+  core::RobotModel::Description d;
+  d.name = "turntable";
+  for (const double reach : {0.0, 0.3}) {
+    core::Joint j;
+    j.name = "j" + std::to_string(d.joints.size() + 1);
+    j.after.translation() = Eigen::Vector3d(reach, 0, 0);
+    j.limits = {-3.0, 3.0, 3.0, 30.0};
+    d.joints.push_back(j);
+  }
+  auto model = core::RobotModel::create(d);
+  EXPECT_TRUE(model) << model.error().message;
+  RobotCollisionModel m;
+  m.model = std::make_shared<const core::RobotModel>(std::move(*model));
+  CollisionShape post;
+  post.kind = Kind::kCylinder;
+  post.radius = 0.05;
+  post.length = 0.4;
+  const auto body = [&](const std::string& name, int frame, std::vector<CollisionShape> shapes) {
+    CollisionBody b;
+    b.name = name;
+    b.frame = frame;
+    b.shapes = std::move(shapes);
+    m.bodies.push_back(std::move(b));
+  };
+  body("post", 0, {post});
+  body("stop", 0, {sphere_shape(0.01, {0.0, 0.2, 0.0})});
+  body("hub", 0, {post, sphere_shape(0.02, {0.3, 0.0, 0.0})});
+  body("ball", 2, {sphere_shape(0.02)});
+  update_motion_bounds(m);
+  return m;
+}
+
+TEST(AllowedCollisionsTest, APairAtAConstantDistanceIsAllowedWithItsReason) {
+  const RobotCollisionModel robot = turntable();
+  AllowedCollisionOptions options;
+  options.samples = 300;
+  auto m = compute_allowed_collisions(robot, options);
+  ASSERT_TRUE(m) << m.error().message;
+  EXPECT_EQ(m->to_yaml(),
+            "- [ball, post, constant]\n"  // 0.23 m apart in every sample
+            "- [hub, post, adjacent]\n"
+            "- [hub, stop, adjacent]\n"
+            "- [post, stop, adjacent]\n");
+  // ball-stop varies, ball-hub touches the bump in some samples: both still checked.
+  EXPECT_FALSE(m->allowed("ball", "stop"));
+  EXPECT_FALSE(m->allowed("ball", "hub"));
+  auto back = AllowedCollisionMatrix::from_yaml(m->to_yaml(), "acm");
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(back->pairs()[0].reason, AllowedReason::kConstant);
+
+  // Off, or a tolerance the pair exceeds (FCL's distances are exact to 1e-6 m): checked.
+  options.allow_constant = false;
+  auto off = compute_allowed_collisions(robot, options);
+  ASSERT_TRUE(off) << off.error().message;
+  EXPECT_FALSE(off->allowed("ball", "post"));
+  options.allow_constant = true;
+  options.constant_tolerance_m = -1e-3;
+  auto bad = compute_allowed_collisions(robot, options);
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message,
+            "allowed collisions: constant_tolerance_m must be finite and at least 0, got -0.001");
+}
+
 TEST(AllowedCollisionsTest, TheMatrixRoundTripsThroughYamlAndRefusesUnknownReasons) {
   AllowedCollisionMatrix m;
   m.allow("b", "a", AllowedReason::kAdjacent);
@@ -327,7 +396,7 @@ TEST(AllowedCollisionsTest, TheMatrixRoundTripsThroughYamlAndRefusesUnknownReaso
   auto bad = AllowedCollisionMatrix::from_yaml("- [a, b, sometimes]\n", "acm");
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().message,
-            "acm[0]: unknown reason 'sometimes' (adjacent, always, never or user)");
+            "acm[0]: unknown reason 'sometimes' (adjacent, always, never, constant or user)");
 }
 
 }  // namespace

@@ -84,7 +84,8 @@ struct Gripper {
 };
 
 // One entry of the robot file's `allowed_collisions:` (geometry/allowed_collisions.hpp): two
-// URDF links never checked against each other, and why (adjacent, always, never or user).
+// URDF links never checked against each other, and why (adjacent, always, never, constant or
+// user).
 struct AllowedCollisionEntry {
   std::string a, b;
   std::string reason = "user";

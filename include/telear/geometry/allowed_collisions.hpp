@@ -8,12 +8,23 @@
 //             wrist housing inside the forearm);
 //   never     they were in contact in no sampled configuration (the joint limits keep them
 //             apart), so checking them is wasted time;
+//   constant  their distance was the same in every sampled configuration, to within
+//             AllowedCollisionOptions::constant_tolerance_m (0.1 mm): d_max - d_min <= tol
+//             over the samples, no sample in contact, neither body a gripper finger (a
+//             finger's distance also follows the opening, which the samples hold fixed).
+//             The joints between them only turn them about their shapes' axes of symmetry
+//             (a flange on a housing coaxial with the joint that turns it): such a pair
+//             carries no information, yet would be every check's minimum clearance and hide
+//             the one an operator acts on. (The PUMA's wrist housing and flange, 2.0 mm apart
+//             up to 93.7 deg of bend, touch beyond it: not constant, still checked.)
 //   user      allowed by the robot file's author.
 //
 // compute_allowed_collisions samples random configurations within the joint limits (fixed
 // seed: the same matrix every run) as MoveIt's setup assistant does; `never` relies on the
-// sample count, so it is optional (AllowedCollisionOptions::allow_never). The matrix is
-// stored in the robot file under `allowed_collisions:` (docs/collision.md):
+// sample count, so it is optional (AllowedCollisionOptions::allow_never). `constant` is on by
+// default (allow_constant): a pair it allows was measured at every sample, not only seen
+// apart. The matrix is stored in the robot file under `allowed_collisions:`
+// (docs/collision.md):
 //
 //   allowed_collisions:
 //     - [base_link, shoulder_link, adjacent]
@@ -30,10 +41,10 @@ namespace telear::geometry {
 
 struct RobotCollisionModel;
 
-enum class AllowedReason { kAdjacent, kAlways, kNever, kUser };
+enum class AllowedReason { kAdjacent, kAlways, kNever, kConstant, kUser };
 
 const char* to_string(AllowedReason reason);
-// "adjacent", "always", "never", "user"; nullopt for anything else.
+// "adjacent", "always", "never", "constant", "user"; nullopt for anything else.
 std::optional<AllowedReason> allowed_reason_from_string(const std::string& text);
 
 struct AllowedPair {
@@ -61,8 +72,10 @@ class AllowedCollisionMatrix {
 struct AllowedCollisionOptions {
   int samples = 2000;  // random configurations
   std::uint64_t seed = 13;
-  bool allow_never = false;       // also allow pairs never in contact (MoveIt does)
-  double gripper_fraction = 0.5;  // the gripper opening the samples are taken at
+  bool allow_never = false;            // also allow pairs never in contact (MoveIt does)
+  bool allow_constant = true;          // also allow pairs at a constant distance (see above)
+  double constant_tolerance_m = 1e-4;  // the largest distance range still constant (m)
+  double gripper_fraction = 0.5;       // the gripper opening the samples are taken at
 
   Status validate() const;
 };
@@ -70,7 +83,9 @@ struct AllowedCollisionOptions {
 // Adjacent pairs only (no sampling).
 AllowedCollisionMatrix adjacent_collisions(const RobotCollisionModel& robot);
 
-// Adjacent pairs, then pairs in contact in every sample (and, with allow_never, in none).
+// Adjacent pairs, then pairs in contact in every sample, then (allow_constant) pairs at a
+// constant distance in every sample, then (allow_never) pairs in contact in none; a pair keeps
+// the first of these reasons that applies.
 Result<AllowedCollisionMatrix> compute_allowed_collisions(
     const RobotCollisionModel& robot, const AllowedCollisionOptions& options = {});
 

@@ -6,7 +6,8 @@
 // shipped arms' blocks (tests/geometry checks that they are what sampling finds).
 //
 //   # The allowed-collision matrix of ur6, found by `telear robot acm` (docs/collision.md):
-//   # 2000 random configurations within the joint limits (seed 13), gripper at 0.5.
+//   # 2000 random configurations within the joint limits (seed 13), gripper at 0.5,
+//   #   constant-distance pairs (within 0.1 mm) allowed.  [one line in the file]
 //   allowed_collisions:
 //     - [base_link, shoulder_link, adjacent]
 //     - [forearm_link, upper_arm_link, adjacent]
