@@ -46,6 +46,11 @@ void add_demo_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   demo_app->add_option("--camera-fps", demo.camera_fps, "the simulated cameras' rate")
       ->capture_default_str();
+  demo_app
+      ->add_option("--live-multisample", demo.live_multisample,
+                   "the live video's anti-aliasing, MSAA samples per pixel (1: fastest, the "
+                   "marker's edges on whole pixels)")
+      ->capture_default_str();
   demo_app->add_flag("--no-video", demo.no_video, "skip the MP4 (key frames and report only)");
 
   commands.push_back({demo_app, [options] { return run_demo(*options, std::cout, std::cerr); }});
@@ -356,6 +361,14 @@ void add_sim_commands(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   sim_frame_app->add_option("--seed", sim_frame.seed, "seed of the sensor noise");
   sim_frame_app->add_option("--noise", sim_frame.noise, "sensor noise, grey levels")
+      ->capture_default_str();
+  sim_frame_app
+      ->add_option("--supersample", sim_frame.supersample,
+                   "anti-aliasing: S x S samples averaged per pixel, 1..8")
+      ->capture_default_str();
+  sim_frame_app
+      ->add_option("--multisample", sim_frame.multisample,
+                   "anti-aliasing: MSAA samples per pixel (1..the OpenGL driver's limit)")
       ->capture_default_str();
   sim_frame_app->add_option("-o,--output", sim_frame.output, "PREFIX: writes PREFIX_left/right.png")
       ->required();

@@ -31,6 +31,7 @@ struct DemoOptions : geometry::RobotSelection {
   std::uint64_t seed = 1;
   double fps = 15.0;         // the recorded video's (and the display loop's) rate
   double camera_fps = 20.0;  // the simulated cameras' rate
+  int live_multisample = 4;  // the live video's MSAA samples per pixel (lab::DemoOptions)
   bool no_video = false;     // skip the MP4 (key frames and report still written)
 };
 

@@ -33,6 +33,8 @@ int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostrea
   sim::SceneOptions scene_options;
   scene_options.seed = options.seed;
   scene_options.noise_sigma = options.noise;
+  scene_options.supersample = options.supersample;
+  scene_options.multisample = options.multisample;
   scene_options.marker = loaded->description.marker;
   auto scene = sim::SceneRenderer::create(*rig, robot, *body, scene_options);
   if (!scene) return fail(scene.error().message, 1);

@@ -20,6 +20,8 @@ struct SimFrameOptions {
   std::string output;      // PREFIX: writes PREFIX_left.png and PREFIX_right.png
   std::uint64_t seed = 1;  // sensor noise
   double noise = 1.0;      // grey levels (Gaussian sigma)
+  int supersample = 4;     // anti-aliasing (sim::SceneOptions): the stills' quality
+  int multisample = 1;     // MSAA samples per pixel (sim::SceneOptions)
 };
 
 int run_sim_frame(const SimFrameOptions& options, std::ostream& out, std::ostream& err);

@@ -76,8 +76,12 @@ std::string demo_report_json(const DemoFacts& facts) {
   const char* eye_names[2] = {"left", "right"};
   for (int i = 0; i < 2; ++i) {
     overlay[eye_names[i]] = {{"rms_px_mean", mean(r.residuals.rms_px[i])},
+                             {"rms_px_mean_at_rest", mean(r.residuals.rms_px_at_rest[i])},
+                             {"rms_px_mean_moving", mean(r.residuals.rms_px_moving[i])},
                              {"max_px", max_of(r.residuals.max_px[i])},
                              {"checks", r.residuals.rms_px[i].size()},
+                             {"checks_at_rest", r.residuals.rms_px_at_rest[i].size()},
+                             {"checks_moving", r.residuals.rms_px_moving[i].size()},
                              {"marker_not_found", r.residuals.misses[i]},
                              {"last_miss", r.residuals.last_miss[i]}};
   }
@@ -169,7 +173,11 @@ std::string demo_report_markdown(const DemoFacts& facts) {
           fixed(registration["right"].value("shah_li_mm", 0.0), 3) + " |\n";
   }
   md += "| live overlay error (marker), mean RMS px | " + fixed(mean(r.residuals.rms_px[0]), 3) +
-        " | " + fixed(mean(r.residuals.rms_px[1]), 3) + " |\n\n";
+        " | " + fixed(mean(r.residuals.rms_px[1]), 3) + " |\n";
+  md += "| ... with the arm at rest / moving | " + fixed(mean(r.residuals.rms_px_at_rest[0]), 3) +
+        " / " + fixed(mean(r.residuals.rms_px_moving[0]), 3) + " | " +
+        fixed(mean(r.residuals.rms_px_at_rest[1]), 3) + " / " +
+        fixed(mean(r.residuals.rms_px_moving[1]), 3) + " |\n\n";
   md += "| stage | p50 ms | p99 ms |\n|---|---|---|\n";
   for (std::size_t i = 0; i < net::kLatencyStageCount; ++i) {
     const std::vector<double>& series = r.latency.seconds[i];

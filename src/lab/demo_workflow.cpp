@@ -182,6 +182,10 @@ Status DemoOptions::validate() const {
   if (supersample < 1 || supersample > 8) {
     return Error{"the supersampling " + std::to_string(supersample) + " is outside 1..8"};
   }
+  if (live_multisample < 1 || live_multisample > 16) {
+    return Error{"the live video's multisampling " + std::to_string(live_multisample) +
+                 " is outside 1..16"};
+  }
   return Status::Ok();
 }
 
@@ -273,6 +277,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   servers->reset();
   server_options.initial_q = ready_q;
   server_options.supersample = 1;
+  server_options.multisample = options.live_multisample;
   servers = EmbeddedServers::create(model, server_options);
   if (!servers) return servers.error();
   note("restarted for the task: robot server " + (*servers)->robot_address() + ", vision server " +

@@ -85,6 +85,7 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   rig_options.rig = options.rig.empty() ? sim::default_rig_file() : options.rig;
   rig_options.fps = options.fps;
   rig_options.supersample = options.supersample;
+  rig_options.multisample = options.multisample;
   rig_options.noise_sigma = options.noise_sigma;
   rig_options.seed = options.seed;
   net::RobotClient* follower = servers->follower_.get();

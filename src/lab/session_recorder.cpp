@@ -71,6 +71,8 @@ void SessionRecorder::tick() {
       if (eyes[i]->valid()) {
         r.rms_px[i].push_back(eyes[i]->rms_px);
         r.max_px[i].push_back(eyes[i]->max_px);
+        (stats.residual.arm_moving ? r.rms_px_moving : r.rms_px_at_rest)[i].push_back(
+            eyes[i]->rms_px);
       } else {
         ++r.misses[i];
         r.last_miss[i] = eyes[i]->message;

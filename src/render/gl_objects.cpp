@@ -90,6 +90,17 @@ Renderbuffer Renderbuffer::create(int width, int height, GLenum internal_format)
   return r;
 }
 
+Renderbuffer Renderbuffer::create_multisample(int width, int height, int samples,
+                                              GLenum internal_format) {
+  GLuint id = 0;
+  glGenRenderbuffers(1, &id);
+  glBindRenderbuffer(GL_RENDERBUFFER, id);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, internal_format, width, height);
+  Renderbuffer r;
+  r.id_ = id;
+  return r;
+}
+
 Framebuffer Framebuffer::create() {
   GLuint id = 0;
   glGenFramebuffers(1, &id);

@@ -13,44 +13,82 @@ namespace telear::render {
 static_assert(std::endian::native == std::endian::little,
               "the pixel packing below assumes a little-endian CPU");
 
-Result<OffscreenTarget> OffscreenTarget::create(int width, int height) {
+namespace {
+
+Status check_complete(const core::ImageSize& size, const char* which) {
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status == GL_FRAMEBUFFER_COMPLETE) return Status::Ok();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return Error{"offscreen target " + core::to_string(size) + ": " + which +
+               " framebuffer incomplete (status " + std::to_string(status) + ")"};
+}
+
+}  // namespace
+
+Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int samples) {
+  const core::ImageSize size{width, height};
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   if (width <= 0 || height <= 0 || width > max_size || height > max_size) {
-    return Error{"offscreen target " + core::to_string(core::ImageSize{width, height}) +
-                 ": size must be in [1, " + std::to_string(max_size) + "]"};
+    return Error{"offscreen target " + core::to_string(size) + ": size must be in [1, " +
+                 std::to_string(max_size) + "]"};
+  }
+  GLint max_samples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  if (samples < 1 || samples > std::max(1, max_samples)) {
+    return Error{"offscreen target " + core::to_string(size) + ": " + std::to_string(samples) +
+                 " samples per pixel, this OpenGL driver allows 1 to " +
+                 std::to_string(std::max(1, max_samples))};
   }
   OffscreenTarget t;
   t.width_ = width;
   t.height_ = height;
+  t.samples_ = samples;
   t.colour_ = Texture::create_2d(width, height, GL_RGBA8);
-  t.depth_ = Renderbuffer::create(width, height, GL_DEPTH24_STENCIL8);
+  t.depth_ = samples > 1
+                 ? Renderbuffer::create_multisample(width, height, samples, GL_DEPTH24_STENCIL8)
+                 : Renderbuffer::create(width, height, GL_DEPTH24_STENCIL8);
   t.framebuffer_ = Framebuffer::create();
   t.framebuffer_.bind();
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.colour_.id(), 0);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                            t.depth_.id());
-  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-  if (status != GL_FRAMEBUFFER_COMPLETE) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return Error{"offscreen target " + core::to_string(core::ImageSize{width, height}) +
-                 ": framebuffer incomplete (status " + std::to_string(status) + ")"};
+  if (samples == 1) {
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                              t.depth_.id());
+  }
+  if (Status s = check_complete(size, "colour"); !s) return s.error();
+  if (samples > 1) {
+    t.multisample_colour_ = Renderbuffer::create_multisample(width, height, samples, GL_RGBA8);
+    t.multisample_framebuffer_ = Framebuffer::create();
+    t.multisample_framebuffer_.bind();
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              t.multisample_colour_.id());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                              t.depth_.id());
+    if (Status s = check_complete(size, "multisample"); !s) return s.error();
   }
   return t;
 }
 
 void OffscreenTarget::bind() const {
-  framebuffer_.bind();
+  draw_framebuffer().bind();
   glViewport(0, 0, width_, height_);
 }
 
 void OffscreenTarget::bind_viewport(int x, int y, int width, int height) const {
-  framebuffer_.bind();
+  draw_framebuffer().bind();
   glViewport(x, y, width, height);
 }
 
+void OffscreenTarget::resolve() const {
+  if (samples_ == 1) return;
+  multisample_framebuffer_.bind(GL_READ_FRAMEBUFFER);
+  framebuffer_.bind(GL_DRAW_FRAMEBUFFER);
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  draw_framebuffer().bind();
+}
+
 void OffscreenTarget::clear(float r, float g, float b, float a) const {
-  framebuffer_.bind();
+  draw_framebuffer().bind();
   glViewport(0, 0, width_, height_);
   glDepthMask(GL_TRUE);
   glClearColor(r, g, b, a);
@@ -59,7 +97,7 @@ void OffscreenTarget::clear(float r, float g, float b, float a) const {
 }
 
 void OffscreenTarget::clear_depth() const {
-  framebuffer_.bind();
+  draw_framebuffer().bind();
   glViewport(0, 0, width_, height_);
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
@@ -70,6 +108,7 @@ void OffscreenTarget::read_pixels(int channels, std::uint8_t* pixels) const {
   assert((channels == 3 || channels == 4) && "OffscreenTarget::read_pixels(): 3 or 4 channels");
   // RGBA is the driver's fast path (a copy on llvmpipe; RGB is ~4x slower); the row flip
   // into image order and the RGBA -> RGB packing are one CPU pass over the scratch copy.
+  resolve();
   framebuffer_.bind(GL_READ_FRAMEBUFFER);
   read_bound_framebuffer(width_, height_, channels, pixels, scratch_);
 }

@@ -126,7 +126,7 @@ Result<Overlay> Overlay::create(const vision::CameraModel& camera, const Overlay
   const int y1 = static_cast<int>(std::ceil(max_v)) + 2;
   o.region_origin_ = {x0, y0};
   o.scene_projection_ = full.region(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
-  auto pinhole = OffscreenTarget::create(x1 - x0 + 1, y1 - y0 + 1);
+  auto pinhole = OffscreenTarget::create(x1 - x0 + 1, y1 - y0 + 1, options.samples);
   if (!pinhole) return Error{"overlay: pinhole image: " + pinhole.error().message};
   o.pinhole_ = std::move(pinhole.value());
 
@@ -190,6 +190,7 @@ void Overlay::render(const OffscreenTarget& target, const SceneDrawer& draw_scen
   pinhole_.clear(0.0f, 0.0f, 0.0f, 0.0f);
   pinhole_.bind();
   if (draw_scene) draw_scene(projection, view);
+  pinhole_.resolve();
   target.clear(clear.x(), clear.y(), clear.z(), 1.0f);
   if (has_frame_) background_.draw();
   target.bind();

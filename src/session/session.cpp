@@ -488,6 +488,14 @@ void Session::update_registration(double t) {
   }
   if (!q.allFinite()) return;
   residual_ = registration_->check(as_mat(frame.left), as_mat(frame.right), q);
+  const double capture_s = core::ns_to_s(frame.capture_ns_left - epoch_ns_);
+  for (const auto& [time, q_at] : state_history_) {
+    if (std::abs(time - capture_s) <= StereoResidual::kMotionWindowS && q_at.size() == q.size() &&
+        (q_at - q).cwiseAbs().maxCoeff() > StereoResidual::kMotionToleranceRad) {
+      residual_.arm_moving = true;
+      break;
+    }
+  }
   ++residual_checks_;
 }
 

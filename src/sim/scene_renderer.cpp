@@ -186,6 +186,7 @@ Result<SceneRenderer> SceneRenderer::create(const StereoRig& rig, const core::Ro
   render::OverlayOptions overlay_options;
   overlay_options.mode = render::OverlayMode::kRaw;
   overlay_options.clear_colour = options.background;
+  overlay_options.samples = options.multisample;
   for (int eye = 0; eye < 2; ++eye) {
     const vision::CameraModel camera =
         supersampled_camera(rig.camera(eye == 0 ? Eye::kLeft : Eye::kRight), options.supersample);

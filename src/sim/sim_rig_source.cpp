@@ -73,6 +73,7 @@ Status SimRigSource::prepare() {
   if (!context) return Error{"sim rig source: " + context.error().message};
   sim::SceneOptions scene_options;
   scene_options.supersample = options_.supersample;
+  scene_options.multisample = options_.multisample;
   scene_options.noise_sigma = options_.noise_sigma;
   scene_options.seed = options_.seed;
   scene_options.fast_noise = true;  // video: the table noise (telear/sim/scene_renderer.hpp)

@@ -147,6 +147,52 @@ TEST_F(GlBasicsTest, ANearObjectHidesAFarOneWhateverTheDrawOrder) {
   }
 }
 
+// Multisampling: an edge pixel holds the share of its area the surface covers, as a camera's
+// pixel integrates light, where point sampling gives a staircase of whole pixels (which moves
+// a detected marker corner by up to half a pixel: issue 26, docs/demo.md).
+TEST_F(GlBasicsTest, AMultisampledTargetShadesEdgePixelsByTheirCoverage) {
+  // A white cube turned 10 deg about the optical axis: oblique edges across the pixel grid.
+  const Eigen::Matrix4f turned =
+      (Eigen::Affine3f(Eigen::AngleAxisf(0.1745f, Eigen::Vector3f::UnitZ()))).matrix();
+  auto scene = create_scene_renderer({make_cube(0.8f, {0.01f, 0.02f, 3}, {1, 1, 1})});
+  ASSERT_TRUE(scene) << scene.error().message;
+  long partial[2] = {0, 0}, white_area[2] = {0, 0};
+  const int samples[2] = {1, 4};
+  for (int i = 0; i < 2; ++i) {
+    auto t = OffscreenTarget::create(kW, kH, samples[i]);
+    ASSERT_TRUE(t) << t.error().message;
+    EXPECT_EQ(t->samples(), samples[i]);
+    t->clear();
+    scene->draw(projection(), turned, flat());
+    const core::Image img = t->read_rgb();
+    ASSERT_EQ(gl_errors(), "");
+    for (int y = 0; y < kH; ++y) {
+      for (int x = 0; x < kW; ++x) {
+        const int v = img.at(x, y, 0);
+        if (v > 10 && v < 245) ++partial[i];
+        white_area[i] += v;
+      }
+    }
+  }
+  // The cube's outline is ~4 x 28 px long at this distance (0.8 m at 3 m, f = 104 px).
+  EXPECT_EQ(partial[0], 0) << "point sampling: every pixel all cube or all background";
+  EXPECT_GT(partial[1], 50) << "4 samples: the edge pixels in between";
+  // The same area either way, to a fraction of the outline.
+  EXPECT_NEAR(static_cast<double>(white_area[1]) / white_area[0], 1.0, 0.02);
+}
+
+TEST_F(GlBasicsTest, MoreSamplesThanTheDriverAllowsIsAnError) {
+  GLint max_samples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  auto t = OffscreenTarget::create(16, 16, max_samples + 1);
+  ASSERT_FALSE(t);
+  EXPECT_THAT(t.error().message,
+              HasSubstr("offscreen target 16x16: " + std::to_string(max_samples + 1) +
+                        " samples per pixel, this OpenGL driver allows 1 to " +
+                        std::to_string(std::max(1, max_samples))));
+  EXPECT_FALSE(OffscreenTarget::create(16, 16, 0));
+}
+
 TEST_F(GlBasicsTest, VideoBackgroundIsUprightAndSwapsBgr) {
   // Top half red, bottom half blue, in the given byte order.
   constexpr int w = 64, h = 48;

@@ -44,6 +44,10 @@ struct DemoOptions {
   int registration_poses = 16;  // 4..200
   int registration_frames = 2;  // 1..30
   int supersample = 2;          // 1..8
+  // The task's live video: MSAA samples per pixel (sim::SceneOptions::multisample), 1..16.
+  // Point sampling (1) puts the marker's edges on a staircase of whole pixels and the live
+  // marker residual at ~0.45 px where the overlay itself is off by ~0.1 (docs/demo.md).
+  int live_multisample = 4;
 
   // Errors name the option as the CLI spells it and its range.
   Status validate() const;

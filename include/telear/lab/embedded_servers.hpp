@@ -34,6 +34,7 @@ struct EmbeddedServersOptions {
   std::string tip_link;
   double fps = 30.0;         // the simulated cameras' frame rate
   int supersample = 1;       // the video's anti-aliasing (1 is fastest)
+  int multisample = 1;       // MSAA samples per pixel of the video (sim::SceneOptions)
   double noise_sigma = 1.0;  // grey levels
   std::uint64_t seed = 1;
   // The robot server's collision authority (net/robot_server.hpp): the robot checked and its

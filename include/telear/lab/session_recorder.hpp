@@ -35,6 +35,9 @@ namespace telear::lab {
 struct ResidualSeries {
   std::vector<double> rms_px[2];
   std::vector<double> max_px[2];
+  // rms_px split by the arm's state at the frame (session::StereoResidual::arm_moving).
+  std::vector<double> rms_px_at_rest[2];
+  std::vector<double> rms_px_moving[2];
   int misses[2] = {0, 0};    // checks where the marker was not found
   std::string last_miss[2];  // the last such check's message
 };

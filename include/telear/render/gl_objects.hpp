@@ -107,6 +107,9 @@ class Renderbuffer : public GlObject<detail::RenderbufferTraits> {
  public:
   Renderbuffer() = default;
   static Renderbuffer create(int width, int height, GLenum internal_format);
+  // Multisample storage (samples > 1), for anti-aliased render targets.
+  static Renderbuffer create_multisample(int width, int height, int samples,
+                                         GLenum internal_format);
 };
 
 class Framebuffer : public GlObject<detail::FramebufferTraits> {

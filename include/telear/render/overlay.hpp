@@ -44,6 +44,9 @@ struct OverlayOptions {
   // Colour behind everything when no frame has been uploaded (and outside the undistorted
   // image's valid area).
   Eigen::Vector3f clear_colour = Eigen::Vector3f::Zero();
+  // kRaw: samples per pixel of the scene's pinhole image (OffscreenTarget, multisampled when
+  // > 1: anti-aliased edges). kUndistorted draws into the caller's target, which chooses.
+  int samples = 1;
 };
 
 using SceneDrawer =

@@ -47,6 +47,12 @@ struct EyeResidual {
 
 struct StereoResidual {
   EyeResidual left, right;
+  // The robot's reported joints changed within +-kMotionWindowS of the frame's capture (by
+  // more than kMotionToleranceRad): a moving arm's residual adds any mismatch between the
+  // frame's time and the state it is drawn with, an arm at rest's does not (Session fills it).
+  bool arm_moving = false;
+  static constexpr double kMotionWindowS = 0.1;
+  static constexpr double kMotionToleranceRad = 1e-4;
 };
 
 class RegistrationCheck {

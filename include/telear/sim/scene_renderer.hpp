@@ -44,7 +44,12 @@
 namespace telear::sim {
 
 struct SceneOptions {
-  int supersample = 4;       // S above, 1..8
+  int supersample = 4;  // S above, 1..8
+  // Multisampling (MSAA) of the S-times grid, 1..the driver's limit (4 on llvmpipe): the
+  // cheap way to the same area coverage at edges -- each pixel's colour is shaded once, its
+  // coverage counted at `multisample` points -- where S = 1 would point-sample (a straight
+  // edge a staircase of whole pixels, which moves a detected marker corner by up to 0.5 px).
+  int multisample = 1;
   double noise_sigma = 1.0;  // grey levels (0..255 scale), 0 = none
   std::uint64_t seed = 1;
   // Video: the noise comes from a table of 2^20 N(0, sigma) values (rounded) drawn once,

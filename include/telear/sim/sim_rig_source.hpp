@@ -28,6 +28,7 @@ struct SimRigSourceOptions {
   std::string rig;  // the rig file; empty: default_rig_file() (telear/sim/stereo_rig.hpp)
   double fps = 30.0;
   int supersample = 2;       // anti-aliasing, 1..8 (4 is the stills' quality, slow on a CPU)
+  int multisample = 1;       // MSAA samples per pixel (sim::SceneOptions::multisample)
   double noise_sigma = 1.0;  // grey levels
   std::uint64_t seed = 1;
   // Where the arm is; called once per captured pair. nullopt (or no function): the last
