@@ -135,6 +135,12 @@ void RobotClient::Impl::stream_loop() {
       sample.last_trajectory_id = message.last_trajectory_id();
       sample.last_trajectory_status = from_proto(message.last_trajectory_status());
       sample.last_trajectory_message = message.last_trajectory_message();
+      if (message.ghost_q_size() > 0) {
+        sample.ghost_q =
+            Eigen::Map<const Eigen::VectorXd>(message.ghost_q().data(), message.ghost_q_size());
+        sample.ghost_gripper = message.ghost_gripper();
+        sample.ghost_ns = message.ghost_ns();
+      }
       {
         std::lock_guard lock(mutex);
         sample.clock_offset_ns = estimator.to_server_ns(0);

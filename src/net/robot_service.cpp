@@ -186,6 +186,14 @@ grpc::Status RobotService::StreamState(grpc::ServerContext* context,
     message.set_sequence(++sequence);
     message.set_capture_ns(snapshot.capture_ns);
     message.set_lease_holder(lease_.holder());
+    {
+      std::lock_guard lock(ghost_mutex_);
+      if (!ghost_.lease_id.empty() && lease_.check(ghost_.lease_id)) {
+        message.mutable_ghost_q()->Assign(ghost_.q.data(), ghost_.q.data() + ghost_.q.size());
+        message.set_ghost_gripper(ghost_.gripper);
+        message.set_ghost_ns(ghost_.received_ns);
+      }
+    }
     std::string last_id;
     {
       std::lock_guard lock(last_mutex_);
@@ -270,7 +278,11 @@ grpc::Status RobotService::RenewLease(grpc::ServerContext* context,
   response->set_holder(grant->holder);
   response->set_heartbeat_period_ns(grant->heartbeat_ns);
   response->set_expires_ns(grant->expires_ns);
-  if (ghost) driver_.show_ghost(*ghost, request->ghost_gripper());
+  if (ghost) {
+    driver_.show_ghost(*ghost, request->ghost_gripper());
+    std::lock_guard lock(ghost_mutex_);
+    ghost_ = {request->lease_id(), *ghost, request->ghost_gripper(), core::monotonic_ns()};
+  }
   return grpc::Status::OK;
 }
 

@@ -269,6 +269,44 @@ TEST(RobotClient, TheGhostRidesOnTheLeaseHeartbeat) {
   EXPECT_TRUE(client.lease_held()) << client.lease_error();
 }
 
+// Issue 22: observers (a recorder, another operator) see the holder's ghost in the state
+// stream, stamped on the server clock, until the lease ends.
+TEST(RobotClient, AnObserverSeesTheHoldersGhostInTheStateStream) {
+  GhostServer ghost = start_ghost_server();
+  RobotClient holder(client_options(*ghost.server, "alice"));
+  RobotClient observer(client_options(*ghost.server, "recorder"));
+  holder.start();
+  observer.start();
+  auto state_with_ghost = [&](bool want) {
+    const std::int64_t deadline = core::monotonic_ns() + 2'000'000'000;
+    std::optional<RobotStateSample> s;
+    while (core::monotonic_ns() < deadline) {
+      s = observer.latest_state();
+      if (s && (s->ghost_q.size() > 0) == want) return s;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return s;
+  };
+  auto before = state_with_ghost(false);
+  ASSERT_TRUE(before);
+  EXPECT_EQ(before->ghost_q.size(), 0) << "no lease: no ghost";
+  Eigen::VectorXd q(6);
+  q << 0.1, 0.2, -0.3, 0.0, 0.4, 0.0;
+  holder.set_ghost(q, 0.25);
+  ASSERT_TRUE(holder.acquire_lease(0.1));
+  const std::int64_t sent_after = core::monotonic_ns();
+  auto seen = state_with_ghost(true);
+  ASSERT_TRUE(seen && seen->ghost_q.size() == 6) << "the ghost never reached the stream";
+  EXPECT_EQ(seen->ghost_q, q);
+  EXPECT_EQ(seen->ghost_gripper, 0.25);
+  EXPECT_GE(seen->ghost_ns, sent_after - 1'000'000'000);  // loopback: one clock
+  EXPECT_LE(seen->ghost_ns, seen->capture_ns);
+  ASSERT_TRUE(holder.release_lease());
+  auto after = state_with_ghost(false);
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->ghost_q.size(), 0) << "the lease ended: the ghost is no longer streamed";
+}
+
 TEST(RobotServer, RefusesAnInvalidGhostOnARenewal) {
   GhostServer ghost = start_ghost_server();
   auto stub = stub_for(*ghost.server);

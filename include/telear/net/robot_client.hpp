@@ -81,6 +81,10 @@ struct RobotStateSample {
   core::TrajectoryStatus last_trajectory_status = core::TrajectoryStatus::kRunning;
   std::string last_trajectory_message;
   std::int64_t clock_offset_ns = 0;  // server minus client, the estimate when received
+  // The lease holder's ghost (empty: none; v1::RobotState.ghost_q), server clock stamp.
+  Eigen::VectorXd ghost_q;
+  double ghost_gripper = 0.0;
+  std::int64_t ghost_ns = 0;
   // Client clock: capture time converted with the offset estimate (loopback: equal).
   std::int64_t capture_client_ns() const;
 };

@@ -161,6 +161,15 @@ class RobotService final : public v1::RobotService::Service {
   std::map<std::string, std::string> accepted_plan_hashes_;  // plan id -> the server's hash
   mutable std::mutex last_mutex_;
   std::string last_trajectory_id_;  // the latest accepted (for the state's last_trajectory_*)
+  // The lease holder's ghost from its latest renewal, streamed while that lease holds.
+  struct StreamedGhost {
+    std::string lease_id;
+    Eigen::VectorXd q;
+    double gripper = 0.0;
+    std::int64_t received_ns = 0;
+  };
+  mutable std::mutex ghost_mutex_;
+  StreamedGhost ghost_;
 
   std::mutex shutdown_mutex_;
   std::condition_variable shutdown_cv_;
