@@ -114,6 +114,21 @@ void VisionClient::Impl::receive_loop() {
       on_message();
       ++frames_received;
       bytes_received += item.bytes;
+      if (options.on_received) {
+        const telear::v1::StereoFrame& m = item.message;
+        ReceivedStereoFrame frame;
+        frame.frame_id = m.frame_id();
+        frame.jpeg_left = &m.left().jpeg();
+        frame.jpeg_right = &m.right().jpeg();
+        frame.width_left = m.left().width();
+        frame.height_left = m.left().height();
+        frame.width_right = m.right().width();
+        frame.height_right = m.right().height();
+        frame.capture_ns_left = to_client(m.left().capture_ns());
+        frame.capture_ns_right = to_client(m.right().capture_ns());
+        frame.receive_ns = item.receive_ns;
+        options.on_received(frame);
+      }
       received.put(std::move(item));
       item = Received{};
     }

@@ -8,8 +8,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <thread>
 
+#include "telear/net/jpeg_codec.hpp"
 #include "telear/net/vision_client.hpp"
 #include "telear/net/vision_server.hpp"
 #include "telear/v1/vision.grpc.pb.h"
@@ -195,6 +198,46 @@ TEST(VisionClient, DecodesFramesWithStageLatencies) {
   EXPECT_GE((*latest)->frame_id + 20, server->pipeline().stats().captured);
   EXPECT_GT((*latest)->frame_id, previous_id + 10);
   client.stop();
+}
+
+// Issue 22: a recorder sees every frame as received -- each eye's JPEG exactly as sent, even
+// the frames the decoder skips -- with its capture times, before decoding.
+TEST(VisionClient, EveryReceivedFrameReachesTheObserverAsItsJpegBytes) {
+  auto server = start_synthetic(160, 120, 60);
+  ASSERT_TRUE(server);
+  VisionClientOptions options;
+  options.address = server->address();
+  std::mutex mutex;
+  std::vector<std::uint64_t> ids;
+  std::map<std::uint64_t, std::string> left_jpeg;
+  bool stamps_ok = true, sizes_ok = true;
+  options.on_received = [&](const ReceivedStereoFrame& f) {
+    std::lock_guard lock(mutex);
+    ids.push_back(f.frame_id);
+    left_jpeg[f.frame_id] = *f.jpeg_left;
+    stamps_ok = stamps_ok && f.capture_ns_left > 0 && f.capture_ns_left <= f.receive_ns &&
+                f.capture_ns_right <= f.receive_ns;
+    sizes_ok = sizes_ok && f.width_left == 160 && f.height_right == 120 && !f.jpeg_right->empty();
+  };
+  VisionClient client(options);
+  client.start();
+  auto got = client.wait_frame(0, 10.0);
+  ASSERT_TRUE(got);
+  for (int i = 0; i < 20; ++i) got = client.wait_frame(got->second, 10.0);
+  ASSERT_TRUE(got);
+  const DecodedStereoFrame decoded = *got->first;
+  client.stop();
+  std::lock_guard lock(mutex);
+  EXPECT_EQ(ids.size(), client.frames_received()) << "every received frame, skipped or not";
+  EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+  EXPECT_TRUE(stamps_ok);
+  EXPECT_TRUE(sizes_ok);
+  // The bytes are the JPEG the decoder decoded: it decodes to the frame the client showed.
+  ASSERT_TRUE(left_jpeg.count(decoded.frame_id));
+  JpegDecoder decoder;
+  auto again = decoder.decode(left_jpeg[decoded.frame_id]);
+  ASSERT_TRUE(again) << again.error().message;
+  EXPECT_EQ(again->pixels, decoded.left.pixels);
 }
 
 TEST(VisionClient, AsksForAScaledStreamAtItsOwnQuality) {

@@ -17,6 +17,7 @@
 // decode, capture -> decoded), in DecodedStereoFrame::latency.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,11 +32,26 @@
 
 namespace telear::net {
 
+// One stereo frame as it arrived, before decoding: each eye's JPEG exactly as the server sent
+// it (a recorder keeps these bytes, not re-encoded pixels).
+struct ReceivedStereoFrame {
+  std::uint64_t frame_id = 0;
+  const std::string* jpeg_left = nullptr;  // valid during the callback only
+  const std::string* jpeg_right = nullptr;
+  int width_left = 0, height_left = 0, width_right = 0, height_right = 0;
+  std::int64_t capture_ns_left = 0;  // client clock (converted)
+  std::int64_t capture_ns_right = 0;
+  std::int64_t receive_ns = 0;  // client clock
+};
+
 struct VisionClientOptions : ClientOptions {
   double max_rate_hz = 0.0;   // 0: as fast as the source
   int jpeg_quality = 0;       // 0: the server's default
   int width = 0, height = 0;  // 0: the source's size
   double ping_period_s = 1.0;
+  // Called on the receive thread for every frame received, before it may be skipped by the
+  // decoder: keep it short (copy what you need and return); it delays the next receive.
+  std::function<void(const ReceivedStereoFrame&)> on_received;
 };
 
 struct DecodedStereoFrame {
