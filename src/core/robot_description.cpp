@@ -109,24 +109,31 @@ Result<RobotModelPtr> create_model(RobotModel::Description d) {
   return std::make_shared<const RobotModel>(std::move(model).value());
 }
 
-Result<RobotDescription> from_urdf(const std::string& path, const std::string& tip,
-                                   bool companions) {
-  auto text = read_urdf_text(path);
-  if (!text) return text.error();
-  auto urdf = describe_urdf(*text, path, tip);
+Result<RobotDescription> from_urdf_text(std::string text, const std::string& source,
+                                        const std::string& tip) {
+  auto urdf = describe_urdf(text, source, tip);
   if (!urdf) return urdf.error();
   RobotDescription d;
   d.name = urdf->model.name;
-  d.source = path;
-  d.urdf_path = path;
-  d.urdf_text = std::move(text).value();
+  d.source = source;
+  d.urdf_text = std::move(text);
   d.root_link = urdf->root_link;
   d.tip_link = urdf->tip_link;
   d.links = std::move(urdf->links);
   auto model = create_model(std::move(urdf->model));
   if (!model) return model.error();
   d.model = *model;
-  if (Status s = add_companions(d, companions, companions); !s) return s.error();
+  return d;
+}
+
+Result<RobotDescription> from_urdf(const std::string& path, const std::string& tip,
+                                   bool companions) {
+  auto text = read_urdf_text(path);
+  if (!text) return text.error();
+  auto d = from_urdf_text(std::move(text).value(), path, tip);
+  if (!d) return d.error();
+  d->urdf_path = path;
+  if (Status s = add_companions(*d, companions, companions); !s) return s.error();
   return d;
 }
 
@@ -421,6 +428,11 @@ std::string urdf_text_for_clients(const RobotDescription& description) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+Result<RobotDescription> parse_urdf_description(const std::string& text, const std::string& source,
+                                                const std::string& tip) {
+  return from_urdf_text(text, source, tip);
 }
 
 }  // namespace telear::core

@@ -135,5 +135,10 @@ struct RobotSpec {
 // Loads any of the forms above. Errors name the file and what is wrong; a tree with several
 // leaves and no tip lists the candidate tips.
 Result<RobotDescription> load_robot_description(const RobotSpec& spec);
+// A URDF's text as a description (a robot server's GetInfo gives one): the chain to `tip`
+// (empty: the single leaf), its links by name; no companion files (marker, body), no meshes
+// read. `source` names it in messages.
+Result<RobotDescription> parse_urdf_description(const std::string& text, const std::string& source,
+                                                const std::string& tip = "");
 
 }  // namespace telear::core
