@@ -49,7 +49,12 @@ packages=(
   python3-yaml
   # tests: OpenCV's real stereo chessboard images (examples/data), ~95 MB, not needed to build
   opencv-doc
+  # record: libzstd compresses MCAP chunks; node runs the reference MCAP reader (tests/record/js)
+  libzstd-dev nodejs
 )
+# npm: Debian's package, unless the installed nodejs already brings it (NodeSource's does, and
+# conflicts with Debian's npm).
+command -v npm > /dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
