@@ -14,6 +14,7 @@
 #include "apps/eval_command.hpp"
 #include "apps/kin_command.hpp"
 #include "apps/plan_command.hpp"
+#include "apps/record_command.hpp"
 #include "apps/register_command.hpp"
 #include "apps/render_command.hpp"
 #include "apps/robot_acm_command.hpp"
@@ -52,8 +53,31 @@ void add_demo_command(CLI::App& app, Commands& commands) {
                    "marker's edges on whole pixels)")
       ->capture_default_str();
   demo_app->add_flag("--no-video", demo.no_video, "skip the MP4 (key frames and report only)");
+  demo_app->add_option("--record", demo.record,
+                       "record the task to this MCAP file (Foxglove; docs/recording.md)");
 
   commands.push_back({demo_app, [options] { return run_demo(*options, std::cout, std::cerr); }});
+}
+
+// [SECTION] record (docs/recording.md)
+
+void add_record_command(CLI::App& app, Commands& commands) {
+  auto options = std::make_shared<RecordOptions>();
+  RecordOptions& record = *options;
+  CLI::App* record_app = app.add_subcommand(
+      "record", "record running servers' streams to MCAP (a passive observer: no lease)");
+  record_app->add_option("--robot", record.robot_server, "the robot server, HOST:PORT")->required();
+  record_app->add_option("--vision", record.vision_server,
+                         "the vision server, HOST:PORT (none: no video recorded)");
+  record_app->add_option("--token-file", record.token_file, "file whose first line is the token");
+  record_app->add_option("-o,--output", record.output, "the MCAP file to write")->required();
+  record_app->add_option("--seconds", record.seconds, "how long to record; 0: until Ctrl-C")
+      ->capture_default_str();
+  record_app->add_option("--state-rate", record.state_rate_hz, "robot states per second, 1..250")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 250.0));
+  commands.push_back(
+      {record_app, [options] { return run_record(*options, std::cout, std::cerr); }});
 }
 
 // [SECTION] kin

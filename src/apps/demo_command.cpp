@@ -46,6 +46,7 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   demo.fps = options.fps;
   demo.camera_fps = options.camera_fps;
   demo.live_multisample = options.live_multisample;
+  demo.record_path = options.record;
   demo.video = !options.no_video;
   if (Status s = demo.validate(); !s) {
     err << "telear demo: " << s.error().message << "\n";

@@ -32,6 +32,7 @@ struct DemoOptions : geometry::RobotSelection {
   double fps = 15.0;         // the recorded video's (and the display loop's) rate
   double camera_fps = 20.0;  // the simulated cameras' rate
   int live_multisample = 4;  // the live video's MSAA samples per pixel (lab::DemoOptions)
+  std::string record;        // the task recorded to this MCAP file; empty: none
   bool no_video = false;     // skip the MP4 (key frames and report still written)
 };
 

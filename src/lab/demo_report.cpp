@@ -131,6 +131,9 @@ std::string demo_report_json(const DemoFacts& facts) {
                        {"vr_to_ar", facts.vr_to_ar},
                        {"injected_delay_ms", facts.injected_delay_ms},
                        {"switches", switches}};
+  if (!facts.mcap_json.empty()) {
+    report["recording"] = nlohmann::json::parse(facts.mcap_json, nullptr, false);
+  }
   report["outputs"] = {{"video", r.video_path},
                        {"video_codec", r.video_codec},
                        {"video_warning", r.video_warning},

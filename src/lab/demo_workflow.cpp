@@ -12,6 +12,7 @@
 #include "telear/core/marker_mount.hpp"
 #include "telear/core/number_format.hpp"
 #include "telear/core/robot_loader.hpp"
+#include "telear/core/version.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
@@ -20,6 +21,7 @@
 #include "telear/lab/demo_report.hpp"
 #include "telear/lab/embedded_servers.hpp"
 #include "telear/lab/session_recorder.hpp"
+#include "telear/record/server_recorder.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/session/registration_capture.hpp"
@@ -285,6 +287,31 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   step(3, "connecting the session and taking the lease");
   session::SessionOptions session_options;
+  std::unique_ptr<record::ServerRecorder> mcap;
+  if (!options.record_path.empty()) {
+    record::ServerRecorderOptions recording;
+    recording.robot_address = (*servers)->robot_address();
+    recording.vision_address = (*servers)->vision_address();
+    recording.token = (*servers)->token();
+    recording.client_name = "telear-demo-record";
+    recording.recorder.path = options.record_path;
+    recording.recorder.metadata["recorded_by"] = "telear demo";
+    recording.recorder.metadata["telear_version"] = std::string(core::version_string());
+    recording.recorder.metadata["calibration_file"] = stereo_file;
+    auto started = record::ServerRecorder::start(recording);
+    if (!started) return started.error();
+    mcap = std::move(started).value();
+    note("recording the task to " + options.record_path);
+    // The session's events (validation, execution, AR/VR) on the recording's /events.
+    session_options.on_event = [raw = mcap.get()](const session::SessionEvent& e,
+                                                  std::int64_t monotonic_ns) {
+      const record::LogLevel level =
+          e.kind == session::SessionEvent::Kind::kError     ? record::LogLevel::kError
+          : e.kind == session::SessionEvent::Kind::kWarning ? record::LogLevel::kWarning
+                                                            : record::LogLevel::kInfo;
+      raw->add_log(level, e.message, monotonic_ns);
+    };
+  }
   session_options.robot.address = (*servers)->robot_address();
   session_options.robot.token = (*servers)->token();
   session_options.robot.client_name = "telear-demo";
@@ -343,6 +370,17 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
 
   step(7, "writing the report");
   DemoFacts facts;
+  if (mcap) {
+    auto counts = mcap->stop();
+    if (!counts) return Error{"the recording: " + counts.error().message};
+    nlohmann::json recorded = {{"path", options.record_path}, {"bytes", counts->bytes}};
+    for (const auto& [topic, n] : counts->written) recorded["messages"][topic] = n;
+    std::uint64_t dropped = 0;
+    for (const auto& [topic, n] : counts->dropped) dropped += n;
+    recorded["dropped"] = dropped;
+    facts.mcap_json = recorded.dump();
+    note("recorded " + options.record_path + " (" + std::to_string(counts->bytes) + " bytes)");
+  }
   facts.robot = robot->description.name;
   facts.dof = model->dof();
   facts.tip_link = robot->description.tip_link;

@@ -87,6 +87,7 @@ double Session::now() const {
 
 void Session::log(SessionEvent::Kind kind, std::string message) {
   events_.push_back({now(), kind, std::move(message)});
+  if (options_.on_event) options_.on_event(events_.back(), core::monotonic_ns());
   while (events_.size() > options_.max_events) events_.pop_front();
 }
 

@@ -27,7 +27,8 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
   // The simulated cameras at 10 fps (the default 20 renders twice the frames for the same
   // checks: a quarter of the test's CPU time).
   const auto r = run_telear("demo --out " + d +
-                            " --resolution 320x240 --delay-ms 700 --fps 10 --camera-fps 10");
+                            " --resolution 320x240 --delay-ms 700 --fps 10 --camera-fps 10" +
+                            " --record " + d + "/task.mcap");
   ASSERT_EQ(r.exit_code, 0) << r.out << "\n" << r.err;
   EXPECT_NE(r.out.find("[7/7] writing the report"), std::string::npos) << r.out;
 
@@ -77,6 +78,19 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
   }
   EXPECT_NE(test::slurp(d + "/report.md").find("| ... with the arm at rest / moving | "),
             std::string::npos);
+  // Issue 22: the task recorded to MCAP beside the report (its content is checked by the
+  // reference reader in tests/record): states at >= 30 Hz over the task, the video, the
+  // session's own events.
+  const auto& recording = report["recording"];
+  ASSERT_TRUE(recording.is_object()) << report.dump(1).substr(0, 2000);
+  EXPECT_EQ(recording["dropped"], 0);
+  EXPECT_EQ(recording["bytes"].get<std::uintmax_t>(), fs::file_size(d + "/task.mcap"));
+  EXPECT_GE(recording["messages"]["/robot/joint_states"].get<double>(),
+            30.0 * report["execution"]["plan_duration_s"].get<double>());
+  EXPECT_GT(recording["messages"]["/camera/left/image/compressed"].get<int>(), 20);
+  EXPECT_GT(recording["messages"]["/ghost/joint_states"].get<int>(), 0);
+  EXPECT_GT(recording["messages"]["/events"].get<int>(), 3);
+  EXPECT_EQ(test::slurp(d + "/task.mcap").substr(0, 8), std::string("\x89MCAP0\r\n", 8));
   // The injected delay: at least one switch to VR and back.
   EXPECT_GE(report["display"]["ar_to_vr"].get<int>(), 1);
   EXPECT_GE(report["display"]["vr_to_ar"].get<int>(), 2);  // the start, and after the delay

@@ -44,6 +44,9 @@ struct DemoFacts {
   // Shah-Li's beside it, seconds); empty: none.
   std::string registration_json;
   Recording recording;
+  // The MCAP recording of the task (--record; a JSON object: path, messages per topic,
+  // dropped, bytes); empty: none.
+  std::string mcap_json;
   std::string resolution;  // "WxH" as given
   double camera_fps = 0.0;
   double video_bytes_per_s = 0.0;

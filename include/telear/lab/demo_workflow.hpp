@@ -48,6 +48,9 @@ struct DemoOptions {
   // Point sampling (1) puts the marker's edges on a staircase of whole pixels and the live
   // marker residual at ~0.45 px where the overlay itself is off by ~0.1 (docs/demo.md).
   int live_multisample = 4;
+  // The task's session recorded to this MCAP file (record::ServerRecorder: the servers'
+  // streams, the session's events); empty: no recording.
+  std::string record_path;
 
   // Errors name the option as the CLI spells it and its range.
   Status validate() const;

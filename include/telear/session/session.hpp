@@ -44,6 +44,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -73,6 +74,8 @@ namespace telear::session {
 class CaptureSession;  // telear/session/capture_session.hpp
 struct CaptureSessionOptions;
 
+struct SessionEvent;
+
 struct SessionOptions {
   net::RobotClientOptions robot;
   net::VisionClientOptions vision;
@@ -92,6 +95,9 @@ struct SessionOptions {
   // 1.2 s of a lost operator).
   double lease_heartbeat_s = 0.0;
   std::size_t max_events = 200;
+  // Called with each event as it is logged, and the monotonic clock then (a recorder writes
+  // them to its /events topic: telear demo --record).
+  std::function<void(const SessionEvent&, std::int64_t monotonic_ns)> on_event;
   // Collision checking (docs/collision.md). With the robot's description and the operator's
   // workspace (mesh objects loaded: geometry::load_workspace) the session builds a checker:
   // validate_plan() checks the plan continuously (contacts are errors, a clearance under

@@ -1,0 +1,47 @@
+#pragma once
+// ServerRecorder: records running servers to MCAP as a passive observer (no lease) -- the
+// engine of `telear record`, `telear demo --record` and `telear console --record`. It opens its
+// own robot client (the state stream at `state_rate_hz`, which carries the lease holder's
+// ghost) and vision client (each frame's JPEGs as received, and its latency once decoded),
+// reads the servers' info (URDF, workspace, calibration) and feeds a SessionRecorder from a
+// thread of its own. An operator's program adds its own events with add_log().
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "telear/core/result.hpp"
+#include "telear/record/session_recorder.hpp"
+
+namespace telear::record {
+
+struct ServerRecorderOptions {
+  std::string robot_address;   // HOST:PORT
+  std::string vision_address;  // HOST:PORT; empty: no video
+  std::string token;           // the servers' bearer token
+  std::string client_name = "telear-record";
+  double state_rate_hz = 50.0;      // 1..250 (the robot server's bounds)
+  SessionRecorderOptions recorder;  // path, queue, metadata
+};
+
+class ServerRecorder {
+ public:
+  // Connects, reads the servers' info, opens the file and starts recording. Errors: a server
+  // that does not answer (named), the file, the URDF.
+  static Result<std::unique_ptr<ServerRecorder>> start(const ServerRecorderOptions& options);
+  ~ServerRecorder();  // stop()s
+  ServerRecorder(const ServerRecorder&) = delete;
+  ServerRecorder& operator=(const ServerRecorder&) = delete;
+
+  void add_log(LogLevel level, const std::string& text, std::int64_t client_ns);
+  // Stops the clients, then closes the file (SessionRecorder::close). A second call returns
+  // the same counts.
+  Result<RecordingCounts> stop();
+
+ private:
+  struct Impl;
+  explicit ServerRecorder(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace telear::record

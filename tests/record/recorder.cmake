@@ -1,0 +1,11 @@
+# The session recorder against real servers on loopback (a simulated PUMA, a synthetic stereo
+# source), its file decoded by the reference reader with the file's own schemas
+# (js/decode_recording.mjs, the packages `npm ci --prefix tests/record/js` installs). ~3 s.
+telear_test(record_test
+  SOURCES session_recorder_test.cpp
+  LIBS telear::record telear::sim_robot nlohmann_json::nlohmann_json
+  PCH net)
+target_compile_definitions(record_test PRIVATE TELEAR_RECORD_JS_DIR="${CMAKE_CURRENT_SOURCE_DIR}/js")
+# RecordCli runs the telear binary.
+target_compile_definitions(record_test PRIVATE TELEAR_BINARY="$<TARGET_FILE:telear>")
+add_dependencies(record_test telear)
