@@ -201,6 +201,24 @@ TEST(RobotFile, KeepsTheAllowedCollisionPairs) {
   EXPECT_FALSE(shipped->allowed_collisions->empty());
 }
 
+// A robot server's GetInfo URDF, as text (a recorder names /tf's frames by its links).
+TEST(RobotDescription, AUrdfTextParsesWithItsLinksByName) {
+  auto puma = load_robot_description({"puma560"});
+  ASSERT_TRUE(puma) << puma.error().message;
+  const std::string urdf = urdf_text_for_clients(*puma);
+  auto parsed = parse_urdf_description(urdf, "the server's URDF");
+  ASSERT_TRUE(parsed) << parsed.error().message;
+  EXPECT_EQ(parsed->model->dof(), 6);
+  EXPECT_EQ(parsed->source, "the server's URDF");
+  EXPECT_EQ(parsed->urdf_text, urdf);
+  EXPECT_FALSE(parsed->root_link.empty());
+  EXPECT_NE(parsed->link("link6"), nullptr);
+  EXPECT_FALSE(parsed->marker);  // no companion files
+  auto bad = parse_urdf_description("<robot name='x'><link name='a'/>", "the server's URDF");
+  ASSERT_FALSE(bad);
+  EXPECT_THAT(bad.error().message, HasSubstr("the server's URDF"));
+}
+
 TEST(RobotDescription, ThePumaLoadsAsBefore) {
   auto dh = load_robot_description({"puma560", ""});
   ASSERT_TRUE(dh) << dh.error().message;
