@@ -79,6 +79,8 @@ void add_console_command(CLI::App& app, Commands& commands) {
   console_app->add_option("--screenshot", console.screenshot, "write the console's image (PNG)");
   console_app->add_option("--frames", console.frames, "stop after N frames (screenshot: 60)");
   console_app->add_option("--script", console.script, "replay UI actions (docs/console.md)");
+  console_app->add_option("--record", console.record,
+                          "record the session to this MCAP file (Foxglove; docs/recording.md)");
   console_app->add_option("--lease-heartbeat", console.lease_heartbeat_s,
                           "s between lease renewals asked of the robot server (0: its default)");
 

@@ -30,6 +30,7 @@
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/token_file.hpp"
+#include "telear/record/server_recorder.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/framebuffer_readback.hpp"
@@ -100,6 +101,7 @@ struct ConsoleApp::Impl {
   double fps_accumulator = 0.0;
   int fps_frames = 0;
   bool auto_take_control = false;
+  std::unique_ptr<record::ServerRecorder> recorder;  // --record
   std::ostream* log = nullptr;
 
   ~Impl() {
@@ -165,6 +167,7 @@ ConsoleApp::ConsoleApp(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 ConsoleApp::~ConsoleApp() {
   if (session_) session_->disconnect();
   session_.reset();
+  if (impl_ && impl_->recorder) (void)impl_->recorder->stop();
   servers_.reset();
 }
 
@@ -288,6 +291,28 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     auto lines = load_ui_script(options.script, m.model->dof());
     if (!lines) return lines.error();
     app->script_ = ScriptRunner(std::move(*lines));
+  }
+
+  // [SECTION] recording (--record): the servers the console starts with, the session's events
+  if (!options.record.empty()) {
+    record::ServerRecorderOptions recording;
+    recording.robot_address = robot.address;
+    recording.vision_address = vision.address;
+    recording.token = robot.token;
+    recording.client_name = "telear-console-record";
+    recording.recorder.path = options.record;
+    recording.recorder.metadata["recorded_by"] = "telear console";
+    auto recorder = record::ServerRecorder::start(recording);
+    if (!recorder) return recorder.error();
+    m.recorder = std::move(*recorder);
+    m.session_options.on_event = [raw = m.recorder.get()](const session::SessionEvent& e,
+                                                          std::int64_t monotonic_ns) {
+      raw->add_log(e.kind == session::SessionEvent::Kind::kError     ? record::LogLevel::kError
+                   : e.kind == session::SessionEvent::Kind::kWarning ? record::LogLevel::kWarning
+                                                                     : record::LogLevel::kInfo,
+                   e.message, monotonic_ns);
+    };
+    log << "telear console: recording to " << options.record << "\n";
   }
 
   auto session = session::Session::create(m.model, m.session_options);
@@ -576,10 +601,27 @@ bool ConsoleApp::frame() {
   return true;
 }
 
+Result<record::RecordingCounts> ConsoleApp::stop_recording() {
+  if (!impl_->recorder) return Error{"not recording (no --record)"};
+  return impl_->recorder->stop();
+}
+
 int ConsoleApp::run() {
   while (frame()) {
   }
   int status = script_.failures() > 0 ? 1 : 0;
+  if (impl_->recorder) {
+    auto counts = stop_recording();
+    if (!counts) {
+      *impl_->log << "telear console: " << counts.error().message << "\n";
+      status = 1;
+    } else {
+      std::uint64_t messages = 0;
+      for (const auto& [topic, n] : counts->written) messages += n;
+      *impl_->log << "telear console: recorded " << impl_->options.record << ": " << messages
+                  << " messages, " << counts->bytes << " bytes\n";
+    }
+  }
   if (!impl_->options.screenshot.empty()) {
     if (last_image_.empty()) {
       *impl_->log << "telear console: no image to write to " << impl_->options.screenshot << "\n";

@@ -128,6 +128,7 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   options.resolution = "320x240";
   options.script = script;
   options.frames = 1000000;  // keep running after the script (connection loss below)
+  options.record = (dir / "console.mcap").string();  // issue 22: --record
   std::ostringstream log;
   auto created = ConsoleApp::create(options, log);
   ASSERT_TRUE(created) << created.error().message;
@@ -161,6 +162,16 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   const Stats panels =
       region_stats(image, static_cast<int>(kWidth * 0.7), 80, kWidth - 5, kHeight - 40);
   EXPECT_GT(panels.stddev, 5.0);  // text and widgets
+
+  // The recording (--record): the session's states, its ghost, the video, its own events.
+  auto recorded = app.stop_recording();
+  ASSERT_TRUE(recorded) << recorded.error().message;
+  EXPECT_GT(recorded->written["/robot/joint_states"], 50u);  // 50 Hz over the script
+  EXPECT_GT(recorded->written["/ghost/joint_states"], 0u);
+  EXPECT_GT(recorded->written["/camera/left/image/compressed"], 10u);
+  EXPECT_GT(recorded->written["/events"], 5u);  // the lease, validation, execution ...
+  EXPECT_EQ(recorded->bytes, fs::file_size(dir / "console.mcap"));
+  EXPECT_THAT(log.str(), HasSubstr("telear console: recording to "));
 
   // Connection loss: stop the servers; the console says so and keeps drawing.
   const std::string token = app.servers()->token();

@@ -23,6 +23,7 @@
 #include "telear/console/ui_state.hpp"
 #include "telear/core/image.hpp"
 #include "telear/core/result.hpp"
+#include "telear/record/session_recorder.hpp"
 #include "telear/session/session.hpp"
 
 namespace telear::console {
@@ -51,6 +52,9 @@ class ConsoleApp {
   int frames_drawn() const { return frames_; }
   // The console's last drawn image (the whole window), RGB, top row first.
   const core::Image& last_image() const { return last_image_; }
+  // Ends the --record recording (the file is then complete) and returns what it wrote; an
+  // error when there is none or it failed. run() and the destructor end it too.
+  Result<record::RecordingCounts> stop_recording();
   // Captures the image at the end of every frame (tests), not only on a screenshot.
   void set_capture_every_frame(bool on) { capture_every_frame_ = on; }
 

@@ -38,6 +38,9 @@ struct ConsoleOptions {
   int frames = 0;                   // > 0: stop after this many frames (and the script)
   std::string script;               // UI actions to replay (ui_script.hpp)
   double max_fps = 60.0;            // frame pacing when there is no vsync (headless)
+  // Record the session to this MCAP file (record::ServerRecorder on the servers the console
+  // starts with, the session's events; docs/recording.md); empty: no recording.
+  std::string record;
 };
 
 }  // namespace telear::console
