@@ -11,6 +11,9 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "grey_sampling.hpp"
+#include "telear/vision/mono_calibration.hpp"
+
 namespace telear::vision {
 namespace {
 
@@ -42,21 +45,8 @@ int charuco_half_window(const std::vector<cv::Point2f>& points, const std::vecto
   return std::clamp(static_cast<int>(std::lround(0.8 * margin * nearest)), 2, 15);
 }
 
-// Bilinear grey level of a CV_8UC1 image at p (pixel centres at integers); p at least one
-// pixel inside the image.
-double charuco_grey_at(const cv::Mat& grey, const cv::Point2d& p) {
-  const int x0 = static_cast<int>(std::floor(p.x)), y0 = static_cast<int>(std::floor(p.y));
-  const double fx = p.x - x0, fy = p.y - y0;
-  const auto at = [&grey](int x, int y) {
-    return static_cast<double>(grey.at<std::uint8_t>(y, x));
-  };
-  return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
-         fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
-}
-
-double charuco_median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
+double grey_at(const cv::Mat& grey, const cv::Point2d& p) {
+  return bilinear_grey(grey, p.x, p.y);
 }
 
 cv::Point2d charuco_apply(const cv::Matx33d& H, const cv::Point2d& q) {
@@ -122,14 +112,14 @@ double charuco_half_edge(const cv::Mat& grey, const ToImage& to_image, const cv:
   constexpr double kStep = 0.05;
   std::vector<double> dark, light;
   for (const Base& b : bases) {
-    dark.push_back(charuco_grey_at(grey, b.point - 0.75 * b.into_black * b.normal));
+    dark.push_back(grey_at(grey, b.point - 0.75 * b.into_black * b.normal));
     double brightest = 0.0;
     for (double s = -0.5 * b.into_black; s <= b.into_white; s += kStep) {
-      brightest = std::max(brightest, charuco_grey_at(grey, b.point + s * b.normal));
+      brightest = std::max(brightest, grey_at(grey, b.point + s * b.normal));
     }
     light.push_back(brightest);
   }
-  const double black = charuco_median(dark), white = charuco_median(light);
+  const double black = median_of(dark), white = median_of(light);
   if (white - black < 20.0) return -1.0;
   const double level = 0.5 * (black + white);
   int found = 0;
@@ -137,9 +127,9 @@ double charuco_half_edge(const cv::Mat& grey, const ToImage& to_image, const cv:
     // The dark -> light crossing nearest to the current line, from inside the black square to
     // the far side of the white margin (beyond it the marker's black border only darkens).
     double best = std::numeric_limits<double>::infinity();
-    double previous = charuco_grey_at(grey, b.point - b.into_black * b.normal);
+    double previous = grey_at(grey, b.point - b.into_black * b.normal);
     for (double s = -b.into_black; s < b.into_white; s += kStep) {
-      const double next = charuco_grey_at(grey, b.point + (s + kStep) * b.normal);
+      const double next = grey_at(grey, b.point + (s + kStep) * b.normal);
       if (previous < level && next >= level) {
         const double crossing = s + kStep * (level - previous) / (next - previous);
         if (std::abs(crossing) < std::abs(best)) best = crossing;

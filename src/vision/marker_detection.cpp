@@ -10,25 +10,14 @@
 #include <opencv2/aruco.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "grey_sampling.hpp"
+#include "telear/vision/mono_calibration.hpp"
+
 namespace telear::vision {
 namespace {
 
-// Bilinear sample of a CV_8UC1 image at (x, y) (pixel centres at integers); the caller keeps
-// the point at least one pixel inside the image.
 double sample(const cv::Mat& grey, const Eigen::Vector2d& p) {
-  const int x0 = static_cast<int>(std::floor(p.x()));
-  const int y0 = static_cast<int>(std::floor(p.y()));
-  const double fx = p.x() - x0, fy = p.y() - y0;
-  const auto at = [&grey](int x, int y) {
-    return static_cast<double>(grey.at<std::uint8_t>(y, x));
-  };
-  return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
-         fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
-}
-
-double median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
+  return bilinear_grey(grey, p.x(), p.y());
 }
 
 }  // namespace
@@ -70,7 +59,7 @@ std::vector<Eigen::Vector2d> refine_marker_corners(const cv::Mat& grey,
         dark.push_back(sample(grey, p - reach * normal));
         light.push_back(sample(grey, p + reach * normal));
       }
-      const double black = median(dark), white = median(light);
+      const double black = median_of(dark), white = median_of(light);
       if (white - black < 20.0) return initial;
       const double level = 0.5 * (black + white);
       std::vector<Eigen::Vector2d> edge;
