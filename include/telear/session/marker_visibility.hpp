@@ -13,10 +13,11 @@
 //   3. nothing is in the way: the sight lines from the marker to the camera centre miss every
 //      triangle of the arm's own body at that configuration (its links, gripper fingers and
 //      moving parts, core::ArmBody) and of the workspace's objects (the table, the box).
-//      The sight lines start 2 cm in front of a 3 x 3 grid over the target and the inner part
-//      of its quiet zone (sight_scale times the target's half size from its centre: the white
+//      The sight lines start 2 cm in front of a grid over the target and the inner part of
+//      its quiet zone (sight_scale times the target's half size from its centre: the white
 //      border the detector needs), which also leaves room for a real arm a little larger
-//      than its nominal body.
+//      than its nominal body. The grid is 3 x 3 for a marker; a board's points are at most a
+//      square apart, so that no link stands between two lines and hides a few corners.
 //
 // The target sits where the robot's marker mount says (its pose on the flange); it is the
 // mount's own ArUco marker unless another (vision::RegistrationTarget) is given.
