@@ -9,7 +9,7 @@ if(NOT TELEAR_NODE_EXECUTABLE)
   set(TELEAR_NODE_EXECUTABLE /usr/bin/node)
 endif()
 telear_test(record_mcap_test
-  SOURCES mcap_writer_test.cpp mcap_reference_test.cpp
+  SOURCES mcap_writer_test.cpp mcap_reference_test.cpp mcap_reader_test.cpp
   LIBS telear::record_mcap telear::core nlohmann_json::nlohmann_json)
 target_compile_definitions(record_mcap_test PRIVATE
   TELEAR_NODE_EXECUTABLE="${TELEAR_NODE_EXECUTABLE}"
