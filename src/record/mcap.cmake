@@ -1,4 +1,4 @@
-# record_mcap: the MCAP writer (include/telear/record/mcap_writer.hpp, docs/recording.md) over
+# record_mcap: the MCAP writer and reader (include/telear/record/mcap_writer.hpp, docs/recording.md) over
 # Debian's libzstd (libzstd-dev); no MCAP library is packaged, so the format is written here from
 # the public specification.
 #
