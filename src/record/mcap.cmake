@@ -1,6 +1,6 @@
-# record_mcap: the MCAP writer and reader (include/telear/record/mcap_writer.hpp, docs/recording.md) over
-# Debian's libzstd (libzstd-dev); no MCAP library is packaged, so the format is written here from
-# the public specification.
+# record_mcap: the MCAP writer and reader (include/telear/record/mcap_writer.hpp,
+# mcap_reader.hpp, docs/recording.md) over Debian's libzstd (libzstd-dev); no MCAP library is
+# packaged, so the format is written here from the public specification.
 #
 # No precompiled header: the writer includes none of the third-party headers of telear's header
 # sets, and telear_pch_level would give it the network layer's (gRPC, OpenCV), whose textual

@@ -1,5 +1,6 @@
-# The MCAP writer and reader (mcap_reader_test.cpp: round trips, cuts, damage): the writer's byte layout against the specification, error paths and statistics
-# (mcap_writer_test.cpp), and its files read by the reference reader, npm's @mcap/core under node
+# The MCAP writer and reader: the writer's byte layout against the specification, error paths
+# and statistics (mcap_writer_test.cpp); the reader's round trips, cuts and damage
+# (mcap_reader_test.cpp); and its files read by the reference reader, npm's @mcap/core under node
 # (mcap_reference_test.cpp runs tests/record/js/read_mcap.mjs; its packages are installed by
 # `npm ci --prefix tests/record/js`, which scripts/test.sh runs). A few seconds in all.
 find_program(TELEAR_NODE_EXECUTABLE node)
