@@ -102,6 +102,7 @@ struct ConsoleApp::Impl {
   int fps_frames = 0;
   bool auto_take_control = false;
   std::unique_ptr<record::ServerRecorder> recorder;  // --record
+  std::uint64_t recorded_frame = 0;                  // the last frame whose latency it has
   std::ostream* log = nullptr;
 
   ~Impl() {
@@ -302,6 +303,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     recording.client_name = "telear-console-record";
     recording.recorder.path = options.record;
     recording.recorder.metadata["recorded_by"] = "telear console";
+    recording.stream_video = false;  // the session's own stream feeds it (below)
     auto recorder = record::ServerRecorder::start(recording);
     if (!recorder) return recorder.error();
     m.recorder = std::move(*recorder);
@@ -312,6 +314,8 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
                                                                      : record::LogLevel::kInfo,
                    e.message, monotonic_ns);
     };
+    m.session_options.vision.on_received =
+        [raw = m.recorder.get()](const net::ReceivedStereoFrame& frame) { raw->add_frame(frame); };
     log << "telear console: recording to " << options.record << "\n";
   }
 
@@ -385,6 +389,8 @@ void ConsoleApp::rebuild_session() {
   options.vision.address = ui_.vision_address;
   options.robot.token = ui_.token;
   options.vision.token = ui_.token;
+  // --record records the servers the console started with, not others connected to later.
+  if (options.vision.address != m.session_options.vision.address) options.vision.on_received = {};
   auto session = session::Session::create(m.model, options);
   if (!session) {
     ui_.last_message = "connect: " + session.error().message;
@@ -473,6 +479,11 @@ bool ConsoleApp::frame() {
   }
   if (ui_.reconnect_requested) rebuild_session();
   session_->update(dt);
+  if (m.recorder && session_->view().frame &&
+      session_->view().frame->frame_id != m.recorded_frame) {
+    m.recorded_frame = session_->view().frame->frame_id;
+    m.recorder->add_latency(*session_->view().frame);
+  }
   if (m.auto_take_control && session_->view().real && session_->robot_connected()) {
     m.auto_take_control = false;
     if (Status s = session_->take_control(); !s.ok()) {

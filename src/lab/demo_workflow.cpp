@@ -298,10 +298,14 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
     recording.recorder.metadata["recorded_by"] = "telear demo";
     recording.recorder.metadata["telear_version"] = std::string(core::version_string());
     recording.recorder.metadata["calibration_file"] = stereo_file;
+    recording.stream_video = false;  // the session's own stream feeds it (below)
     auto started = record::ServerRecorder::start(recording);
     if (!started) return started.error();
     mcap = std::move(started).value();
     note("recording the task to " + options.record_path);
+    session_options.vision.on_received = [raw = mcap.get()](const net::ReceivedStereoFrame& f) {
+      raw->add_frame(f);
+    };
     // The session's events (validation, execution, AR/VR) on the recording's /events.
     session_options.on_event = [raw = mcap.get()](const session::SessionEvent& e,
                                                   std::int64_t monotonic_ns) {
@@ -350,7 +354,13 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   }
   auto view = render::ArView::create(*model, arm_body, cameras, objects);
   if (!view) return view.error();
-  SessionRecorder recorder(session, *view, {options.out_dir, options.fps, options.video});
+  RecorderOptions recorder_options{options.out_dir, options.fps, options.video, {}};
+  if (mcap) {
+    recorder_options.on_frame = [raw = mcap.get()](const net::DecodedStereoFrame& frame) {
+      raw->add_latency(frame);
+    };
+  }
+  SessionRecorder recorder(session, *view, recorder_options);
   const render::ComposedSize size =
       render::composed_size(render::StereoLayout::kSideBySide, options.width, options.height);
   if (Status s = recorder.open_video(size.width, size.height); !s) return s.error();

@@ -59,6 +59,7 @@ void SessionRecorder::tick() {
   const session::SessionView& v = session_.view();
   if (v.frame && v.frame->frame_id != last_frame_id_) {
     last_frame_id_ = v.frame->frame_id;
+    if (options_.on_frame) options_.on_frame(*v.frame);
     recording_.latency.add(v.frame->latency);
     ++recording_.frames_shown;
   }

@@ -73,7 +73,7 @@ Result<std::unique_ptr<ServerRecorder>> ServerRecorder::start(
       if (SessionRecorder* r = sink->load()) r->add_frame(frame);
     };
     impl->vision = std::make_unique<net::VisionClient>(vision_options);
-    auto camera_info = impl->vision->get_camera_info();
+    auto camera_info = impl->vision->get_camera_info();  // a call of its own: no stream
     if (!camera_info) {
       return Error{"recording: vision server " + options.vision_address + ": " +
                    camera_info.error().message};
@@ -82,6 +82,7 @@ Result<std::unique_ptr<ServerRecorder>> ServerRecorder::start(
       setup.cameras = camera_info->cameras;
       setup.calibration_yaml = camera_info->calibration_yaml;
     }
+    if (!options.stream_video) impl->vision.reset();  // the caller feeds the frames
   }
   SessionRecorderOptions recorder_options = options.recorder;
   recorder_options.metadata["robot_server"] = options.robot_address;
@@ -97,6 +98,14 @@ Result<std::unique_ptr<ServerRecorder>> ServerRecorder::start(
 
 void ServerRecorder::add_log(LogLevel level, const std::string& text, std::int64_t client_ns) {
   impl_->recorder->add_log(level, text, client_ns);
+}
+
+void ServerRecorder::add_frame(const net::ReceivedStereoFrame& frame) {
+  if (SessionRecorder* r = impl_->sink.load()) r->add_frame(frame);
+}
+
+void ServerRecorder::add_latency(const net::DecodedStereoFrame& frame) {
+  if (SessionRecorder* r = impl_->sink.load()) r->add_latency(frame);
 }
 
 Result<RecordingCounts> ServerRecorder::stop() {

@@ -88,6 +88,7 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
   EXPECT_GE(recording["messages"]["/robot/joint_states"].get<double>(),
             30.0 * report["execution"]["plan_duration_s"].get<double>());
   EXPECT_GT(recording["messages"]["/camera/left/image/compressed"].get<int>(), 20);
+  EXPECT_GT(recording["messages"]["/telear/latency"].get<int>(), 20);  // the session's frames
   EXPECT_GT(recording["messages"]["/ghost/joint_states"].get<int>(), 0);
   EXPECT_GT(recording["messages"]["/events"].get<int>(), 3);
   EXPECT_EQ(test::slurp(d + "/task.mcap").substr(0, 8), std::string("\x89MCAP0\r\n", 8));

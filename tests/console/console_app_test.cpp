@@ -168,7 +168,9 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   ASSERT_TRUE(recorded) << recorded.error().message;
   EXPECT_GT(recorded->written["/robot/joint_states"], 50u);  // 50 Hz over the script
   EXPECT_GT(recorded->written["/ghost/joint_states"], 0u);
+  // The session's own stream feeds it (no second stream to decode): frames and their latency.
   EXPECT_GT(recorded->written["/camera/left/image/compressed"], 10u);
+  EXPECT_GT(recorded->written["/telear/latency"], 10u);
   EXPECT_GT(recorded->written["/events"], 5u);  // the lease, validation, execution ...
   EXPECT_EQ(recorded->bytes, fs::file_size(dir / "console.mcap"));
   EXPECT_THAT(log.str(), HasSubstr("telear console: recording to "));

@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,6 +59,8 @@ struct RecorderOptions {
   std::string out_dir;
   double fps = 15.0;  // display ticks (and video frames) per second, > 0
   bool video = true;  // false: no MP4 (key frames still written)
+  // Called with each new frame the session shows (telear demo --record: its latency).
+  std::function<void(const net::DecodedStereoFrame&)> on_frame;
 };
 
 class SessionRecorder {

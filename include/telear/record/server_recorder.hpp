@@ -20,7 +20,11 @@ struct ServerRecorderOptions {
   std::string vision_address;  // HOST:PORT; empty: no video
   std::string token;           // the servers' bearer token
   std::string client_name = "telear-record";
-  double state_rate_hz = 50.0;      // 1..250 (the robot server's bounds)
+  double state_rate_hz = 50.0;  // 1..250 (the robot server's bounds)
+  // false: no video stream of its own -- the caller feeds add_frame() and add_latency() from
+  // the vision client it already has (the console, the demo: a second stream would decode
+  // every frame twice on the operator's machine). The calibration is still asked for.
+  bool stream_video = true;
   SessionRecorderOptions recorder;  // path, queue, metadata
 };
 
@@ -34,6 +38,10 @@ class ServerRecorder {
   ServerRecorder& operator=(const ServerRecorder&) = delete;
 
   void add_log(LogLevel level, const std::string& text, std::int64_t client_ns);
+  // With stream_video false: the caller's frames (VisionClientOptions::on_received) and their
+  // latency once decoded. Thread-safe, never blocking.
+  void add_frame(const net::ReceivedStereoFrame& frame);
+  void add_latency(const net::DecodedStereoFrame& frame);
   // Stops the clients, then closes the file (SessionRecorder::close). A second call returns
   // the same counts.
   Result<RecordingCounts> stop();
