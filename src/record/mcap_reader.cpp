@@ -18,6 +18,7 @@
 #include <tuple>
 #include <utility>
 
+#include "mcap_format.hpp"
 #include "telear/record/mcap_crc32.hpp"
 
 namespace telear::record {
@@ -25,28 +26,10 @@ namespace telear::record {
 // built as one unity source in which an anonymous namespace would merge with the writer's.
 namespace mcap_reader_detail {
 
-// Record opcodes (https://mcap.dev/spec#records).
-enum Opcode : std::uint8_t {
-  kOpHeader = 0x01,
-  kOpFooter = 0x02,
-  kOpSchema = 0x03,
-  kOpChannel = 0x04,
-  kOpMessage = 0x05,
-  kOpChunk = 0x06,
-  kOpChunkIndex = 0x08,
-  kOpAttachment = 0x09,
-  kOpAttachmentIndex = 0x0A,
-  kOpStatistics = 0x0B,
-  kOpMetadata = 0x0C,
-  kOpMetadataIndex = 0x0D,
-  kOpDataEnd = 0x0F,
-};
-
-constexpr std::uint8_t kMagic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
-constexpr std::uint64_t kPrefix = 1 + 8;  // opcode, uint64 content length
+using namespace mcap_format;  // NOLINT(google-build-using-namespace): the format's names
+constexpr std::uint64_t kPrefix = kRecordPrefix;
 constexpr std::uint64_t kFooterContent = 8 + 8 + 4;
 constexpr std::uint64_t kFooterRecord = kPrefix + kFooterContent;
-constexpr std::uint64_t kMessageFields = 2 + 4 + 8 + 8;
 
 // Fields are read by copying little-endian bytes into native integers.
 static_assert(std::endian::native == std::endian::little);

@@ -14,36 +14,14 @@
 #include <utility>
 #include <vector>
 
+#include "mcap_format.hpp"
 #include "telear/record/mcap_crc32.hpp"
 
 namespace telear::record {
 // Named rather than anonymous: McapWriter::State, which has external linkage, holds these.
 namespace mcap_detail {
 
-// Record opcodes (https://mcap.dev/spec#records).
-enum McapOpcode : std::uint8_t {
-  kOpHeader = 0x01,
-  kOpFooter = 0x02,
-  kOpSchema = 0x03,
-  kOpChannel = 0x04,
-  kOpMessage = 0x05,
-  kOpChunk = 0x06,
-  kOpMessageIndex = 0x07,
-  kOpChunkIndex = 0x08,
-  kOpAttachment = 0x09,
-  kOpAttachmentIndex = 0x0A,
-  kOpStatistics = 0x0B,
-  kOpMetadata = 0x0C,
-  kOpMetadataIndex = 0x0D,
-  kOpSummaryOffset = 0x0E,
-  kOpDataEnd = 0x0F,
-};
-
-constexpr std::uint8_t kMcapMagic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
-// opcode, uint64 content length
-constexpr std::size_t kRecordPrefix = 1 + 8;
-// channel_id, sequence, log_time, publish_time
-constexpr std::size_t kMessageFields = 2 + 4 + 8 + 8;
+using namespace mcap_format;  // NOLINT(google-build-using-namespace): the format's names
 
 // Fields are stored little-endian (the spec's byte order) by copying the native
 // representation, so the writer builds only for little-endian machines.
@@ -237,7 +215,7 @@ Result<McapWriter> McapWriter::open(const std::string& path, const McapWriterOpt
   McapWriter writer(std::move(state));
   State& s = *writer.state_;
   s.chunk.reserve(options.chunk_size + options.chunk_size / 8);
-  s.scratch.put_bytes(kMcapMagic, sizeof(kMcapMagic));
+  s.scratch.put_bytes(kMagic, sizeof(kMagic));
   std::size_t header = s.scratch.begin_record(kOpHeader);
   s.scratch.put_string(options.profile);
   s.scratch.put_string(options.library);
@@ -564,7 +542,7 @@ Status McapWriter::State::write_summary_and_close() {
   summary.put(summary_start);
   summary.put(summary_offset_start);
   summary.put(crc32(summary.data(), summary.size()));
-  summary.put_bytes(kMcapMagic, sizeof(kMcapMagic));
+  summary.put_bytes(kMagic, sizeof(kMagic));
   if (Status ok = emit(summary, /*in_data_section=*/false); !ok) return ok;
 
   closed = true;
