@@ -219,6 +219,11 @@ struct SessionRecorder::Impl {
     if (state.q.size() == static_cast<Eigen::Index>(joint_names.size()) && state.q.allFinite()) {
       write(kTopicRobotJointStates, log_wall_ns, wall_ns,
             joint_states(state.q, &state.qd, state.gripper, wall_ns));
+      // The servo's command beside the measurement: the tracking error is their difference.
+      if (state.q_commanded.size() == state.q.size() && state.q_commanded.allFinite()) {
+        write(kTopicRobotJointCommands, log_wall_ns, wall_ns,
+              joint_states(state.q_commanded, &state.qd_commanded, state.gripper_target, wall_ns));
+      }
       foxglove::FrameTransforms tf;
       add_link_transforms(tf, state.q, state.gripper, "", wall_ns);
       const bool ghost = s.ghost_q.size() == state.q.size() && s.ghost_q.allFinite();
@@ -399,6 +404,7 @@ Result<std::unique_ptr<SessionRecorder>> SessionRecorder::create(
   impl->channel(kTopicLeftCalibration, calibration);
   impl->channel(kTopicRightCalibration, calibration);
   impl->channel(kTopicRobotJointStates, joints);
+  impl->channel(kTopicRobotJointCommands, joints);
   impl->channel(kTopicGhostJointStates, joints);
   impl->channel(kTopicTransforms, schema_for<foxglove::FrameTransforms>());
   impl->channel(kTopicWorkspace, schema_for<foxglove::SceneUpdate>());

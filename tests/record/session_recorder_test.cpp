@@ -183,6 +183,9 @@ TEST(SessionRecorder, ARecordingOfRunningServersDecodesWithItsOwnSchemas) {
   ASSERT_EQ(joints["first"]["joints"].size(), 7u);  // six joints and the gripper
   EXPECT_EQ(joints["first"]["joints"][0]["name"], info->joints[0].name);
   EXPECT_EQ(joints["first"]["joints"][6]["name"], "gripper");
+  // The servo's command with every state (the tracking error is the difference).
+  EXPECT_EQ(topics[std::string(kTopicRobotJointCommands)]["count"], joints["count"]);
+  EXPECT_EQ(topics[std::string(kTopicRobotJointCommands)]["schema"], "foxglove.JointStates");
   const auto& ghosts = topics[std::string(kTopicGhostJointStates)];
   EXPECT_GE(ghosts["count"].get<int>(), 40);
   for (int i = 0; i < 6; ++i) {

@@ -7,8 +7,9 @@
 //   /camera/left/calibration         foxglove.CameraCalibration at the start, then every second
 //   /camera/right/calibration        foxglove.CameraCalibration
 //   /robot/joint_states              foxglove.JointStates       the measured state, every sample
-//   /ghost/joint_states              foxglove.JointStates       the operator's ghost (while sent)
-//   /tf                              foxglove.FrameTransforms   every link of the arm, of the
+//   /robot/joint_commands            foxglove.JointStates       the servo's command (tracking
+//   error) /ghost/joint_states              foxglove.JointStates       the operator's ghost (while
+//   sent) /tf                              foxglove.FrameTransforms   every link of the arm, of the
 //                                                               ghost (ghost/ frames), cameras
 //   /workspace                       foxglove.SceneUpdate       the robot server's workspace
 //   /events                          foxglove.Log               lease, faults, e-stop, drops...
@@ -24,6 +25,7 @@ inline constexpr std::string_view kTopicRightImage = "/camera/right/image/compre
 inline constexpr std::string_view kTopicLeftCalibration = "/camera/left/calibration";
 inline constexpr std::string_view kTopicRightCalibration = "/camera/right/calibration";
 inline constexpr std::string_view kTopicRobotJointStates = "/robot/joint_states";
+inline constexpr std::string_view kTopicRobotJointCommands = "/robot/joint_commands";
 inline constexpr std::string_view kTopicGhostJointStates = "/ghost/joint_states";
 inline constexpr std::string_view kTopicTransforms = "/tf";
 inline constexpr std::string_view kTopicWorkspace = "/workspace";
