@@ -7,7 +7,7 @@
 # fallback needs include paths this library does not have. TELEAR_PCH is switched off for this
 # one call (a normal variable over the cache entry), then the cache entry shows again.
 set(TELEAR_PCH OFF)
-telear_library(record_mcap mcap_crc32.cpp mcap_reader.cpp mcap_writer.cpp)
+telear_library(record_mcap mcap_crc32.cpp mcap_reader.cpp mcap_reader_messages.cpp mcap_writer.cpp)
 unset(TELEAR_PCH)
 # By path rather than pkg-config's imported target: the installed package's config then needs no
 # extra dependency lookup (cmake/telearConfig.cmake.in) for a library every Debian has.
