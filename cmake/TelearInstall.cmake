@@ -9,7 +9,8 @@
 #                                      telearTargets.cmake: find_package(telear) gives
 #                                      telear::core, ::geometry, ::vision, ::render, ::sim_robot, ::sim_rig,
 #                                      ::proto, ::net, ::record_mcap, ::record_schemas_proto,
-#                                      ::record_schemas, ::record, ::session, ::lab, ::console
+#                                      ::record_schemas, ::record, ::report, ::session, ::lab,
+#                                      ::console
 # bin/ and share/telear/data are fixed (not GNUInstallDirs' BINDIR / DATADIR) because
 # data_directory() in src/core/robot_loader.cpp looks for the one relative to the other.
 

@@ -51,6 +51,9 @@ packages=(
   opencv-doc
   # record: libzstd compresses MCAP chunks; node runs the reference MCAP reader (tests/record/js)
   libzstd-dev nodejs
+  # report: gnuplot draws a recording's plots (its pngcairo terminal), fed through
+  # gnuplot-iostream (header-only, over Boost.Iostreams, which it brings in)
+  gnuplot-nox libgnuplot-iostream-dev
 )
 # npm: Debian's package, unless the installed nodejs already brings it (NodeSource's does, and
 # conflicts with Debian's npm).

@@ -17,6 +17,7 @@
 #include "apps/record_command.hpp"
 #include "apps/register_command.hpp"
 #include "apps/render_command.hpp"
+#include "apps/report_command.hpp"
 #include "apps/robot_acm_command.hpp"
 #include "apps/sim_command.hpp"
 #include "apps/sim_frame_command.hpp"
@@ -53,8 +54,13 @@ void add_demo_command(CLI::App& app, Commands& commands) {
                    "marker's edges on whole pixels)")
       ->capture_default_str();
   demo_app->add_flag("--no-video", demo.no_video, "skip the MP4 (key frames and report only)");
-  demo_app->add_option("--record", demo.record,
-                       "record the task to this MCAP file (Foxglove; docs/recording.md)");
+  CLI::Option* record = demo_app->add_option(
+      "--record", demo.record,
+      "record the task to this MCAP file (Foxglove; docs/recording.md); default OUT/session.mcap");
+  demo_app
+      ->add_flag("--no-record", demo.no_record,
+                 "record nothing (the report then has no plots of the recording)")
+      ->excludes(record);
 
   commands.push_back({demo_app, [options] { return run_demo(*options, std::cout, std::cerr); }});
 }
@@ -78,6 +84,19 @@ void add_record_command(CLI::App& app, Commands& commands) {
       ->check(CLI::Range(1.0, 250.0));
   commands.push_back(
       {record_app, [options] { return run_record(*options, std::cout, std::cerr); }});
+}
+
+// [SECTION] report (docs/recording.md, "Plots: telear report")
+
+void add_report_command(CLI::App& app, Commands& commands) {
+  auto options = std::make_shared<ReportCommandOptions>();
+  ReportCommandOptions& report = *options;
+  CLI::App* report_app = app.add_subcommand(
+      "report", "plots (PNG, gnuplot) and a Markdown summary of a recording (MCAP)");
+  report_app->add_option("recording", report.input, "the MCAP file, F.mcap")->required();
+  report_app->add_option("-o,--output", report.output_dir, "the folder to write into")->required();
+  commands.push_back(
+      {report_app, [options] { return run_report(*options, std::cout, std::cerr); }});
 }
 
 // [SECTION] kin

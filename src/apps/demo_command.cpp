@@ -46,7 +46,10 @@ int run_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   demo.fps = options.fps;
   demo.camera_fps = options.camera_fps;
   demo.live_multisample = options.live_multisample;
-  demo.record_path = options.record;
+  // Recorded by default, so that the report has its plots; --record names the file.
+  if (!options.no_record) {
+    demo.record_path = options.record.empty() ? options.out + "/session.mcap" : options.record;
+  }
   demo.video = !options.no_video;
   if (Status s = demo.validate(); !s) {
     err << "telear demo: " << s.error().message << "\n";

@@ -11,7 +11,9 @@
 //      injected video delay (--delay-ms) shows the AR -> VR switch and back
 //   7. write the stereo AR video (MP4, side by side), key frames (PNG), report.json and
 //      report.md (calibration accuracy, overlay error per eye, fps and latency per stage,
-//      bytes sent vs jogging, tracking error, AR/VR switches)
+//      bytes sent vs jogging, tracking error, AR/VR switches); the task's recording
+//      (OUT/session.mcap unless --record or --no-record) and its plots (`telear report`'s),
+//      which report.md shows
 
 #include <cstdint>
 #include <ostream>
@@ -32,7 +34,8 @@ struct DemoOptions : geometry::RobotSelection {
   double fps = 15.0;         // the recorded video's (and the display loop's) rate
   double camera_fps = 20.0;  // the simulated cameras' rate
   int live_multisample = 4;  // the live video's MSAA samples per pixel (lab::DemoOptions)
-  std::string record;        // the task recorded to this MCAP file; empty: none
+  std::string record;        // the task recorded to this MCAP file; empty: OUT/session.mcap
+  bool no_record = false;    // record nothing (then no plots of the recording either)
   bool no_video = false;     // skip the MP4 (key frames and report still written)
 };
 

@@ -133,6 +133,11 @@ std::string demo_report_json(const DemoFacts& facts) {
                        {"switches", switches}};
   if (!facts.mcap_json.empty()) {
     report["recording"] = nlohmann::json::parse(facts.mcap_json, nullptr, false);
+    nlohmann::json plots = nlohmann::json::array();
+    for (const auto& [file, title] : facts.plots) plots.push_back(file);
+    report["recording"]["plots"] = plots;
+    report["recording"]["summary"] = facts.recording_report_md;
+    report["recording"]["plot_error"] = facts.plot_error;
   }
   report["outputs"] = {{"video", r.video_path},
                        {"video_codec", r.video_codec},
@@ -222,6 +227,16 @@ std::string demo_report_markdown(const DemoFacts& facts) {
         std::to_string(facts.vr_to_ar) + " VR -> AR switches (injected delay " +
         std::to_string(facts.injected_delay_ms) + " ms)\n- total " + fixed(facts.seconds, 1) +
         " s\n";
+  // The recording's plots (`telear report`), drawn into the same folder.
+  if (!facts.plots.empty() || !facts.plot_error.empty()) {
+    md += "\n## Plots of the recording\n\n";
+    if (!facts.recording_report_md.empty()) {
+      md += "The task's MCAP recording as `telear report` plots it; its figures and events: [" +
+            facts.recording_report_md + "](" + facts.recording_report_md + ").\n";
+    }
+    if (facts.plots.empty()) md += "\nPlots not drawn: " + facts.plot_error + ".\n";
+    for (const auto& [file, title] : facts.plots) md += "\n![" + title + "](" + file + ")\n";
+  }
   return md;
 }
 

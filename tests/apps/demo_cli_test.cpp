@@ -92,6 +92,17 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
   EXPECT_GT(recording["messages"]["/ghost/joint_states"].get<int>(), 0);
   EXPECT_GT(recording["messages"]["/events"].get<int>(), 3);
   EXPECT_EQ(test::slurp(d + "/task.mcap").substr(0, 8), std::string("\x89MCAP0\r\n", 8));
+  // ... and plotted by `telear report` into the same folder, report.md showing the plots.
+  EXPECT_EQ(recording["plot_error"], "");
+  EXPECT_EQ(recording["summary"], "recording_report.md");
+  ASSERT_EQ(recording["plots"].size(), 5u) << recording;
+  for (const auto& plot : recording["plots"]) {
+    const std::string name = plot.get<std::string>();
+    EXPECT_GT(fs::file_size(d + "/" + name), 1000u) << name;
+    EXPECT_NE(test::slurp(d + "/report.md").find("](" + name + ")"), std::string::npos) << name;
+  }
+  EXPECT_NE(test::slurp(d + "/recording_report.md").find("| shoulder | deg | "), std::string::npos);
+  EXPECT_FALSE(fs::exists(d + "/session.mcap"));  // --record named another file
   // The injected delay: at least one switch to VR and back.
   EXPECT_GE(report["display"]["ar_to_vr"].get<int>(), 1);
   EXPECT_GE(report["display"]["vr_to_ar"].get<int>(), 2);  // the start, and after the delay
@@ -211,6 +222,10 @@ TEST(DemoCli, TheSevenJointUrdfArmRunsTheSameWorkflow) {
   const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("- collision: the first rehearsal, first contact at t = "), std::string::npos)
       << text;
+  // Recorded by default (OUT/session.mcap) and plotted: the tracking error of its seven joints.
+  EXPECT_EQ(report["recording"]["path"], d + "/session.mcap");
+  EXPECT_TRUE(fs::exists(d + "/session.mcap"));
+  EXPECT_NE(text.find("](tracking_error.png)"), std::string::npos) << text;
 }
 
 // Issue 26: the UR-type arm, the third shipped arm, end to end. Its demo exited at the
@@ -267,6 +282,10 @@ TEST(DemoCli, BadOptionsAreRefusedWithTheReason) {
   r = run_telear("demo --robot arm7 --tip nosuch --out " + bad);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("has no link named 'nosuch'"), std::string::npos) << r.err;
+  // Recording is the default; --no-record turns it off, and cannot go with --record.
+  r = run_telear("demo --no-record --record " + bad + "/x.mcap --out " + bad);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("telear demo: --record excludes --no-record"), std::string::npos) << r.err;
   r = run_telear("demo --missing-meshes maybe --out " + bad);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "telear demo: --missing-meshes: maybe not in {error,primitives}\n");

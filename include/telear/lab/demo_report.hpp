@@ -14,15 +14,17 @@
 // max_error_rad, max_error_joint (1-based), rms_error_rad, samples, tolerance_rad,
 // max_command_deviation_rad, plan_duration_s, waypoints, previewed_hash, executed_hash,
 // executed_is_previewed}, display.{ar_to_vr, vr_to_ar,
-// injected_delay_ms, switches}, outputs.{video, video_codec, video_warning, video_frames,
-// key_frames}, collision.{first_rehearsal, final_plan}.{collision_free, time_s, link, object,
-// depth_m (the first contact) | min_clearance_m, link, object (the workspace clearance)}
-// (absent without a collision check), seconds. Latency stages: the keys of net::kLatencyStages
-// (include/telear/net/latency_stages.hpp), capture_to_encode, encode, send_queue, network, decode,
-// total (nearest-rank percentiles).
+// injected_delay_ms, switches}, recording.{path, messages.<topic>, dropped, bytes, plots (PNG file
+// names), summary (recording_report.md), plot_error} (absent without a recording), outputs.{video,
+// video_codec, video_warning, video_frames, key_frames}, collision.{first_rehearsal,
+// final_plan}.{collision_free, time_s, link, object, depth_m (the first contact) | min_clearance_m,
+// link, object (the workspace clearance)} (absent without a collision check), seconds. Latency
+// stages: the keys of net::kLatencyStages (include/telear/net/latency_stages.hpp),
+// capture_to_encode, encode, send_queue, network, decode, total (nearest-rank percentiles).
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "telear/core/result.hpp"
@@ -47,6 +49,12 @@ struct DemoFacts {
   // The MCAP recording of the task (--record; a JSON object: path, messages per topic,
   // dropped, bytes); empty: none.
   std::string mcap_json;
+  // The recording's plots and summary (report::write_recording_report) in the output folder,
+  // linked from report.md: file names and titles, the summary's name; plot_error says why there
+  // are none (no gnuplot, or the recording could not be read).
+  std::vector<std::pair<std::string, std::string>> plots;  // file name, title
+  std::string recording_report_md;
+  std::string plot_error;
   std::string resolution;  // "WxH" as given
   double camera_fps = 0.0;
   double video_bytes_per_s = 0.0;
