@@ -40,6 +40,10 @@ void draw_connection_panel(PanelContext& ctx, const PanelLayout& layout) {
   }
   ImGui::SameLine();
   ImGui::Checkbox("Registration", &ui.show_registration);  // the panel (registration_panel.cpp)
+  ImGui::SameLine();
+  if (bool plots = ui.show_plots; ImGui::Checkbox("Plots", &plots)) {  // plots_panel.cpp
+    ctx.act({.kind = ActionKind::kViewPlots, .value = plots ? 1.0 : 0.0});
+  }
 
   const bool robot = s.robot_connected(), vision = s.vision_connected();
   led(robot, "robot");

@@ -180,6 +180,9 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
     case ActionKind::kViewReported:
       ui.show_reported = a.value != 0.0;
       return Status::Ok();
+    case ActionKind::kViewPlots:
+      ui.show_plots = a.value != 0.0;
+      return Status::Ok();
     case ActionKind::kCaptureOpen: {
       if (a.text.empty()) return Error{"give the folder to write the capture into"};
       session::CaptureSessionOptions options;
@@ -313,6 +316,8 @@ const char* to_string(ActionKind kind) {
       return "view mode";
     case ActionKind::kViewReported:
       return "view reported";
+    case ActionKind::kViewPlots:
+      return "view plots";
     case ActionKind::kCaptureOpen:
       return "registration open";
     case ActionKind::kCaptureAdd:

@@ -78,6 +78,10 @@ TEST(UiScript, ErrorsNameTheLine) {
   ASSERT_FALSE(q);
   EXPECT_THAT(q.error().message, HasSubstr("6 joint values needed, got 3"));
 
+  auto plots = parse_ui_script("view plots off\nview plots maybe\n", 6);
+  ASSERT_FALSE(plots);
+  EXPECT_THAT(plots.error().message, HasSubstr("line 2: view plots maybe: view plots on|off"));
+
   auto missing = load_ui_script("/nonexistent/script.txt", 6);
   ASSERT_FALSE(missing);
   EXPECT_THAT(missing.error().message, HasSubstr("cannot be read"));

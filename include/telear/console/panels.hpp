@@ -11,6 +11,8 @@
 //   status_panel.cpp      fps, latency per stage, round trip, bandwidth, overlay error, events
 //   registration_panel.cpp  the Session's registration capture: folder, add pose, per-eye
 //                         detection, coverage, solve and its result (docs/console.md)
+//   plots_panel.cpp       the session's live series: tracking error per joint, latency per
+//                         stage, video fps and bandwidth, AR / VR, against time
 //   estop_panel.cpp       the always-visible E-STOP button and the status bar
 
 #include <functional>
@@ -60,6 +62,8 @@ void draw_status_panel(PanelContext& ctx, const PanelLayout& layout);
 // Drawn while ui.show_registration, over the plan and status panels.
 void draw_registration_panel(PanelContext& ctx, const PanelLayout& layout,
                              const CoverageTexture& coverage);
+// Drawn while ui.show_plots, over the plan and status panels.
+void draw_plots_panel(PanelContext& ctx, const PanelLayout& layout);
 void draw_estop_panel(PanelContext& ctx, const PanelLayout& layout);
 void draw_status_bar(PanelContext& ctx, const PanelLayout& layout);
 

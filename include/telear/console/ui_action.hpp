@@ -57,6 +57,7 @@ enum class ActionKind {
   kViewVideo,     // text = raw | undistorted
   kViewMode,      // text = auto | ar | vr
   kViewReported,  // value != 0: show the reported ghost
+  kViewPlots,     // value != 0: show the Plots panel
   // registration capture (the Registration panel)
   kCaptureOpen,   // text = folder, spec = the target (empty: the robot's marker)
   kCaptureAdd,    // the pose the real arm is at

@@ -54,6 +54,9 @@ struct UiState {
   int named_index = 0;
   char typed_configuration[128] = "";  // degrees, comma separated
 
+  // [SECTION] live plots (the series are the Session's: Session::live_series())
+  bool show_plots = false;
+
   // [SECTION] registration capture (the capture itself is the Session's)
   bool show_registration = false;
   char capture_folder[256] = "captures";
