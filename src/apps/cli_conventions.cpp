@@ -90,6 +90,47 @@ void add_console_command(CLI::App& app, Commands& commands) {
                       }});
 }
 
+// [SECTION] replay (docs/recording.md, "Replay")
+
+void add_replay_command(CLI::App& app, Commands& commands) {
+  struct ReplayArguments {
+    console::ReplayOptions replay;
+    geometry::RobotSelection arm;
+  };
+  auto arguments = std::make_shared<ReplayArguments>();
+  arguments->arm.robot.clear();  // the recording's robot unless given
+  console::ReplayOptions& replay = arguments->replay;
+  CLI::App* replay_app = app.add_subcommand(
+      "replay", "a recording (MCAP) in the console's AR view: play, pause, seek, speed");
+  replay_app->add_option("file", replay.path, "the recording, F.mcap")->required();
+  add_robot_arguments(replay_app, arguments->arm, /*draws_meshes=*/true);
+  replay_app->add_option("--at", replay.at, "start at this time, s from the recording's start")
+      ->capture_default_str();
+  replay_app->add_option("--speed", replay.speed, "playback speed, 1/16 .. 16")
+      ->capture_default_str();
+  replay_app->add_flag(
+      "--paused", [arguments](std::int64_t) { arguments->replay.play = false; },
+      "open paused (windowed)");
+  replay_app
+      ->add_option_function<std::string>(
+          "--size",
+          [arguments](const std::string& text) {
+            const auto size = core::parse_image_size(text, kMinWindow, kMaxWindow);
+            if (size)
+              arguments->replay.width = size->width, arguments->replay.height = size->height;
+          },
+          "window size WIDTHxHEIGHT (default 1600x1000)")
+      ->check(image_size_validator(kMinWindow, kMaxWindow));
+  replay_app->add_flag("--headless", replay.headless, "EGL frame buffer, no window, no X");
+  replay_app->add_option("--screenshot", replay.screenshot,
+                         "write the window's image (PNG) after the last frame");
+  replay_app->add_option("--frames", replay.frames,
+                         "stop after N frames (headless: 1 by default, playing when > 1)");
+  commands.push_back({replay_app, [arguments] {
+                        return run_replay(arguments->replay, arguments->arm, std::cout, std::cerr);
+                      }});
+}
+
 // [SECTION] bench (one subcommand per benchmark: render, kin, stream)
 
 void add_bench_commands(CLI::App& app, Commands& commands) {

@@ -79,4 +79,22 @@ int run_console(const console::ConsoleOptions& given, const geometry::RobotSelec
   return (*app)->run();
 }
 
+int run_replay(const console::ReplayOptions& given, const geometry::RobotSelection& arm,
+               std::ostream& out, std::ostream& err) {
+  console::ReplayOptions options = given;
+  options.arm = arm.robot_spec();
+  auto geometry = arm.geometry_options();
+  if (!geometry) {
+    err << "telear replay: " << geometry.error().message << "\n";
+    return 2;
+  }
+  options.geometry = *geometry;
+  auto app = console::ReplayApp::create(options, out);
+  if (!app) {
+    err << "telear replay: " << app.error().message << "\n";
+    return 2;
+  }
+  return (*app)->run();
+}
+
 }  // namespace telear::cli

@@ -8,6 +8,7 @@
 
 #include "telear/console/console_options.hpp"
 #include "telear/console/local_servers.hpp"
+#include "telear/console/replay_app.hpp"
 #include "telear/geometry/robot_selection.hpp"
 
 namespace telear::cli {
@@ -20,5 +21,11 @@ console::LocalServersStarter simulated_local_servers();
 // --missing-meshes.
 int run_console(const console::ConsoleOptions& options, const geometry::RobotSelection& arm,
                 std::ostream& out, std::ostream& err);
+
+// `telear replay F.mcap` (console/replay_app.hpp). `arm`: --robot (empty: the recording's),
+// --tip, --package-path, --missing-meshes. Exit 0, 1 when the screenshot failed, 2 on bad
+// options or a recording that does not open.
+int run_replay(const console::ReplayOptions& options, const geometry::RobotSelection& arm,
+               std::ostream& out, std::ostream& err);
 
 }  // namespace telear::cli

@@ -1,9 +1,6 @@
 // clang-format off
 #include <epoxy/gl.h>  // before anything that includes GL/gl.h
 // clang-format on
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
-#include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
@@ -16,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "gui_context.hpp"
 #include "telear/console/console_actions.hpp"
 #include "telear/console/eye_windows.hpp"
 #include "telear/console/gamepad_input.hpp"
@@ -24,16 +22,16 @@
 #include "telear/console/panels.hpp"
 #include "telear/core/angles.hpp"
 #include "telear/core/arm_body.hpp"
+#include "telear/core/clock.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/marker_mount.hpp"
+#include "telear/core/version.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/token_file.hpp"
 #include "telear/record/server_recorder.hpp"
 #include "telear/render/ar_view.hpp"
-#include "telear/render/egl_context.hpp"
-#include "telear/render/framebuffer_readback.hpp"
 #include "telear/render/gl_objects.hpp"
 #include "telear/render/glfw_context.hpp"
 #include "telear/render/image_io.hpp"
@@ -41,6 +39,7 @@
 #include "telear/render/scene_objects.hpp"
 #include "telear/render/stereo_composer.hpp"
 #include "telear/session/capture_session.hpp"
+#include "telear/session/session_recording.hpp"
 #include "telear/view/ar_view_input.hpp"
 #include "telear/vision/camera_file.hpp"
 
@@ -81,10 +80,9 @@ struct ConsoleApp::Impl {
   session::SessionOptions session_options;
   vision::StereoCameraModel cameras;  // at the video's resolution
   core::BodyDescription body;
-  core::Workspace workspace;                   // the operator's copy of the scene
-  std::unique_ptr<render::GlContext> context;  // EGL (headless) or GLFW
-  render::GlfwContext* window = nullptr;       // the GLFW context, when windowed
-  render::OffscreenTarget headless_target;     // the "window" when headless
+  core::Workspace workspace;              // the operator's copy of the scene
+  std::unique_ptr<GuiContext> gui;        // the window (GLFW) or headless target, ImGui
+  render::GlfwContext* window = nullptr;  // gui's window, when windowed
   std::optional<render::ArView> view;
   // The registration capture's coverage image, uploaded when the capture changes.
   render::Texture coverage_texture;
@@ -92,7 +90,6 @@ struct ConsoleApp::Impl {
   int coverage_revision = -1;
   render::StereoLayout built_layout = render::StereoLayout::kSideBySide;
   int built_segments = -1;
-  bool imgui_glfw = false, imgui_gl = false;
   KeyboardInput keyboard;
   MouseInput mouse;
   std::optional<GamepadInput> gamepad;
@@ -106,12 +103,10 @@ struct ConsoleApp::Impl {
   std::ostream* log = nullptr;
 
   ~Impl() {
-    if (context) (void)context->make_current();
+    if (gui) (void)gui->make_current();
     view.reset();
-    if (imgui_gl) ImGui_ImplOpenGL3_Shutdown();
-    if (imgui_glfw) ImGui_ImplGlfw_Shutdown();
-    if (ImGui::GetCurrentContext()) ImGui::DestroyContext();
     eyes.reset();
+    gui.reset();
   }
 
   CoverageTexture coverage(const session::Session& session) {
@@ -303,19 +298,18 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     recording.client_name = "telear-console-record";
     recording.recorder.path = options.record;
     recording.recorder.metadata["recorded_by"] = "telear console";
-    recording.stream_video = false;  // the session's own stream feeds it (below)
+    recording.recorder.metadata["telear_version"] = std::string(core::version_string());
+    recording.recorder.metadata["calibration_file"] = calibration_file;
+    recording.recorder.metadata["robot_spec"] = options.arm.name_or_path;  // replay loads it
+    recording.recorder.metadata["robot_tip"] = options.arm.tip;
+    // What the view draws: the session's stream, the view's ghost, the console's cameras.
+    recording.stream_video = false;
+    recording.recorder.ghost_from_state_stream = false;
+    recording.cameras = m.cameras;
     auto recorder = record::ServerRecorder::start(recording);
     if (!recorder) return recorder.error();
     m.recorder = std::move(*recorder);
-    m.session_options.on_event = [raw = m.recorder.get()](const session::SessionEvent& e,
-                                                          std::int64_t monotonic_ns) {
-      raw->add_log(e.kind == session::SessionEvent::Kind::kError     ? record::LogLevel::kError
-                   : e.kind == session::SessionEvent::Kind::kWarning ? record::LogLevel::kWarning
-                                                                     : record::LogLevel::kInfo,
-                   e.message, monotonic_ns);
-    };
-    m.session_options.vision.on_received =
-        [raw = m.recorder.get()](const net::ReceivedStereoFrame& frame) { raw->add_frame(frame); };
+    session::record_session_streams(m.session_options, *m.recorder);
     log << "telear console: recording to " << options.record << "\n";
   }
 
@@ -325,49 +319,22 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   app->session_->connect();
 
   // [SECTION] GL and ImGui
-  if (options.headless) {
-    auto context = render::create_headless_context();
-    if (!context) return Error{"no headless OpenGL context: " + context.error().message};
-    m.context = std::move(*context);
-    auto target = render::OffscreenTarget::create(options.width, options.height);
-    if (!target) return target.error();
-    m.headless_target = std::move(*target);
-  } else {
-    render::GlfwOptions window_options;
-    window_options.width = options.width;
-    window_options.height = options.height;
-    window_options.title = "telear console";
-    window_options.request_stereo = true;
-    window_options.vsync = true;
-    auto window = render::GlfwContext::create(window_options);
-    if (!window) {
-      return Error{"no window (" + window.error().message +
-                   "); use --headless, or run under xvfb-run -a -s \"-screen 0 1600x1000x24\""};
-    }
-    m.window = window->get();
-    m.context = std::move(*window);
+  GuiOptions gui_options;
+  gui_options.headless = options.headless;
+  gui_options.width = options.width;
+  gui_options.height = options.height;
+  gui_options.title = "telear console";
+  gui_options.request_stereo = true;
+  auto gui = GuiContext::create(gui_options);
+  if (!gui) return gui.error();
+  m.gui = std::move(*gui);
+  m.window = m.gui->window();
+  if (m.window) {
     const render::WindowStereo stereo = render::choose_window_stereo(m.window->stereo_granted());
     app->ui_.page_flip_granted = stereo.page_flipped;
     app->ui_.page_flip_message = stereo.message;
     m.gamepad.emplace();
   }
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;  // reproducible layout (screenshots, tests)
-  ImGui::StyleColorsDark();
-  ImGui::GetStyle().WindowRounding = 3.0f;
-  if (m.window) {
-    m.imgui_glfw = ImGui_ImplGlfw_InitForOpenGL(m.window->window(), true);
-  } else {
-    io.DisplaySize = ImVec2(static_cast<float>(options.width), static_cast<float>(options.height));
-    // Headless has no platform backend: map ImGui's navigation keys to GLFW's codes so that
-    // tests and the keyboard device use the same key numbers as a window.
-    io.KeyMap[ImGuiKey_Space] = GLFW_KEY_SPACE;
-    io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
-  }
-  m.imgui_gl = ImGui_ImplOpenGL3_Init("#version 330");
-  if (!m.imgui_gl) return Error{"Dear ImGui's OpenGL 3 backend did not start"};
   if (Status s = m.build_view(app->ui_); !s.ok()) return s.error();
 
   if (!options.fullscreen_eyes.empty()) {
@@ -407,7 +374,6 @@ void ConsoleApp::rebuild_session() {
 
 bool ConsoleApp::frame() {
   Impl& m = *impl_;
-  (void)m.context->make_current();
   const auto now = Clock::now();
   double dt = std::chrono::duration<double>(now - m.last_frame).count();
   m.last_frame = now;
@@ -418,18 +384,7 @@ bool ConsoleApp::frame() {
     m.fps_accumulator = 0;
     m.fps_frames = 0;
   }
-  if (m.window) {
-    glfwPollEvents();
-    if (m.window->should_close()) return false;
-    ImGui_ImplGlfw_NewFrame();
-  } else {
-    ImGuiIO& io = ImGui::GetIO();
-    io.DisplaySize =
-        ImVec2(static_cast<float>(m.options.width), static_cast<float>(m.options.height));
-    io.DeltaTime = static_cast<float>(dt);
-  }
-  ImGui_ImplOpenGL3_NewFrame();
-  ImGui::NewFrame();
+  if (!m.gui->begin_frame(dt)) return false;
 
   auto act = [this](const UiAction& a) { (void)apply_action(*session_, ui_, a); };
 
@@ -479,10 +434,9 @@ bool ConsoleApp::frame() {
   }
   if (ui_.reconnect_requested) rebuild_session();
   session_->update(dt);
-  if (m.recorder && session_->view().frame &&
-      session_->view().frame->frame_id != m.recorded_frame) {
-    m.recorded_frame = session_->view().frame->frame_id;
-    m.recorder->add_latency(*session_->view().frame);
+  if (m.recorder) {
+    session::record_session_view(*m.recorder, session_->view(), m.recorded_frame,
+                                 core::monotonic_ns());
   }
   if (m.auto_take_control && session_->view().real && session_->robot_connected()) {
     m.auto_take_control = false;
@@ -531,19 +485,14 @@ bool ConsoleApp::frame() {
   draw_ghost_panel(ctx, layout);
   draw_real_robot_panel(ctx, layout);
   draw_registration_panel(ctx, layout, m.coverage(*session_));
+  draw_plots_panel(ctx, layout);
   draw_estop_panel(ctx, layout);
   draw_status_bar(ctx, layout);
   ImGui::Render();
 
   // [SECTION] draw into the window or the frame buffer
-  int fb_w = m.options.width, fb_h = m.options.height;
-  if (m.window) {
-    m.window->framebuffer_size(fb_w, fb_h);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  } else {
-    m.headless_target.bind();
-  }
-  glViewport(0, 0, fb_w, fb_h);
+  int fb_w = 0, fb_h = 0;
+  m.gui->bind_output(fb_w, fb_h);
   const bool page_flip = m.window && ui_.layout == ViewLayout::kPageFlip && ui_.page_flip_granted;
   if (page_flip) {
     // Quad-buffer stereo: the whole UI into both back buffers, the view image being the left
@@ -581,7 +530,7 @@ bool ConsoleApp::frame() {
       ui_.screenshot_request || (final_frame && !m.options.screenshot.empty());
   if (want_screenshot || capture_every_frame_) {
     if (m.window) glReadBuffer(page_flip ? GL_BACK_LEFT : GL_BACK);
-    last_image_ = render::read_bound_framebuffer_rgb(fb_w, fb_h);
+    last_image_ = m.gui->read_output(fb_w, fb_h);
   }
   if (ui_.screenshot_request) {
     const std::string path = *ui_.screenshot_request;
@@ -593,9 +542,7 @@ bool ConsoleApp::frame() {
       *m.log << "telear console: wrote " << path << "\n";
     }
   }
-  if (m.window) {
-    m.window->swap_buffers();
-  }
+  m.gui->present();
   if (m.eyes)
     m.eyes->present(m.view->eye(0).colour_texture().id(), m.view->eye(1).colour_texture().id(),
                     textures.eye_width, textures.eye_height);
@@ -610,6 +557,11 @@ bool ConsoleApp::frame() {
   if (m.options.frames > 0) return !final_frame;
   if (m.options.headless) return !script_.finished();
   return true;
+}
+
+core::Image ConsoleApp::read_view_image() const {
+  (void)impl_->gui->make_current();
+  return impl_->view->read_composed_rgb();
 }
 
 Result<record::RecordingCounts> ConsoleApp::stop_recording() {

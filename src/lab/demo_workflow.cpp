@@ -24,8 +24,10 @@
 #include "telear/record/server_recorder.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
+#include "telear/report/recording_report.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/session/session.hpp"
+#include "telear/session/session_recording.hpp"
 #include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/accuracy_check.hpp"
 #include "telear/vision/calibration_file.hpp"
@@ -298,23 +300,17 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
     recording.recorder.metadata["recorded_by"] = "telear demo";
     recording.recorder.metadata["telear_version"] = std::string(core::version_string());
     recording.recorder.metadata["calibration_file"] = stereo_file;
-    recording.stream_video = false;  // the session's own stream feeds it (below)
+    recording.recorder.metadata["robot_spec"] = options.robot;  // replay loads it
+    recording.recorder.metadata["robot_tip"] = options.tip;
+    // What the view draws: the session's stream, the view's ghost, the registered cameras.
+    recording.stream_video = false;
+    recording.recorder.ghost_from_state_stream = false;
+    recording.cameras = registration->cameras;
     auto started = record::ServerRecorder::start(recording);
     if (!started) return started.error();
     mcap = std::move(started).value();
     note("recording the task to " + options.record_path);
-    session_options.vision.on_received = [raw = mcap.get()](const net::ReceivedStereoFrame& f) {
-      raw->add_frame(f);
-    };
-    // The session's events (validation, execution, AR/VR) on the recording's /events.
-    session_options.on_event = [raw = mcap.get()](const session::SessionEvent& e,
-                                                  std::int64_t monotonic_ns) {
-      const record::LogLevel level =
-          e.kind == session::SessionEvent::Kind::kError     ? record::LogLevel::kError
-          : e.kind == session::SessionEvent::Kind::kWarning ? record::LogLevel::kWarning
-                                                            : record::LogLevel::kInfo;
-      raw->add_log(level, e.message, monotonic_ns);
-    };
+    session::record_session_streams(session_options, *mcap);
   }
   session_options.robot.address = (*servers)->robot_address();
   session_options.robot.token = (*servers)->token();
@@ -356,8 +352,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   if (!view) return view.error();
   RecorderOptions recorder_options{options.out_dir, options.fps, options.video, {}};
   if (mcap) {
-    recorder_options.on_frame = [raw = mcap.get()](const net::DecodedStereoFrame& frame) {
-      raw->add_latency(frame);
+    recorder_options.on_view = [raw = mcap.get(),
+                                last = std::uint64_t{0}](const session::SessionView& v) mutable {
+      session::record_session_view(*raw, v, last, core::monotonic_ns());
     };
   }
   SessionRecorder recorder(session, *view, recorder_options);
@@ -383,6 +380,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   if (mcap) {
     auto counts = mcap->stop();
     if (!counts) return Error{"the recording: " + counts.error().message};
+    const auto report_start = std::chrono::steady_clock::now();
     nlohmann::json recorded = {{"path", options.record_path}, {"bytes", counts->bytes}};
     for (const auto& [topic, n] : counts->written) recorded["messages"][topic] = n;
     std::uint64_t dropped = 0;
@@ -390,6 +388,25 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
     recorded["dropped"] = dropped;
     facts.mcap_json = recorded.dump();
     note("recorded " + options.record_path + " (" + std::to_string(counts->bytes) + " bytes)");
+    // `telear report` on the recording, into the same folder: its plots and summary, which
+    // report.md links. Not drawn (no gnuplot) or not read, the demo still reports and says why.
+    report::ReportOptions plots;
+    plots.out_dir = options.out_dir;
+    plots.markdown_name = "recording_report.md";
+    plots.require_plots = false;
+    auto drawn = report::write_recording_report(options.record_path, plots);
+    if (drawn) {
+      facts.recording_report_md = plots.markdown_name;
+      for (const report::PlotFile& p : drawn->plots) facts.plots.push_back({p.name, p.title});
+      facts.plot_error = drawn->plot_error;
+    } else {
+      facts.plot_error = drawn.error().message;
+    }
+    note(facts.plots.empty()
+             ? "warning: the recording's plots not drawn: " + facts.plot_error
+             : std::to_string(facts.plots.size()) + " plots of the recording and " +
+                   plots.markdown_name + " written (" +
+                   core::format_fixed(core::seconds_since(report_start), 1) + " s)");
   }
   facts.robot = robot->description.name;
   facts.dof = model->dof();

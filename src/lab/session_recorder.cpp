@@ -57,9 +57,9 @@ void SessionRecorder::tick() {
   last_ = now;
   session_.update(dt);
   const session::SessionView& v = session_.view();
+  if (options_.on_view) options_.on_view(v);
   if (v.frame && v.frame->frame_id != last_frame_id_) {
     last_frame_id_ = v.frame->frame_id;
-    if (options_.on_frame) options_.on_frame(*v.frame);
     recording_.latency.add(v.frame->latency);
     ++recording_.frames_shown;
   }

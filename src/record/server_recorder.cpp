@@ -6,6 +6,7 @@
 
 #include "telear/net/robot_client.hpp"
 #include "telear/net/vision_client.hpp"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::record {
 
@@ -82,6 +83,10 @@ Result<std::unique_ptr<ServerRecorder>> ServerRecorder::start(
       setup.cameras = camera_info->cameras;
       setup.calibration_yaml = camera_info->calibration_yaml;
     }
+    if (options.cameras) {
+      setup.cameras = options.cameras;
+      setup.calibration_yaml = vision::opencv_stereo_camera_yaml(*options.cameras);
+    }
     if (!options.stream_video) impl->vision.reset();  // the caller feeds the frames
   }
   SessionRecorderOptions recorder_options = options.recorder;
@@ -106,6 +111,16 @@ void ServerRecorder::add_frame(const net::ReceivedStereoFrame& frame) {
 
 void ServerRecorder::add_latency(const net::DecodedStereoFrame& frame) {
   if (SessionRecorder* r = impl_->sink.load()) r->add_latency(frame);
+}
+
+void ServerRecorder::add_plan_event(PlanEventKind kind, const std::string& text,
+                                    const std::string& plan_id, const std::string& plan_hash,
+                                    std::int64_t client_ns) {
+  impl_->recorder->add_plan_event(kind, text, plan_id, plan_hash, client_ns);
+}
+
+void ServerRecorder::add_ghost(const Eigen::VectorXd& q, double gripper, std::int64_t client_ns) {
+  impl_->recorder->add_ghost(q, gripper, client_ns);
 }
 
 Result<RecordingCounts> ServerRecorder::stop() {

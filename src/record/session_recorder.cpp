@@ -24,6 +24,7 @@
 #include "telear/record/schema_descriptors.hpp"
 #include "telear/record/v1/latency_stages.pb.h"
 #include "telear/record/v1/plan_event.pb.h"
+#include "telear/vision/camera_file.hpp"
 
 namespace telear::record {
 namespace {
@@ -101,6 +102,14 @@ struct SessionRecorder::Impl {
   std::int64_t last_calibration_ns = 0;
   std::int64_t last_camera_tf_ns = 0;
   std::uint32_t sequence = 0;
+  // The view's ghost (ghost_from_state_stream false): the last one written, and when.
+  struct ViewGhost {
+    Eigen::VectorXd q;
+    double gripper = 1.0;
+    std::int64_t written_ns = 0;
+  };
+  std::optional<ViewGhost> view_ghost;
+  static constexpr std::int64_t kGhostRefillNs = 15'000'000;
 
   explicit Impl(McapWriter w) : writer(std::move(w)) {}
 
@@ -166,18 +175,35 @@ struct SessionRecorder::Impl {
   }
 
   void write_plan_event(telear::record::v1::PlanEvent::Kind kind, const std::string& text,
-                        const std::string& plan_id, std::int64_t wall_ns) {
+                        const std::string& plan_id, std::int64_t wall_ns,
+                        const std::string& plan_hash = {}) {
     telear::record::v1::PlanEvent event;
     set_time(event.mutable_timestamp(), wall_ns);
     event.set_kind(kind);
     event.set_text(text);
     event.set_plan_id(plan_id);
+    event.set_plan_hash(plan_hash);
     write(kTopicPlanEvents, wall_ns, wall_ns, event);
     write_log(
         kind == telear::record::v1::PlanEvent::FAULT || kind == telear::record::v1::PlanEvent::ESTOP
             ? LogLevel::kWarning
             : LogLevel::kInfo,
         text, wall_ns);
+  }
+
+  // /ghost/joint_states at `wall_ns`, its ghost/ frames into `tf` (the caller's message) or,
+  // when null, on /tf as a message of their own.
+  void write_view_ghost(const Eigen::VectorXd& q, double gripper, std::int64_t wall_ns,
+                        foxglove::FrameTransforms* tf) {
+    write(kTopicGhostJointStates, wall_ns, wall_ns, joint_states(q, nullptr, gripper, wall_ns));
+    view_ghost = ViewGhost{q, gripper, wall_ns};
+    if (tf != nullptr) {
+      add_link_transforms(*tf, q, gripper, kGhostFramePrefix, wall_ns);
+    } else {
+      foxglove::FrameTransforms frames;
+      add_link_transforms(frames, q, gripper, kGhostFramePrefix, wall_ns);
+      write(kTopicTransforms, wall_ns, wall_ns, frames);
+    }
   }
 
   void add_link_transforms(foxglove::FrameTransforms& tf, const Eigen::VectorXd& q, double gripper,
@@ -226,13 +252,19 @@ struct SessionRecorder::Impl {
       }
       foxglove::FrameTransforms tf;
       add_link_transforms(tf, state.q, state.gripper, "", wall_ns);
-      const bool ghost = s.ghost_q.size() == state.q.size() && s.ghost_q.allFinite();
+      const bool ghost = options.ghost_from_state_stream && s.ghost_q.size() == state.q.size() &&
+                         s.ghost_q.allFinite();
       std::int64_t ghost_wall_ns = wall_ns;
       if (ghost) {
         ghost_wall_ns = wall(s.ghost_ns - s.clock_offset_ns);
         write(kTopicGhostJointStates, log_wall_ns, ghost_wall_ns,
               joint_states(s.ghost_q, nullptr, s.ghost_gripper, ghost_wall_ns));
         add_link_transforms(tf, s.ghost_q, s.ghost_gripper, kGhostFramePrefix, wall_ns);
+      } else if (view_ghost && log_wall_ns - view_ghost->written_ns >= kGhostRefillNs) {
+        // A display slower than the state stream: the ghost it still draws, at the state's
+        // time, so the topic keeps the state stream's rate.
+        const ViewGhost still = *view_ghost;
+        write_view_ghost(still.q, still.gripper, log_wall_ns, &tf);
       }
       if (setup.cameras && wall_ns - last_camera_tf_ns >= kSecondNs) {
         last_camera_tf_ns = wall_ns;
@@ -416,9 +448,19 @@ Result<std::unique_ptr<SessionRecorder>> SessionRecorder::create(
   const auto now = static_cast<std::uint64_t>(now_wall);
   Status attached =
       impl->writer.attach("robot.urdf", "application/xml", now, now, mcap_bytes(setup.robot.urdf));
-  if (attached && !setup.calibration_yaml.empty()) {
+  // The cameras as a calibration file: the server's own text, or the model written out (replay
+  // draws through it; a reader needs no telear to open it: OpenCV FileStorage YAML).
+  const std::string calibration_yaml = !setup.calibration_yaml.empty() ? setup.calibration_yaml
+                                       : setup.cameras
+                                           ? vision::opencv_stereo_camera_yaml(*setup.cameras)
+                                           : std::string();
+  if (attached && !calibration_yaml.empty()) {
     attached = impl->writer.attach("calibration.yaml", "application/yaml", now, now,
-                                   mcap_bytes(setup.calibration_yaml));
+                                   mcap_bytes(calibration_yaml));
+  }
+  if (attached && !setup.robot.workspace_yaml.empty()) {
+    attached = impl->writer.attach("workspace.yaml", "application/yaml", now, now,
+                                   mcap_bytes(setup.robot.workspace_yaml));
   }
   if (!attached) return Error{"recording: " + attached.error().message};
   std::map<std::string, std::string> session = options.metadata;
@@ -503,6 +545,28 @@ void SessionRecorder::add_log(LogLevel level, const std::string& text, std::int6
   const std::int64_t wall_ns = impl->wall(client_ns);
   impl->enqueue(std::string(kTopicEvents), text.size() + 64,
                 [impl, level, text, wall_ns] { impl->write_log(level, text, wall_ns); });
+}
+
+void SessionRecorder::add_plan_event(PlanEventKind kind, const std::string& text,
+                                     const std::string& plan_id, const std::string& plan_hash,
+                                     std::int64_t client_ns) {
+  Impl* impl = impl_.get();
+  const std::int64_t wall_ns = impl->wall(client_ns);
+  const auto proto_kind = static_cast<telear::record::v1::PlanEvent::Kind>(kind);
+  impl->enqueue(std::string(kTopicPlanEvents), text.size() + plan_hash.size() + 96,
+                [impl, proto_kind, text, plan_id, plan_hash, wall_ns] {
+                  impl->write_plan_event(proto_kind, text, plan_id, wall_ns, plan_hash);
+                });
+}
+
+void SessionRecorder::add_ghost(const Eigen::VectorXd& q, double gripper, std::int64_t client_ns) {
+  Impl* impl = impl_.get();
+  if (impl->options.ghost_from_state_stream) return;
+  if (q.size() != static_cast<Eigen::Index>(impl->joint_names.size()) || !q.allFinite()) return;
+  const std::int64_t wall_ns = impl->wall(client_ns);
+  impl->enqueue(
+      std::string(kTopicGhostJointStates), 16 * 8 * q.size() + 64,
+      [impl, q, gripper, wall_ns] { impl->write_view_ghost(q, gripper, wall_ns, nullptr); });
 }
 
 RecordingCounts SessionRecorder::counts() const {

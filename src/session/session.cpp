@@ -85,8 +85,10 @@ double Session::now() const {
   return core::ns_to_s(core::monotonic_ns() - epoch_ns_);
 }
 
-void Session::log(SessionEvent::Kind kind, std::string message) {
-  events_.push_back({now(), kind, std::move(message)});
+void Session::log(SessionEvent::Kind kind, std::string message, WorkflowStep step,
+                  std::string plan_id, std::string plan_hash) {
+  events_.push_back(
+      {now(), kind, std::move(message), step, std::move(plan_id), std::move(plan_hash)});
   if (options_.on_event) options_.on_event(events_.back(), core::monotonic_ns());
   while (events_.size() > options_.max_events) events_.pop_front();
 }
@@ -167,21 +169,23 @@ Status Session::take_control() {
     log(SessionEvent::Kind::kError, s.error().message);
     return s;
   }
-  log(SessionEvent::Kind::kInfo, "lease acquired: this console commands the robot");
+  log(SessionEvent::Kind::kInfo, "lease acquired: this console commands the robot",
+      WorkflowStep::kLeaseAcquired);
   return s;
 }
 
 Status Session::release_control() {
   Status s = robot_->release_lease();
   log(s.ok() ? SessionEvent::Kind::kInfo : SessionEvent::Kind::kError,
-      s.ok() ? "lease released" : s.error().message);
+      s.ok() ? "lease released" : s.error().message,
+      s.ok() ? WorkflowStep::kLeaseReleased : WorkflowStep::kNone);
   return s;
 }
 
 Status Session::estop(const std::string& reason) {
   Status s = robot_->estop(reason);
   log(s.ok() ? SessionEvent::Kind::kWarning : SessionEvent::Kind::kError,
-      s.ok() ? "E-STOP: " + reason : "e-stop failed: " + s.error().message);
+      s.ok() ? "E-STOP: " + reason : "e-stop failed: " + s.error().message, WorkflowStep::kEStop);
   if (s.ok() && executing_) {
     executing_ = false;
     last_result_ = "aborted: " + reason;
@@ -192,7 +196,8 @@ Status Session::estop(const std::string& reason) {
 Status Session::reset_estop() {
   Status s = robot_->reset_estop();
   log(s.ok() ? SessionEvent::Kind::kInfo : SessionEvent::Kind::kError,
-      s.ok() ? "e-stop reset" : s.error().message);
+      s.ok() ? "e-stop reset" : s.error().message,
+      s.ok() ? WorkflowStep::kEStopReset : WorkflowStep::kNone);
   return s;
 }
 
@@ -282,14 +287,35 @@ Status Session::start_preview(PreviewOptions options) {
   previewed_hash_ = *hash;
   preview_.emplace(std::move(*trajectory), options);
   preview_->play();
+  log(SessionEvent::Kind::kInfo, "preview started (hash " + previewed_hash_.substr(0, 12) + ")",
+      WorkflowStep::kPreview, {}, previewed_hash_);
   return Status::Ok();
 }
 
 void Session::stop_preview() {
+  if (!preview_) return;
   preview_.reset();
+  log(SessionEvent::Kind::kInfo, "preview stopped", WorkflowStep::kPreview, {}, previewed_hash_);
 }
 
-ValidationReport Session::validate_plan() const {
+ValidationReport Session::validate_plan() {
+  ValidationReport report = check_plan();
+  auto hash = plan_hash();
+  const std::string h = hash ? *hash : std::string();
+  log(report.ok() ? SessionEvent::Kind::kInfo : SessionEvent::Kind::kWarning,
+      "validate: " + report.summary(), WorkflowStep::kValidate, {}, h);
+  if (report.collision && !report.collision->collision_free()) {
+    const geometry::PlanCollision& first = report.collision->collisions.front();
+    log(SessionEvent::Kind::kWarning,
+        "collision: " + first.body + " - " + first.other + " at " +
+            core::format_number(first.time_s, "%.2f") + " s, " +
+            core::format_number(first.depth_m * 1000.0, "%.1f") + " mm deep",
+        WorkflowStep::kCollision, {}, h);
+  }
+  return report;
+}
+
+ValidationReport Session::check_plan() const {
   ValidationOptions options;
   if (start_tolerance_) options.start_tolerance = *start_tolerance_;
   options.sample_rate_hz = options_.sample_rate_hz;
@@ -309,9 +335,10 @@ Result<std::string> Session::plan_hash() const {
 Result<net::PlanAck> Session::execute_plan() {
   if (executing_) return Error{"execute: a plan is already executing (" + executing_id_ + ")"};
   if (!in_control()) return Error{"execute: take control (the lease) first"};
-  const ValidationReport report = validate_plan();
+  const ValidationReport report = check_plan();
   if (!report.ok()) {
-    log(SessionEvent::Kind::kError, "execute: the plan is not valid: " + report.summary());
+    log(SessionEvent::Kind::kError, "execute: the plan is not valid: " + report.summary(),
+        WorkflowStep::kExecute);
     return Error{"execute: the plan is not valid: " + report.summary()};
   }
   auto trajectory = plan_.trajectory();
@@ -319,7 +346,7 @@ Result<net::PlanAck> Session::execute_plan() {
   const std::string id = "plan-" + std::to_string(epoch_ns_) + "-" + std::to_string(++executions_);
   auto ack = robot_->execute_plan(id, *trajectory);
   if (!ack) {
-    log(SessionEvent::Kind::kError, ack.error().message);
+    log(SessionEvent::Kind::kError, ack.error().message, WorkflowStep::kExecute, id);
     return ack;
   }
   executed_hash_ = ack->plan_hash;
@@ -332,7 +359,8 @@ Result<net::PlanAck> Session::execute_plan() {
       "executing " + id + " (" + std::to_string(plan_.size()) + " waypoints, " +
           core::format_number(ack->duration_s, "%.2f") + " s, hash " +
           ack->plan_hash.substr(0, 12) +
-          (ack->plan_hash == previewed_hash_ ? ", as previewed)" : ", not the last preview)"));
+          (ack->plan_hash == previewed_hash_ ? ", as previewed)" : ", not the last preview)"),
+      WorkflowStep::kExecute, id, ack->plan_hash);
   return ack;
 }
 
@@ -343,7 +371,8 @@ Status Session::cancel_execution(const std::string& reason) {
     last_result_ = "cancelled: " + reason;
   }
   log(s.ok() ? SessionEvent::Kind::kWarning : SessionEvent::Kind::kError,
-      s.ok() ? "cancelled: " + reason : s.error().message);
+      s.ok() ? "cancelled: " + reason : s.error().message, WorkflowStep::kExecute, executing_id_,
+      executed_hash_);
   return s;
 }
 
@@ -396,6 +425,9 @@ void Session::update(double dt) {
   update_frame(t);
   update_registration(t);
   update_capture();
+  live_series_.update(t, view_.real ? &*view_.real : nullptr, t - view_.real_state_age_s,
+                      recent_frames_.empty() ? nullptr : recent_frames_.back().second.get(),
+                      view_.display);
 }
 
 void Session::update_capture() {
@@ -433,9 +465,12 @@ void Session::update_frame(double t) {
   const DisplayMode before = display_.mode();
   view_.display = display_.update(t, capture);
   if (display_.mode() != before) {
-    log(SessionEvent::Kind::kInfo, std::string("display: ") + to_string(before) + " -> " +
-                                       to_string(display_.mode()) + " (" + view_.display.reason +
-                                       ")");
+    // The message starts with the new mode: a recording's AR/VR timeline reads it.
+    log(SessionEvent::Kind::kInfo,
+        std::string(display_.mode() == DisplayMode::kAR ? "ar" : "vr") + ": display " +
+            to_string(before) + " -> " + to_string(display_.mode()) + " (" + view_.display.reason +
+            ")",
+        WorkflowStep::kDisplayMode);
   }
 }
 
@@ -450,7 +485,8 @@ void Session::update_monitor() {
       (void)robot_->cancel(status.cancel_message);
       executing_ = false;
       last_result_ = "cancelled: " + status.cancel_message;
-      log(SessionEvent::Kind::kError, "execution monitor: " + status.cancel_message);
+      log(SessionEvent::Kind::kError, "execution monitor: " + status.cancel_message,
+          WorkflowStep::kFault, executing_id_, executed_hash_);
     }
     return;
   }
@@ -465,7 +501,7 @@ void Session::update_monitor() {
     log(sample.last_trajectory_status == core::TrajectoryStatus::kCompleted
             ? SessionEvent::Kind::kInfo
             : SessionEvent::Kind::kWarning,
-        executing_id_ + " " + last_result_);
+        executing_id_ + " " + last_result_, WorkflowStep::kExecute, executing_id_, executed_hash_);
   }
 }
 

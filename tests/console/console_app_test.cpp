@@ -17,6 +17,7 @@
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/lab/embedded_servers.hpp"
+#include "telear/record/recording_series.hpp"
 #include "test_util/temp_dir.hpp"
 
 namespace telear::console {
@@ -174,6 +175,25 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   EXPECT_GT(recorded->written["/events"], 5u);  // the lease, validation, execution ...
   EXPECT_EQ(recorded->bytes, fs::file_size(dir / "console.mcap"));
   EXPECT_THAT(log.str(), HasSubstr("telear console: recording to "));
+  // The session's workflow as structured events, the executed plan with its hash; the ghost
+  // the view drew at no less than the state stream's rate.
+  auto series = record::load_recording_series((dir / "console.mcap").string());
+  ASSERT_TRUE(series) << series.error().message;
+  std::map<std::string, int> kinds;
+  const record::PlanEventSample* executed = nullptr;
+  for (const record::PlanEventSample& e : series->plan_events) {
+    ++kinds[e.kind_name];
+    if (e.kind_name == "EXECUTE" && !e.plan_hash.empty() && !executed) executed = &e;
+  }
+  EXPECT_GE(kinds["LEASE_ACQUIRED"], 1);
+  EXPECT_GE(kinds["PREVIEW"], 2);  // started, stopped
+  EXPECT_GE(kinds["VALIDATE"], 1);
+  EXPECT_GE(kinds["DISPLAY_MODE"], 1);  // VR -> AR once the video arrives
+  ASSERT_NE(executed, nullptr);
+  EXPECT_EQ(executed->plan_hash, session.executed_hash());
+  EXPECT_THAT(executed->plan_id, ::testing::StartsWith("plan-"));
+  const double ghost_hz = series->ghost.samples.size() / series->duration_s();
+  EXPECT_GE(ghost_hz, 30.0) << series->ghost.samples.size() << " in " << series->duration_s();
 
   // Connection loss: stop the servers; the console says so and keeps drawing.
   const std::string token = app.servers()->token();

@@ -55,6 +55,9 @@ class ConsoleApp {
   // Ends the --record recording (the file is then complete) and returns what it wrote; an
   // error when there is none or it failed. run() and the destructor end it too.
   Result<record::RecordingCounts> stop_recording();
+  // The AR view as the last frame drew it (both eyes composed, without the panels), RGB, top
+  // row first: what `telear replay` draws from the recording (tests compare the two).
+  core::Image read_view_image() const;
   // Captures the image at the end of every frame (tests), not only on a screenshot.
   void set_capture_every_frame(bool on) { capture_every_frame_ = on; }
 

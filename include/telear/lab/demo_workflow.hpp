@@ -49,7 +49,9 @@ struct DemoOptions {
   // marker residual at ~0.45 px where the overlay itself is off by ~0.1 (docs/demo.md).
   int live_multisample = 4;
   // The task's session recorded to this MCAP file (record::ServerRecorder: the servers'
-  // streams, the session's events); empty: no recording.
+  // streams, the session's events), then plotted into out_dir by report::write_recording_report
+  // (its PNGs and recording_report.md, which report.md shows); empty: no recording, no plots.
+  // (`telear demo` gives OUT/session.mcap unless --record or --no-record.)
   std::string record_path;
 
   // Errors name the option as the CLI spells it and its range.

@@ -59,8 +59,9 @@ struct RecorderOptions {
   std::string out_dir;
   double fps = 15.0;  // display ticks (and video frames) per second, > 0
   bool video = true;  // false: no MP4 (key frames still written)
-  // Called with each new frame the session shows (telear demo --record: its latency).
-  std::function<void(const net::DecodedStereoFrame&)> on_frame;
+  // Called with the session's view at every tick, after its update (telear demo --record: the
+  // ghost drawn, the shown frame's latency; session::record_session_view).
+  std::function<void(const session::SessionView&)> on_view;
 };
 
 class SessionRecorder {

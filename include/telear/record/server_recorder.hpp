@@ -8,6 +8,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "telear/core/result.hpp"
@@ -25,6 +26,9 @@ struct ServerRecorderOptions {
   // the vision client it already has (the console, the demo: a second stream would decode
   // every frame twice on the operator's machine). The calibration is still asked for.
   bool stream_video = true;
+  // The calibration the operator's view draws through (the console's or the demo's registered
+  // cameras), recorded instead of the vision server's: replay draws through what was seen.
+  std::optional<vision::StereoCameraModel> cameras;
   SessionRecorderOptions recorder;  // path, queue, metadata
 };
 
@@ -42,6 +46,10 @@ class ServerRecorder {
   // latency once decoded. Thread-safe, never blocking.
   void add_frame(const net::ReceivedStereoFrame& frame);
   void add_latency(const net::DecodedStereoFrame& frame);
+  // SessionRecorder's, for the operator's program (telear/session/session_recording.hpp).
+  void add_plan_event(PlanEventKind kind, const std::string& text, const std::string& plan_id,
+                      const std::string& plan_hash, std::int64_t client_ns);
+  void add_ghost(const Eigen::VectorXd& q, double gripper, std::int64_t client_ns);
   // Stops the clients, then closes the file (SessionRecorder::close). A second call returns
   // the same counts.
   Result<RecordingCounts> stop();

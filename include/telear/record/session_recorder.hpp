@@ -34,6 +34,10 @@ struct SessionRecorderOptions {
   McapWriterOptions mcap;
   // Written as metadata "telear.session" besides the robot and the cameras' file names.
   std::map<std::string, std::string> metadata;
+  // Where /ghost/joint_states comes from: the state stream's ghost (the lease holder's, as its
+  // heartbeat last carried it: what a passive observer sees), or false: the caller's
+  // add_ghost() (the operator's own program, once per displayed frame: what the view drew).
+  bool ghost_from_state_stream = true;
 };
 
 // What the recorder knows of the arm and the cameras: the robot server's GetInfo (its URDF,
@@ -53,6 +57,21 @@ struct RecordingCounts {
 
 enum class LogLevel { kDebug, kInfo, kWarning, kError };
 
+// telear.record.v1.PlanEvent's kinds (proto/telear/record/v1/plan_event.proto), numbered as
+// there; the header stays free of generated code.
+enum class PlanEventKind {
+  kLeaseAcquired = 1,
+  kLeaseReleased = 2,
+  kPreview = 3,
+  kValidate = 4,
+  kExecute = 5,
+  kCollision = 6,
+  kDisplayMode = 7,
+  kEStop = 8,
+  kEStopReset = 9,
+  kFault = 10,
+};
+
 class SessionRecorder {
  public:
   // Opens the file and writes the schemas, channels, attachments and metadata. Errors: the
@@ -68,6 +87,15 @@ class SessionRecorder {
   void add_state(const net::RobotStateSample& sample);     // joints, ghost, link transforms
   void add_latency(const net::DecodedStereoFrame& frame);  // the frame's latency by stage
   void add_log(LogLevel level, const std::string& text, std::int64_t client_ns);
+  // A workflow event on /telear/plan_events, and as a Log on /events (level by kind).
+  void add_plan_event(PlanEventKind kind, const std::string& text, const std::string& plan_id,
+                      const std::string& plan_hash, std::int64_t client_ns);
+  // The ghost as the operator's view drew it (ghost_from_state_stream false): on
+  // /ghost/joint_states and as ghost/ frames on /tf. A robot state that finds no ghost written
+  // in the last 15 ms writes the last one again at its own time (a display slower than the
+  // state stream), so the topic keeps at least the state stream's rate. Ignored with
+  // ghost_from_state_stream.
+  void add_ghost(const Eigen::VectorXd& q, double gripper, std::int64_t client_ns);
 
   // Drains the queue, writes the counts and the file's summary; a second call returns the
   // same counts. Errors: a failed write (the file is then what was written before it).

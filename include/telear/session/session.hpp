@@ -64,6 +64,7 @@
 #include "telear/session/execution_monitor.hpp"
 #include "telear/session/ghost_arm.hpp"
 #include "telear/session/ghost_clearance.hpp"
+#include "telear/session/live_series.hpp"
 #include "telear/session/plan.hpp"
 #include "telear/session/plan_preview.hpp"
 #include "telear/session/plan_validation.hpp"
@@ -112,10 +113,30 @@ struct SessionOptions {
   geometry::MeshCollision mesh_collision = geometry::MeshCollision::kConvexParts;
 };
 
+// The workflow step an event marks, for a recording's structured events (a recorder writes
+// them as telear.record.v1.PlanEvent, whose kinds these follow one for one); kNone: a message
+// only (connection, ghost rejections, registration).
+enum class WorkflowStep {
+  kNone,
+  kLeaseAcquired,
+  kLeaseReleased,
+  kPreview,      // started, stopped (message says which)
+  kValidate,     // message: "ok" or the report's summary
+  kExecute,      // sent, refused, finished, cancelled
+  kCollision,    // the plan's first contact (validation)
+  kDisplayMode,  // message starts with the new mode, "ar" or "vr"
+  kEStop,
+  kEStopReset,
+  kFault,  // the execution monitor's cancel
+};
+
 struct SessionEvent {
   double time = 0.0;  // session clock, s
   enum class Kind { kInfo, kWarning, kError } kind = Kind::kInfo;
   std::string message;
+  WorkflowStep step = WorkflowStep::kNone;
+  std::string plan_id;    // the plan or trajectory concerned (execute), else empty
+  std::string plan_hash;  // its plan_hash (preview, validate, execute), else empty
 };
 
 // What the UI draws this frame.
@@ -199,7 +220,10 @@ class Session {
   Status start_preview(PreviewOptions options = {});
   void stop_preview();
   PlanPreview* preview() { return preview_ ? &*preview_ : nullptr; }
-  ValidationReport validate_plan() const;
+  // Validates and logs the result (a kValidate event, and a kCollision one for the first
+  // contact); check_plan() only validates.
+  ValidationReport validate_plan();
+  ValidationReport check_plan() const;
   // The plan_hash of the plan as it stands (its Plan::trajectory()), what execute_plan sends.
   Result<std::string> plan_hash() const;
   Result<net::PlanAck> execute_plan();
@@ -235,11 +259,14 @@ class Session {
   void set_injected_video_delay(double seconds) { options_.injected_video_delay_s = seconds; }
 
   const std::deque<SessionEvent>& events() const { return events_; }
+  // The live plots' series (telear/session/live_series.hpp), fed by update().
+  const LiveSeries& live_series() const { return live_series_; }
   double now() const;  // session clock, s (monotonic)
 
  private:
   Session(core::RobotModelPtr model, SessionOptions options);
-  void log(SessionEvent::Kind kind, std::string message);
+  void log(SessionEvent::Kind kind, std::string message, WorkflowStep step = WorkflowStep::kNone,
+           std::string plan_id = {}, std::string plan_hash = {});
   void update_frame(double now);
   void update_monitor();
   void update_registration(double now);
@@ -279,6 +306,7 @@ class Session {
   std::unique_ptr<net::VisionClient> capture_vision_;  // before capture_: outlives it
   std::unique_ptr<CaptureSession> capture_;
   std::int64_t epoch_ns_ = 0;
+  LiveSeries live_series_;
 };
 
 }  // namespace telear::session
