@@ -99,6 +99,8 @@ struct ConsoleApp::Impl {
   int fps_frames = 0;
   bool auto_take_control = false;
   std::unique_ptr<record::ServerRecorder> recorder;  // --record
+  record::StateFollow state_follow;                  // the recorder records the session's states
+  std::string recorded_robot;                        // the robot server --record records
   std::uint64_t recorded_frame = 0;                  // the last frame whose latency it has
   std::ostream* log = nullptr;
 
@@ -161,6 +163,7 @@ struct ConsoleApp::Impl {
 ConsoleApp::ConsoleApp(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 ConsoleApp::~ConsoleApp() {
+  if (impl_) impl_->state_follow = {};  // before the session's robot client goes
   if (session_) session_->disconnect();
   session_.reset();
   if (impl_ && impl_->recorder) (void)impl_->recorder->stop();
@@ -304,11 +307,13 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     recording.recorder.metadata["robot_tip"] = options.arm.tip;
     // What the view draws: the session's stream, the view's ghost, the console's cameras.
     recording.stream_video = false;
+    recording.stream_state = false;
     recording.recorder.ghost_from_state_stream = false;
     recording.cameras = m.cameras;
     auto recorder = record::ServerRecorder::start(recording);
     if (!recorder) return recorder.error();
     m.recorder = std::move(*recorder);
+    m.recorded_robot = robot.address;
     session::record_session_streams(m.session_options, *m.recorder);
     log << "telear console: recording to " << options.record << "\n";
   }
@@ -317,6 +322,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   if (!session) return session.error();
   app->session_ = std::move(*session);
   app->session_->connect();
+  if (m.recorder) m.state_follow = m.recorder->follow_states(app->session_->robot());
 
   // [SECTION] GL and ImGui
   GuiOptions gui_options;
@@ -365,9 +371,13 @@ void ConsoleApp::rebuild_session() {
     session_->connect();
     return;
   }
+  m.state_follow = {};  // the old session's client goes
   session_ = std::move(*session);
   m.session_options = options;
   session_->connect();
+  if (m.recorder && options.robot.address == m.recorded_robot) {
+    m.state_follow = m.recorder->follow_states(session_->robot());
+  }
   m.auto_take_control = ui_.embedded;
   ui_.last_message = "connecting to " + options.robot.address + " and " + options.vision.address;
 }

@@ -21,6 +21,7 @@
 #include "telear/lab/demo_report.hpp"
 #include "telear/lab/embedded_servers.hpp"
 #include "telear/lab/session_recorder.hpp"
+#include "telear/record/mcap_reader.hpp"
 #include "telear/record/server_recorder.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
@@ -304,6 +305,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
     recording.recorder.metadata["robot_tip"] = options.tip;
     // What the view draws: the session's stream, the view's ghost, the registered cameras.
     recording.stream_video = false;
+    recording.stream_state = false;
     recording.recorder.ghost_from_state_stream = false;
     recording.cameras = registration->cameras;
     auto started = record::ServerRecorder::start(recording);
@@ -341,6 +343,10 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   if (!session_or) return session_or.error();
   session::Session& session = **session_or;
   session.connect();
+  // The recording holds the states the session's view drew the arm at (released before the
+  // session: declared after it).
+  record::StateFollow followed_states;
+  if (mcap) followed_states = mcap->follow_states(session.robot());
 
   auto context = render::create_headless_context();
   if (!context) return Error{"no OpenGL context: " + context.error().message};
@@ -352,9 +358,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   if (!view) return view.error();
   RecorderOptions recorder_options{options.out_dir, options.fps, options.video, {}};
   if (mcap) {
-    recorder_options.on_view = [raw = mcap.get(),
-                                last = std::uint64_t{0}](const session::SessionView& v) mutable {
-      session::record_session_view(*raw, v, last, core::monotonic_ns());
+    recorder_options.on_view = [raw = mcap.get(), last = std::uint64_t{0}](
+                                   const session::SessionView& v, std::int64_t ns) mutable {
+      session::record_session_view(*raw, v, last, ns);
     };
   }
   SessionRecorder recorder(session, *view, recorder_options);
@@ -386,6 +392,17 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
     std::uint64_t dropped = 0;
     for (const auto& [topic, n] : counts->dropped) dropped += n;
     recorded["dropped"] = dropped;
+    // Where each key frame is in the recording (s from its start, `telear replay --at`): the
+    // view's ghost was recorded at the very time the key frame's view was drawn.
+    if (auto reader = record::McapReader::open(options.record_path)) {
+      const auto start = static_cast<std::int64_t>(reader->statistics().message_start_time);
+      const Recording& r = recorder.recording();
+      for (std::size_t i = 0; i < r.key_frames.size() && i < r.key_frame_view_ns.size(); ++i) {
+        recorded["key_frames"].push_back(
+            {{"file", std::filesystem::path(r.key_frames[i]).filename().string()},
+             {"t_s", static_cast<double>(mcap->wall_ns(r.key_frame_view_ns[i]) - start) * 1e-9}});
+      }
+    }
     facts.mcap_json = recorded.dump();
     note("recorded " + options.record_path + " (" + std::to_string(counts->bytes) + " bytes)");
     // `telear report` on the recording, into the same folder: its plots and summary, which

@@ -5,6 +5,7 @@
 #include <opencv2/videoio.hpp>
 #include <thread>
 
+#include "telear/core/clock.hpp"
 #include "telear/render/image_io.hpp"
 #include "telear/view/ar_view_input.hpp"
 
@@ -57,7 +58,8 @@ void SessionRecorder::tick() {
   last_ = now;
   session_.update(dt);
   const session::SessionView& v = session_.view();
-  if (options_.on_view) options_.on_view(v);
+  last_view_ns_ = core::monotonic_ns();
+  if (options_.on_view) options_.on_view(v, last_view_ns_);
   if (v.frame && v.frame->frame_id != last_frame_id_) {
     last_frame_id_ = v.frame->frame_id;
     recording_.latency.add(v.frame->latency);
@@ -98,6 +100,7 @@ Result<std::string> SessionRecorder::key_frame(const std::string& name) {
   const std::string path = options_.out_dir + "/" + name + ".png";
   if (Status s = render::write_png(path, last_image_); !s.ok()) return s.error();
   recording_.key_frames.push_back(path);
+  recording_.key_frame_view_ns.push_back(last_view_ns_);
   return path;
 }
 

@@ -97,6 +97,15 @@ std::string RecordingPlayback::robot_tip() const {
   return it == session->second.end() ? std::string() : it->second;
 }
 
+std::int64_t RecordingPlayback::pair_stamp(std::size_t index) const {
+  const RecordingSeries& s = state_->series;
+  std::int64_t stamp = s.frames[0][index].stamp_ns;
+  if (index < s.frames[1].size() && s.frames[1][index].log_ns == s.frames[0][index].log_ns) {
+    stamp = std::max(stamp, s.frames[1][index].stamp_ns);
+  }
+  return stamp;
+}
+
 PlaybackMoment RecordingPlayback::at(double t) const {
   const RecordingSeries& s = state_->series;
   PlaybackMoment moment;
@@ -108,6 +117,20 @@ PlaybackMoment RecordingPlayback::at(double t) const {
       std::upper_bound(left.begin(), left.end(), moment.log_ns,
                        [](std::uint64_t ns, const FrameSample& f) { return ns < f.log_ns; });
   if (after != left.begin()) moment.frame = static_cast<std::size_t>(after - left.begin()) - 1;
+  // The newest decoded pair: back from the newest received to the one the latency names.
+  const auto decoded =
+      std::upper_bound(s.latency.begin(), s.latency.end(), moment.log_ns,
+                       [](std::uint64_t ns, const LatencySample& l) { return ns < l.log_ns; });
+  if (moment.frame && decoded != s.latency.begin()) {
+    const std::int64_t shown = std::prev(decoded)->stamp_ns;
+    for (std::size_t i = *moment.frame + 1; i-- > 0;) {
+      if (pair_stamp(i) == shown) {
+        moment.frame = i;
+        break;
+      }
+      if (pair_stamp(i) < shown) break;  // not recorded: keep the newest received
+    }
+  }
   moment.ghost = s.ghost.at(moment.log_ns);
   moment.robot = s.robot.at(moment.log_ns);
   for (const PlanEventSample& e : s.plan_events) {

@@ -136,9 +136,11 @@ Result<RecordingSeries> load_recording_series(const std::string& path) {
       {kTopicRightImage, {&image, frame_adder(1)}},
       {kTopicLatency,
        {&latency,
-        [&](const McapMessageView&, double t) {
+        [&](const McapMessageView& m, double t) {
           LatencySample sample;
           sample.t = t;
+          sample.log_ns = m.log_time;
+          sample.stamp_ns = stamp_ns(latency.timestamp());
           sample.frame_id = latency.frame_id();
           net::StageLatency stages;
           stages.capture_to_encode_s = latency.capture_to_encode_s();

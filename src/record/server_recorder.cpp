@@ -1,6 +1,8 @@
 #include "telear/record/server_recorder.hpp"
 
 #include <atomic>
+#include <chrono>
+#include <mutex>
 #include <optional>
 #include <thread>
 
@@ -20,15 +22,28 @@ struct ServerRecorder::Impl {
   std::atomic<bool> stopping{false};
   std::thread thread;
   std::optional<Result<RecordingCounts>> result;
+  // The client whose states are recorded: the own one (stream_state), or the followed one
+  // (null while none). The mutex is held while a state is awaited, so that unfollowing
+  // returns only once the client is no longer used.
+  std::mutex source_mutex;
+  const net::RobotClient* source = nullptr;
+  std::uint64_t state_after = 0;
 
   void run() {
-    std::uint64_t state_after = 0;
     std::uint64_t frame_after = 0;
     while (!stopping) {
-      if (auto state = robot->wait_state(state_after, 0.02)) {
-        state_after = state->sequence;
-        recorder->add_state(*state);
+      bool waited = false;
+      {
+        std::lock_guard lock(source_mutex);
+        if (source != nullptr) {
+          waited = true;
+          if (auto state = source->wait_state(state_after, 0.02)) {
+            state_after = state->sequence;
+            recorder->add_state(*state);
+          }
+        }
       }
+      if (!waited) std::this_thread::sleep_for(std::chrono::milliseconds(10));
       if (vision) {
         if (auto frame = vision->wait_frame(frame_after, 0.0)) {
           frame_after = frame->second;
@@ -58,7 +73,11 @@ Result<std::unique_ptr<ServerRecorder>> ServerRecorder::start(
   robot_options.client_name = options.client_name;
   robot_options.state_rate_hz = options.state_rate_hz;
   impl->robot = std::make_unique<net::RobotClient>(robot_options);
-  impl->robot->start();
+  // Its state stream only when it records its own (else its info call is all it makes).
+  if (options.stream_state) {
+    impl->robot->start();
+    impl->source = impl->robot.get();
+  }
   auto info = impl->robot->get_info();
   if (!info) {
     return Error{"recording: robot server " + options.robot_address + ": " + info.error().message};
@@ -123,11 +142,43 @@ void ServerRecorder::add_ghost(const Eigen::VectorXd& q, double gripper, std::in
   impl_->recorder->add_ghost(q, gripper, client_ns);
 }
 
+std::int64_t ServerRecorder::wall_ns(std::int64_t client_ns) const {
+  return impl_->recorder->wall_ns(client_ns);
+}
+
+StateFollow ServerRecorder::follow_states(const net::RobotClient& client) {
+  std::lock_guard lock(impl_->source_mutex);
+  impl_->source = &client;
+  impl_->state_after = 0;
+  return StateFollow(this);
+}
+
+void ServerRecorder::unfollow_states() {
+  std::lock_guard lock(impl_->source_mutex);
+  if (impl_->source != impl_->robot.get()) impl_->source = nullptr;
+}
+
+StateFollow& StateFollow::operator=(StateFollow&& other) noexcept {
+  if (this != &other) {
+    if (recorder_ != nullptr) recorder_->unfollow_states();
+    recorder_ = std::exchange(other.recorder_, nullptr);
+  }
+  return *this;
+}
+
+StateFollow::~StateFollow() {
+  if (recorder_ != nullptr) recorder_->unfollow_states();
+}
+
 Result<RecordingCounts> ServerRecorder::stop() {
   Impl& impl = *impl_;
   if (!impl.result) {
     impl.stopping = true;
     if (impl.thread.joinable()) impl.thread.join();
+    {
+      std::lock_guard lock(impl.source_mutex);
+      impl.source = nullptr;
+    }
     if (impl.vision) impl.vision->stop();
     impl.sink = nullptr;
     impl.robot->stop();

@@ -569,6 +569,10 @@ void SessionRecorder::add_ghost(const Eigen::VectorXd& q, double gripper, std::i
       [impl, q, gripper, wall_ns] { impl->write_view_ghost(q, gripper, wall_ns, nullptr); });
 }
 
+std::int64_t SessionRecorder::wall_ns(std::int64_t client_ns) const {
+  return impl_->wall(client_ns);
+}
+
 RecordingCounts SessionRecorder::counts() const {
   std::lock_guard lock(impl_->mutex);
   return impl_->counts;

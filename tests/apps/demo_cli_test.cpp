@@ -10,8 +10,11 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli_runner.hpp"
+#include "telear/console/replay_app.hpp"
+#include "telear/render/image_io.hpp"
 #include "test_util/temp_dir.hpp"
 
 namespace telear {
@@ -136,6 +139,32 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
     EXPECT_TRUE(fs::exists(frame.get<std::string>())) << frame;
   }
   EXPECT_TRUE(fs::exists(d + "/report.md"));
+  // Issue 22: the task's recording replayed at each key frame's time draws the key frame's view,
+  // pixel for pixel, from the recorded frame, ghost, arm and calibration (the collision key
+  // frame's red contact links excepted: replay runs no collision checker).
+  console::ReplayOptions replay_options;
+  replay_options.path = d + "/task.mcap";
+  replay_options.headless = true;
+  replay_options.width = 640;
+  replay_options.height = 400;
+  std::ostringstream replay_log;
+  auto replay = console::ReplayApp::create(replay_options, replay_log);
+  ASSERT_TRUE(replay) << replay.error().message;
+  int replayed = 0;
+  for (const auto& key_frame : report["recording"]["key_frames"]) {
+    const std::string file = key_frame["file"].get<std::string>();
+    if (file.find("collision") != std::string::npos) continue;
+    (*replay)->seek(key_frame["t_s"].get<double>());
+    auto drawn = (*replay)->render_view();
+    ASSERT_TRUE(drawn) << drawn.error().message;
+    auto live = render::read_image(d + "/" + file);
+    ASSERT_TRUE(live) << live.error().message;
+    ASSERT_EQ(drawn->width, live->width) << file;
+    ASSERT_EQ(drawn->height, live->height) << file;
+    EXPECT_EQ(drawn->pixels, live->pixels) << file << " at " << key_frame["t_s"] << " s";
+    ++replayed;
+  }
+  EXPECT_GE(replayed, 5) << report["recording"];
   // Issue 13 on the default PUMA: the first rehearsal, into the table beside the box, fails
   // on its first contact (a finger in the table top), shown red on the ghost in its own key
   // frame; the corrected plan (elbow-up to the box far out on the table,

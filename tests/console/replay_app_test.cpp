@@ -102,36 +102,32 @@ TEST(ReplayApp, AReplayedSessionDrawsTheLiveViewsPixels) {
   const record::RecordingSeries& series = app.playback().series();
 
   // Each live sample's moment in the recording: the ghost message recorded for its display
-  // frame (the same pose), where the replay shows the same video frame.
-  int compared = 0, same_frame_missed = 0;
+  // frame (the same pose). The replay shows the frame the live view showed (the newest decoded,
+  // from the recorded latency messages) and draws the same image.
+  int compared = 0;
   for (const LiveSample& sample : live) {
-    bool found = false;
+    const record::JointSample* moment = nullptr;
     for (const record::JointSample& ghost : series.ghost.samples) {
-      if (ghost.position != sample.ghost_q) continue;
-      app.seek(ghost.t);
-      ASSERT_TRUE(app.moment().ghost);
-      ASSERT_EQ(app.moment().ghost->position, sample.ghost_q);
-      ASSERT_TRUE(app.moment().frame);
-      auto image = app.render_view();
-      ASSERT_TRUE(image) << image.error().message;
-      auto decoded =
-          const_cast<record::RecordingPlayback&>(app.playback()).frame(*app.moment().frame);
-      ASSERT_TRUE(decoded);
-      if ((*decoded)->left.pixels != sample.video_left.pixels) continue;  // a frame later
-      found = true;
-      ASSERT_EQ(image->width, sample.view.width);
-      ASSERT_EQ(image->height, sample.view.height);
-      EXPECT_EQ(differing_pixels(*image, sample.view, 0), 0) << "at " << ghost.t << " s";
-      ++compared;
-      break;
+      if (ghost.position == sample.ghost_q) {
+        app.seek(ghost.t);
+        const record::PlaybackFrame* shown =
+            *const_cast<record::RecordingPlayback&>(app.playback()).frame(*app.moment().frame);
+        if (shown->left.pixels == sample.video_left.pixels) {
+          moment = &ghost;
+          break;
+        }
+      }
     }
-    if (!found) ++same_frame_missed;
+    ASSERT_NE(moment, nullptr) << "no recorded moment shows sample " << compared << "'s frame";
+    ASSERT_EQ(app.moment().ghost->position, sample.ghost_q);
+    auto image = app.render_view();
+    ASSERT_TRUE(image) << image.error().message;
+    ASSERT_EQ(image->width, sample.view.width);
+    ASSERT_EQ(image->height, sample.view.height);
+    EXPECT_EQ(differing_pixels(*image, sample.view, 0), 0) << "at " << moment->t << " s";
+    ++compared;
   }
-  // A view drawn within a decode's time of a frame's arrival showed the frame before it
-  // (recording_playback.hpp): most samples are not.
-  EXPECT_GE(compared, static_cast<int>(live.size()) * 2 / 3)
-      << compared << " of " << live.size() << " compared, " << same_frame_missed
-      << " without the same video frame";
+  EXPECT_EQ(compared, static_cast<int>(live.size()));
 }
 
 TEST(ReplayApp, ARecordingThatDoesNotOpenIsAnErrorNamingIt) {

@@ -45,8 +45,9 @@ struct Written {
   std::int64_t base_ns = 0;
 };
 
-// Three frames (grey 40, 120, 200) received at base + 100, 200, 300 ms; the view's ghost at
-// base + 50 ms (q = 0.1) and + 250 ms (q = 0.2); VR from + 150 ms to + 280 ms.
+// Three frames (grey 40, 120, 200) received at base + 100, 200, 300 ms and decoded (shown) 30 ms
+// later; the view's ghost at base + 50 ms (q = 0.1) and + 250 ms (q = 0.2); VR from + 150 ms to
+// + 280 ms.
 Result<Written> write_recording(const fs::path& dir, bool with_cameras) {
   auto description = core::load_robot_description({"puma560"});
   if (!description) return description.error();
@@ -85,6 +86,12 @@ Result<Written> write_recording(const fs::path& dir, bool with_cameras) {
     f.receive_ns = base + (i + 1) * 100 * kMs;
     f.capture_ns_left = f.capture_ns_right = f.receive_ns - 10 * kMs;
     (*recorder)->add_frame(f);
+    net::DecodedStereoFrame shown;
+    shown.frame_id = f.frame_id;
+    shown.capture_ns_left = f.capture_ns_left;
+    shown.capture_ns_right = f.capture_ns_right;
+    shown.decoded_ns = f.receive_ns + 30 * kMs;
+    (*recorder)->add_latency(shown);
   }
   auto closed = (*recorder)->close();
   if (!closed) return closed.error();
@@ -111,19 +118,27 @@ TEST(RecordingPlayback, AtATimeTheViewHasTheNewestFrameGhostAndMode) {
   EXPECT_DOUBLE_EQ(m.ghost->position[0], 0.1);
   EXPECT_FALSE(m.vr);
 
-  m = playback->at(frame0 + 0.120);  // base + 220 ms: frame 2 arrived (200), VR since 150
+  m = playback->at(frame0 + 0.040);  // base + 140 ms: frame 1 decoded (130)
   ASSERT_TRUE(m.frame);
-  EXPECT_EQ(*m.frame, 1u);
-  EXPECT_TRUE(m.vr);
+  EXPECT_EQ(*m.frame, 0u);
+  EXPECT_FALSE(m.vr);
+
+  m = playback->at(frame0 + 0.120);  // base + 220 ms: frame 2 arrived (200), not yet shown
+  ASSERT_TRUE(m.frame);
+  EXPECT_EQ(*m.frame, 0u);
+  EXPECT_TRUE(m.vr);  // since 150
   EXPECT_DOUBLE_EQ(m.ghost->position[0], 0.1);
 
-  m = playback->at(frame0 + 0.199);  // base + 299 ms: still frame 2; the second ghost; AR
+  m = playback->at(frame0 + 0.199);  // base + 299 ms: frame 2 shown (230); the second ghost; AR
   EXPECT_EQ(*m.frame, 1u);
   EXPECT_DOUBLE_EQ(m.ghost->position[0], 0.2);
   EXPECT_EQ(m.ghost->gripper, 0.0);
   EXPECT_FALSE(m.vr);
 
-  m = playback->at(1e6);  // clamped to the end: the last frame
+  m = playback->at(frame0 + 0.210);  // base + 310 ms: frame 3 arrived (300), not yet shown
+  EXPECT_EQ(*m.frame, 1u);
+
+  m = playback->at(1e6);  // clamped to the end (frame 3 shown at 330): the last frame
   EXPECT_DOUBLE_EQ(m.t, playback->duration_s());
   EXPECT_EQ(*m.frame, 2u);
 

@@ -53,15 +53,19 @@ struct Recording {
   std::string video_codec;              // "avc1" (H.264) or "mp4v"; empty: no video
   std::string video_warning;            // set when H.264 could not be opened
   std::vector<std::string> key_frames;  // PNG paths, in order
+  // When each key frame's view was drawn (the monotonic clock): where a replay of the task's
+  // recording finds it (its ghost message is stamped with the same time).
+  std::vector<std::int64_t> key_frame_view_ns;
 };
 
 struct RecorderOptions {
   std::string out_dir;
   double fps = 15.0;  // display ticks (and video frames) per second, > 0
   bool video = true;  // false: no MP4 (key frames still written)
-  // Called with the session's view at every tick, after its update (telear demo --record: the
-  // ghost drawn, the shown frame's latency; session::record_session_view).
-  std::function<void(const session::SessionView&)> on_view;
+  // Called with the session's view at every tick, after its update, and the time it is drawn
+  // (telear demo --record: the ghost drawn, the shown frame's latency;
+  // session::record_session_view).
+  std::function<void(const session::SessionView&, std::int64_t monotonic_ns)> on_view;
 };
 
 class SessionRecorder {
@@ -95,6 +99,7 @@ class SessionRecorder {
   std::uint64_t last_frame_id_ = 0;
   int residual_checks_ = 0;
   core::Image last_image_;
+  std::int64_t last_view_ns_ = 0;  // when last_image_'s view was drawn
 };
 
 }  // namespace telear::lab

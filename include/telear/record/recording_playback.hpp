@@ -5,9 +5,10 @@
 // draws it (console/replay_app.hpp).
 //
 // "At time t" (seconds from the recording's start, its log times) means what the live view had
-// then: the newest frame received (log time <= t), the newest ghost and robot state, the last
-// AR/VR switch. A frame is logged when it arrives and shown once decoded, so a view drawn
-// within a decode's time (~2 ms) of a frame's arrival showed the frame before it.
+// then: the newest frame decoded by t (the live view shows a frame once decoded: the newest
+// /telear/latency message, logged at its decode, names the pair by its capture stamp; a
+// recording without latency messages falls back to the newest frame received), the newest
+// ghost and robot state, the last AR/VR switch.
 
 #include <cstdint>
 #include <memory>
@@ -64,6 +65,7 @@ class RecordingPlayback {
   Result<const PlaybackFrame*> frame(std::size_t index);
 
  private:
+  std::int64_t pair_stamp(std::size_t index) const;  // the later eye's capture stamp
   struct State;
   explicit RecordingPlayback(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;

@@ -101,6 +101,9 @@ class SessionRecorder {
   // same counts. Errors: a failed write (the file is then what was written before it).
   Result<RecordingCounts> close();
 
+  // A client-clock (monotonic) time on the recording's wall clock: a message's log time.
+  std::int64_t wall_ns(std::int64_t client_ns) const;
+
   // Counts so far (written ones as the writer thread has written them).
   RecordingCounts counts() const;
 
