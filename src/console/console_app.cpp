@@ -464,14 +464,7 @@ bool ConsoleApp::frame() {
       ui_.last_failed = true;
     }
   }
-  render::ArViewOptions view_options = m.view->options();
-  view_options.ghost_style =
-      ui_.wireframe ? render::DrawOptions::Style::kWireframe : render::DrawOptions::Style::kSolid;
-  view_options.ghost_alpha = ui_.ghost_opacity;
-  view_options.show_reported_ghost = ui_.show_reported;
-  view_options.overlay_mode =
-      ui_.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
-  m.view->set_options(view_options);
+  m.view->set_options(with_view_settings(m.view->options(), ui_));
   const session::SessionView& v = session_->view();
   render::ArViewInput input = view::ar_view_input(v);
   if (input.ghost_q.size() == 0) input.ghost_q = session_->ghost().q();  // before the first update

@@ -32,19 +32,12 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kMinSpeed = 1.0 / 16.0, kMaxSpeed = 16.0;
 
-// The view options the console starts with (ui_state.hpp's defaults, console_app.cpp's
-// mapping): the replayed image is the live one.
+// The view options the console starts with (ui_state.hpp's defaults): the replayed image is
+// the live one.
 render::ArViewOptions console_view_options() {
-  const UiState ui;
   render::ArViewOptions options;
   options.layout = render::StereoLayout::kSideBySide;
-  options.ghost_style =
-      ui.wireframe ? render::DrawOptions::Style::kWireframe : render::DrawOptions::Style::kSolid;
-  options.ghost_alpha = ui.ghost_opacity;
-  options.show_reported_ghost = ui.show_reported;
-  options.overlay_mode =
-      ui.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
-  return options;
+  return with_view_settings(options, UiState{});
 }
 
 std::string joints_text(const Eigen::VectorXd& q) {

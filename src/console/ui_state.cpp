@@ -10,6 +10,16 @@ constexpr std::pair<ViewLayout, const char*> kLayouts[] = {
     {ViewLayout::kPageFlip, "page-flip"}};
 }  // namespace
 
+render::ArViewOptions with_view_settings(render::ArViewOptions options, const UiState& ui) {
+  options.ghost_style =
+      ui.wireframe ? render::DrawOptions::Style::kWireframe : render::DrawOptions::Style::kSolid;
+  options.ghost_alpha = ui.ghost_opacity;
+  options.show_reported_ghost = ui.show_reported;
+  options.overlay_mode =
+      ui.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
+  return options;
+}
+
 const char* layout_name(ViewLayout layout) {
   for (const auto& [l, name] : kLayouts) {
     if (l == layout) return name;

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "scripted_console.hpp"
 #include "telear/console/console_actions.hpp"
 #include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
@@ -121,14 +122,8 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
                            "wait-until idle 30\n"
                            "screenshot " +
                                shot + "\n";
-  ConsoleOptions options;
-  options.start_local_servers = cli::simulated_local_servers();  // as `telear console`
-  options.headless = true;
-  options.width = kWidth;
-  options.height = kHeight;
-  options.resolution = "320x240";
-  options.script = script;
-  options.frames = 1000000;  // keep running after the script (connection loss below)
+  // Kept running after the script (connection loss below).
+  ConsoleOptions options = telear::test::scripted_headless_console(script, kWidth, kHeight);
   options.record = (dir / "console.mcap").string();  // issue 22: --record
   std::ostringstream log;
   auto created = ConsoleApp::create(options, log);
@@ -241,15 +236,8 @@ TEST(ConsoleApp, AUrdfArmIsJoggedPlannedAndExecuted) {
                            "wait-until idle 30\n"
                            "screenshot " +
                                (dir / "arm.png").string() + "\n";
-  ConsoleOptions options;
-  options.start_local_servers = cli::simulated_local_servers();  // as `telear console`
+  ConsoleOptions options = telear::test::scripted_headless_console(script, kWidth, kHeight);
   options.arm = {"ur6", "", {}};
-  options.headless = true;
-  options.width = kWidth;
-  options.height = kHeight;
-  options.resolution = "320x240";
-  options.script = script;
-  options.frames = 1000000;
   std::ostringstream log;
   auto created = ConsoleApp::create(options, log);
   ASSERT_TRUE(created) << created.error().message;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "apps/console_command.hpp"
+#include "scripted_console.hpp"
 #include "telear/console/console_actions.hpp"
 #include "telear/console/console_app.hpp"
 #include "telear/console/panels.hpp"
@@ -57,14 +58,8 @@ TEST(PlotsPanel, ShowsTheSessionsLiveSeries) {
   std::ofstream(script) << "wait-until video 30\n"
                            "view plots on\n"
                            "wait 1\n";
-  ConsoleOptions options;
-  options.start_local_servers = cli::simulated_local_servers();  // as `telear console`
-  options.headless = true;
-  options.width = kPlotsConsoleWidth;
-  options.height = kPlotsConsoleHeight;
-  options.resolution = "320x240";
-  options.script = script;
-  options.frames = 1000000;
+  const ConsoleOptions options =
+      telear::test::scripted_headless_console(script, kPlotsConsoleWidth, kPlotsConsoleHeight);
   std::ostringstream log;
   auto created = ConsoleApp::create(options, log);
   ASSERT_TRUE(created) << created.error().message;

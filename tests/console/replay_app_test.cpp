@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "apps/console_command.hpp"
+#include "scripted_console.hpp"
 #include "telear/console/console_app.hpp"
 #include "test_util/temp_dir.hpp"
 
@@ -62,13 +63,8 @@ TEST(ReplayApp, AReplayedSessionDrawsTheLiveViewsPixels) {
                            "ghost gripper close\nwait 0.15\n"
                            "ghost joint 5 +20deg\nwait 0.15\n"
                            "ghost joint 2 -8deg\nwait 0.3\n";
-  ConsoleOptions options;
-  options.start_local_servers = cli::simulated_local_servers();
-  options.headless = true;
-  options.width = 800;
-  options.height = 500;
-  options.resolution = "320x240";
-  options.script = script;
+  ConsoleOptions options = telear::test::scripted_headless_console(script, 800, 500);
+  options.frames = 0;  // the script's end ends it
   options.record = recording;
   std::ostringstream log;
   std::vector<LiveSample> live;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "telear/core/motion_command.hpp"
+#include "telear/render/ar_view.hpp"
 
 namespace telear::console {
 
@@ -25,6 +26,13 @@ const char* layout_name(ViewLayout layout);
 std::optional<ViewLayout> parse_layout(const std::string& name);
 
 enum class InputTarget { kGhost, kReal };
+
+struct UiState;
+// The view settings the operator chose (style, ghost opacity, the real arm shown, raw or
+// undistorted video) applied to the AR view's options: the console's view each frame, and
+// replay's with a default UiState, so that both draw alike. The layout is not among them (it
+// needs the view rebuilt).
+render::ArViewOptions with_view_settings(render::ArViewOptions options, const UiState& ui);
 
 struct UiState {
   // [SECTION] view
