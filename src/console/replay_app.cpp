@@ -23,6 +23,7 @@
 #include "telear/render/ar_view.hpp"
 #include "telear/render/image_io.hpp"
 #include "telear/render/scene_objects.hpp"
+#include "telear/session/display_mode.hpp"
 
 namespace telear::console {
 
@@ -197,6 +198,9 @@ Status ReplayApp::draw_view() {
   Impl& m = *impl_;
   render::ArViewInput input;
   input.mode = moment_.vr ? render::ViewMode::kVr : render::ViewMode::kAr;
+  // Stale as the live view judged it: older than the display's late threshold, or no frame.
+  input.stale =
+      !moment_.frame_age_s || *moment_.frame_age_s > session::DisplayModeOptions{}.late_threshold_s;
   const record::PlaybackFrame* frame = nullptr;
   if (moment_.frame) {
     auto decoded = m.playback->frame(*moment_.frame);

@@ -133,9 +133,23 @@ PlaybackMoment RecordingPlayback::at(double t) const {
   }
   moment.ghost = s.ghost.at(moment.log_ns);
   moment.robot = s.robot.at(moment.log_ns);
+  // The mode: the last switch's; before the first switch, the mode it switched from (a
+  // session's view starts in VR, so its first switch is to AR); no switch recorded: AR.
+  bool first = true;
   for (const PlanEventSample& e : s.plan_events) {
-    if (e.t > moment.t) break;
-    if (e.kind_name == "DISPLAY_MODE") moment.vr = e.text.rfind("vr", 0) == 0;
+    if (e.kind_name != "DISPLAY_MODE") continue;
+    const bool to_vr = e.text.rfind("vr", 0) == 0;
+    if (e.t > moment.t) {
+      if (first) moment.vr = !to_vr;
+      break;
+    }
+    moment.vr = to_vr;
+    first = false;
+  }
+  if (moment.frame) {
+    moment.frame_age_s = static_cast<double>(static_cast<std::int64_t>(moment.log_ns) -
+                                             left[*moment.frame].stamp_ns) *
+                         1e-9;
   }
   return moment;
 }

@@ -134,6 +134,8 @@ TEST(RecordingPlayback, AtATimeTheViewHasTheNewestFrameGhostAndMode) {
   EXPECT_DOUBLE_EQ(m.ghost->position[0], 0.2);
   EXPECT_EQ(m.ghost->gripper, 0.0);
   EXPECT_FALSE(m.vr);
+  ASSERT_TRUE(m.frame_age_s);  // captured at base + 190 ms, seen at + 299 ms
+  EXPECT_NEAR(*m.frame_age_s, 0.109, 1e-9);
 
   m = playback->at(frame0 + 0.210);  // base + 310 ms: frame 3 arrived (300), not yet shown
   EXPECT_EQ(*m.frame, 1u);

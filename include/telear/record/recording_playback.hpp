@@ -29,6 +29,8 @@ struct PlaybackMoment {
   const JointSample* ghost = nullptr;  // null: none recorded yet
   const JointSample* robot = nullptr;  // the measured arm
   bool vr = false;                     // the recorded display mode (DISPLAY_MODE events)
+  // t minus the frame's capture time (left eye): the age the live view judged it stale by.
+  std::optional<double> frame_age_s;
 };
 
 struct PlaybackFrame {
