@@ -157,6 +157,7 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
   net::VisionClientOptions client_options;
   client_options.address = (*server)->address();
   client_options.client_name = "bench-stream";
+  client_options.decode_eyes_in_parallel = !options.sequential_decode;
   net::VisionClient client(client_options);
   client.start();
 

@@ -31,6 +31,7 @@ struct StreamBenchOptions {
   int quality = 85;                              // JPEG quality 1..100
   int rtt_calls = 500;                           // per robot command kind
   std::string json;                              // also write the results as JSON to this file
+  bool sequential_decode = false;  // the client decodes the eyes in turn (the comparison)
 };
 
 int run_bench_stream(const StreamBenchOptions& options, std::ostream& out, std::ostream& err);

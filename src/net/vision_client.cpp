@@ -6,6 +6,7 @@
 #include <atomic>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -13,6 +14,7 @@
 #include "telear/net/client_base.hpp"
 #include "telear/net/jpeg_codec.hpp"
 #include "telear/net/latest_slot.hpp"
+#include "telear/net/stereo_jpeg_decoder.hpp"
 #include "telear/v1/vision.grpc.pb.h"
 #include "telear/vision/camera_file.hpp"
 
@@ -139,7 +141,17 @@ void VisionClient::Impl::receive_loop() {
 // [SECTION] decode: the newest received message, both eyes, latencies
 
 void VisionClient::Impl::decode_loop() {
-  JpegDecoder decoder;
+  std::optional<StereoJpegDecoder> pair_decoder;  // both eyes at once
+  if (options.decode_eyes_in_parallel) pair_decoder.emplace();
+  JpegDecoder decoder;  // else one after the other
+  const auto decode = [&](const telear::v1::StereoFrame& m) -> Result<DecodedPair> {
+    if (pair_decoder) return pair_decoder->decode(m.left().jpeg(), m.right().jpeg());
+    auto left = decoder.decode(m.left().jpeg());
+    if (!left) return Error{"left eye: " + left.error().message};
+    auto right = decoder.decode(m.right().jpeg());
+    if (!right) return Error{"right eye: " + right.error().message};
+    return DecodedPair{std::move(*left), std::move(*right)};
+  };
   std::uint64_t last = 0;
   while (true) {
     auto taken = received.wait_take(last, std::chrono::milliseconds(100));
@@ -150,15 +162,14 @@ void VisionClient::Impl::decode_loop() {
     last = taken->number;
     const Received& in = *taken->item;
     const telear::v1::StereoFrame& m = in.message;
-    auto left = decoder.decode(m.left().jpeg());
-    auto right = left ? decoder.decode(m.right().jpeg()) : Result<core::Image>(left.error());
-    if (!left || !right) continue;  // a corrupt frame is dropped; the next one replaces it
+    auto pair = decode(m);
+    if (!pair) continue;  // a corrupt frame is dropped; the next one replaces it
 
     DecodedStereoFrame out;
     out.decoded_ns = core::monotonic_ns();
     out.frame_id = m.frame_id();
-    out.left = std::move(*left);
-    out.right = std::move(*right);
+    out.left = std::move(pair->left);
+    out.right = std::move(pair->right);
     out.capture_ns_left = to_client(m.left().capture_ns());
     out.capture_ns_right = to_client(m.right().capture_ns());
     out.frames_skipped_server = m.frames_skipped();

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "telear/net/stereo_jpeg_decoder.hpp"
+
 namespace telear::net {
 namespace {
 
@@ -110,6 +112,35 @@ TEST(JpegCodec, DecodeRefusesImagesBeyondThePixelLimit) {
   ASSERT_FALSE(refused);
   EXPECT_THAT(refused.error().message,
               HasSubstr("image size 160x120 is beyond the limit of 10000 pixels"));
+}
+
+// Issue 23: both eyes at once give what decoding them in turn gives, over many pairs (one
+// worker, reused), and a corrupt eye is named.
+TEST(StereoJpegDecoder, DecodesBothEyesAsOneDecoderWouldAndNamesACorruptEye) {
+  JpegEncoder encoder;
+  JpegDecoder reference;
+  StereoJpegDecoder pair_decoder;
+  for (int i = 0; i < 20; ++i) {
+    core::Image left = test_image(160 + 8 * i, 120);
+    core::Image right = test_image(96, 64 + 8 * i);
+    auto left_jpeg = encoder.encode(left, 85);
+    auto right_jpeg = encoder.encode(right, 85);
+    ASSERT_TRUE(left_jpeg && right_jpeg);
+    auto pair = pair_decoder.decode(*left_jpeg, *right_jpeg);
+    ASSERT_TRUE(pair) << pair.error().message;
+    EXPECT_EQ(pair->left.pixels, reference.decode(*left_jpeg)->pixels);
+    EXPECT_EQ(pair->right.pixels, reference.decode(*right_jpeg)->pixels);
+    EXPECT_EQ(pair->right.width, 96);
+  }
+  auto good = encoder.encode(test_image(64, 48), 85);
+  ASSERT_TRUE(good);
+  auto bad_left = pair_decoder.decode("not a jpeg", *good);
+  ASSERT_FALSE(bad_left);
+  EXPECT_THAT(bad_left.error().message, ::testing::StartsWith("left eye: "));
+  auto bad_right = pair_decoder.decode(*good, "");
+  ASSERT_FALSE(bad_right);
+  EXPECT_THAT(bad_right.error().message, ::testing::StartsWith("right eye: "));
+  EXPECT_TRUE(pair_decoder.decode(*good, *good));  // still working after the errors
 }
 
 }  // namespace

@@ -49,6 +49,10 @@ struct VisionClientOptions : ClientOptions {
   int jpeg_quality = 0;       // 0: the server's default
   int width = 0, height = 0;  // 0: the source's size
   double ping_period_s = 1.0;
+  // Both eyes decoded at once (net/stereo_jpeg_decoder.hpp: the right eye on a worker thread);
+  // false: one after the other on the decode thread (a single-core machine; the benchmark's
+  // comparison).
+  bool decode_eyes_in_parallel = true;
   // Called on the receive thread for every frame received, before it may be skipped by the
   // decoder: keep it short (copy what you need and return); it delays the next receive.
   std::function<void(const ReceivedStereoFrame&)> on_received;
