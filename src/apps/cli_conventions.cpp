@@ -190,6 +190,9 @@ void add_bench_commands(CLI::App& app, Commands& commands) {
       ->add_option("--rtt-calls", bench_stream_options.rtt_calls,
                    "robot round trips per command kind")
       ->capture_default_str();
+  bench_stream->add_flag(
+      "--sequential-decode", bench_stream_options.sequential_decode,
+      "the client decodes the two eyes in turn (the parallel decode's baseline)");
   bench_stream->add_option("--json", bench_stream_options.json,
                            "also write the results as JSON to FILE");
 
