@@ -30,7 +30,10 @@ void add_robot_server_command(CLI::App& app, Commands& commands) {
                    "file whose first line is the bearer token commands must carry")
       ->required();
   robot_server_app->add_flag("--allow-observers,!--no-observers", robot_server.allow_observers,
-                             "state readable without a token (default) or not");
+                             "info and state readable without any token (default: not)");
+  robot_server_app->add_option(
+      "--observer-token-file", robot_server.observer_token_file,
+      "a read-only token (info, state) for watchers: recorders, dashboards");
   robot_server_app->add_option("--tls-cert", robot_server.tls_cert, "TLS certificate (PEM)");
   robot_server_app->add_option("--tls-key", robot_server.tls_key, "TLS private key (PEM)");
   add_robot_arguments(robot_server_app, robot_server, false);
@@ -105,6 +108,10 @@ void add_vision_server_command(CLI::App& app, Commands& commands) {
                                 "calls need this bearer token (also sent to the robot server)");
   vision_server_app->add_option("--robot-token-file", vision_server.robot_token_file,
                                 "token for the robot server, when it differs");
+  vision_server_app->add_option("--observer-token-file", vision_server.observer_token_file,
+                                "a second token the stream accepts (the watchers' read-only one)");
+  vision_server_app->add_option("--tls-cert", vision_server.tls_cert, "TLS certificate (PEM)");
+  vision_server_app->add_option("--tls-key", vision_server.tls_key, "TLS private key (PEM)");
   vision_server_app->add_option("--left", vision_server.left,
                                 "files: the left eye's video; ros: its image topic");
   vision_server_app->add_option("--right", vision_server.right,
@@ -136,6 +143,9 @@ void add_vision_server_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   vision_server_app->add_option("--noise", vision_server.noise, "sim: sensor noise, grey levels")
       ->capture_default_str();
+  vision_server_app->add_flag("--frame-code", vision_server.frame_code,
+                              "sim, synthetic: write each frame's number and capture time into "
+                              "its pixels (glass-to-glass latency, docs/latency.md)");
   vision_server_app->add_option("--log-level", vision_server.log_level,
                                 "trace, debug, info, warn, error or off");
   commands.push_back(

@@ -52,6 +52,7 @@ int run_robot_server(const RobotServerCommandOptions& options, std::ostream& out
   server.listen_address = options.listen;
   server.token_file = options.token_file;
   server.allow_observers = options.allow_observers;
+  server.observer_token_file = options.observer_token_file;
   server.tls_cert_file = options.tls_cert;
   server.tls_key_file = options.tls_key;
   // Collision checking (workspace and self) comes with --workspace: the shipped PUMA's body

@@ -28,7 +28,8 @@ struct RobotServerCommandOptions : geometry::RobotSelection {
   drivers::Ros1DriverOptions ros;   // --ros-master, --joint-states, --controller, ...
   drivers::Ros2DriverOptions ros2;  // --ros-domain, --ros2-joint-states, --ros2-controller
   std::string token_file;
-  bool allow_observers = true;
+  bool allow_observers = false;     // reading without any token (--allow-observers)
+  std::string observer_token_file;  // a read-only token for watchers
   std::string tls_cert, tls_key;
   int heartbeat_ms = 250;          // default lease heartbeat period
   std::string initial_q;           // sim: joint values or a named configuration; empty: zero

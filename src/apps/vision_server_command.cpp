@@ -109,6 +109,7 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   source_options.size = *resolution;
   source_options.supersample = options.supersample;
   source_options.noise = options.noise;
+  source_options.frame_code = options.frame_code;
   source_options.ros_master = options.ros_master;
   source_options.sync_tolerance_ms = options.sync_tolerance_ms;
   source_options.camera_info = options.calibration.empty();  // a file overrides camera_info
@@ -137,6 +138,9 @@ int run_vision_server(const VisionServerCommandOptions& options, std::ostream& o
   server_options.calibration_file = options.calibration;
   if (options.calibration.empty()) server_options.calibration_yaml = opened->calibration_yaml;
   server_options.token_file = options.token_file;
+  server_options.observer_token_file = options.observer_token_file;
+  server_options.tls_cert_file = options.tls_cert;
+  server_options.tls_key_file = options.tls_key;
   server_options.jpeg_quality = options.quality;
   auto server = net::VisionServer::create(std::move(server_options));
   if (!server) return fail(server.error().message, 1);

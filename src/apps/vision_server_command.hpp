@@ -32,15 +32,18 @@ struct VisionServerCommandOptions {
   std::string rig = sim::default_rig_file();  // the shipped rig
   std::string robot_server;                   // HOST:PORT, sim only
   std::string token_file;
-  std::string robot_token_file;  // empty: token_file
-  std::string left, right;       // files; ros: the image topics
-  std::string cameras = "0,1";   // v4l2
-  std::string calibration;       // stereo camera file for GetCameraInfo
-  double fps = 0.0;              // 0: the source's default (30; a file's own rate)
-  std::string resolution;        // WxH; empty: the source's default
+  std::string robot_token_file;     // empty: token_file
+  std::string observer_token_file;  // a second, read-only token (net/bearer_auth.hpp)
+  std::string tls_cert, tls_key;    // TLS (PEM)
+  std::string left, right;          // files; ros: the image topics
+  std::string cameras = "0,1";      // v4l2
+  std::string calibration;          // stereo camera file for GetCameraInfo
+  double fps = 0.0;                 // 0: the source's default (30; a file's own rate)
+  std::string resolution;           // WxH; empty: the source's default
   int quality = 85;
   int supersample = 2;             // sim
   double noise = 1.0;              // sim
+  bool frame_code = false;         // sim, synthetic: stamp the frame code (docs/latency.md)
   std::string log_level = "info";  // trace | debug | info | warn | error | off
   // ros: the master (http://HOST:PORT; empty: $ROS_MASTER_URI) and the largest stamp
   // difference of a left-right pair

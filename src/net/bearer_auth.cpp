@@ -33,9 +33,12 @@ bool constant_time_equal(const std::string& a, const std::string& b) {
   return diff == 0;
 }
 
-BearerAuth::BearerAuth(std::string token, bool allow_observers)
-    : token_(std::move(token)), allow_observers_(allow_observers) {
+BearerAuth::BearerAuth(std::string token, bool allow_observers, std::string observer_token)
+    : token_(std::move(token)),
+      allow_observers_(allow_observers),
+      observer_token_(std::move(observer_token)) {
   assert(!token_.empty() && "BearerAuth: the token is empty");
+  assert(observer_token_ != token_ && "BearerAuth: the observer token is the operator's");
 }
 
 BearerAuth::Presented BearerAuth::check(const grpc::ServerContext& context) const {
@@ -45,14 +48,22 @@ BearerAuth::Presented BearerAuth::check(const grpc::ServerContext& context) cons
   const std::string value(it->second.data(), it->second.size());
   const std::string scheme = kScheme;
   if (value.compare(0, scheme.size(), scheme) != 0) return Presented::kMalformed;
-  return constant_time_equal(trim(value.substr(scheme.size())), token_) ? Presented::kValid
-                                                                        : Presented::kWrong;
+  const std::string presented = trim(value.substr(scheme.size()));
+  if (constant_time_equal(presented, token_)) return Presented::kValid;
+  if (!observer_token_.empty() && constant_time_equal(presented, observer_token_)) {
+    return Presented::kObserver;
+  }
+  return Presented::kWrong;
 }
 
 grpc::Status BearerAuth::authorize_command(const grpc::ServerContext& context) const {
   switch (check(context)) {
     case Presented::kValid:
       return grpc::Status::OK;
+    case Presented::kObserver:
+      return {grpc::StatusCode::PERMISSION_DENIED,
+              "read-only token: the observer token may read (info, state, video), commands need "
+              "the operator's token"};
     case Presented::kNone:
       return {grpc::StatusCode::UNAUTHENTICATED,
               "no token: commands need the metadata 'authorization: Bearer <token>'"};
@@ -67,11 +78,12 @@ grpc::Status BearerAuth::authorize_command(const grpc::ServerContext& context) c
 
 grpc::Status BearerAuth::authorize_read(const grpc::ServerContext& context) const {
   const Presented presented = check(context);
+  if (presented == Presented::kObserver) return grpc::Status::OK;
   if (presented == Presented::kNone && allow_observers_) return grpc::Status::OK;
   if (presented == Presented::kNone) {
     return {grpc::StatusCode::UNAUTHENTICATED,
             "no token: this server does not allow observers; send 'authorization: Bearer "
-            "<token>'"};
+            "<token>' (the operator's or the observer token)"};
   }
   return authorize_command(context);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <utility>
 
 #include "telear/core/clock.hpp"
@@ -27,9 +28,18 @@ void ClientBase::prepare(grpc::ClientContext& context, bool deadline) const {
 
 Error ClientBase::error(const std::string& command, const grpc::Status& status) const {
   switch (status.error_code()) {
-    case grpc::StatusCode::UNAVAILABLE:
+    case grpc::StatusCode::UNAVAILABLE: {
+      std::string hint;
+      if (!options_.tls_root_certificate_file.empty()) {
+        // gRPC says "handshake failed"; the operator needs to know what to check.
+        hint = std::ifstream(options_.tls_root_certificate_file).good()
+                   ? " (TLS: the server must speak TLS with a certificate signed by the CA in '" +
+                         options_.tls_root_certificate_file + "' and naming the host connected to)"
+                   : " (TLS: cannot read the CA file '" + options_.tls_root_certificate_file + "')";
+      }
       return Error{command + ": " + server_ + " at " + options_.address +
-                   " unreachable: " + status.error_message()};
+                   " unreachable: " + status.error_message() + hint};
+    }
     case grpc::StatusCode::DEADLINE_EXCEEDED:
       return Error{command + ": " + server_ + " at " + options_.address +
                    " did not answer within " + core::format_number(options_.rpc_timeout_s) + " s"};

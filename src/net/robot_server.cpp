@@ -10,6 +10,7 @@
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/bearer_auth.hpp"
 #include "telear/net/robot_service.hpp"
+#include "telear/net/server_credentials.hpp"
 #include "telear/net/token_file.hpp"
 
 namespace telear::net {
@@ -66,16 +67,19 @@ Result<std::unique_ptr<RobotServer>> RobotServer::create(std::unique_ptr<core::R
     if (!loaded) return Error{"robot server: " + loaded.error().message};
     token = std::move(loaded).value();
   }
-  std::shared_ptr<grpc::ServerCredentials> credentials = grpc::InsecureServerCredentials();
-  if (!options.tls_cert_file.empty()) {
-    auto cert = read_file(options.tls_cert_file, "TLS certificate");
-    if (!cert) return Error{"robot server: " + cert.error().message};
-    auto key = read_file(options.tls_key_file, "TLS key");
-    if (!key) return Error{"robot server: " + key.error().message};
-    grpc::SslServerCredentialsOptions ssl;
-    ssl.pem_key_cert_pairs.push_back({*key, *cert});
-    credentials = grpc::SslServerCredentials(ssl);
+  std::string observer_token = options.observer_token;
+  if (observer_token.empty() && !options.observer_token_file.empty()) {
+    auto loaded = load_token_file(options.observer_token_file);
+    if (!loaded) return Error{"robot server: observer token: " + loaded.error().message};
+    observer_token = std::move(loaded).value();
   }
+  if (!observer_token.empty() && constant_time_equal(observer_token, token)) {
+    return Error{
+        "robot server: the observer token is the operator's token (it must differ: "
+        "the observer token only reads)"};
+  }
+  auto credentials = server_credentials(options.tls_cert_file, options.tls_key_file);
+  if (!credentials) return Error{"robot server: " + credentials.error().message};
 
   std::unique_ptr<MotionCollisionGuard> guard;
   if (options.robot_description) {
@@ -101,12 +105,12 @@ Result<std::unique_ptr<RobotServer>> RobotServer::create(std::unique_ptr<core::R
   std::unique_ptr<RobotServer> server(new RobotServer());
   server->options_ = options;
   server->driver_ = std::move(driver);
-  server->service_ =
-      std::make_unique<RobotService>(*server->driver_, BearerAuth(token, options.allow_observers),
-                                     options.lease, options.limits, std::move(guard));
+  server->service_ = std::make_unique<RobotService>(
+      *server->driver_, BearerAuth(token, options.allow_observers, observer_token), options.lease,
+      options.limits, std::move(guard));
 
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(options.listen_address, credentials, &server->port_);
+  builder.AddListeningPort(options.listen_address, *credentials, &server->port_);
   builder.SetMaxReceiveMessageSize(options.max_receive_bytes);
   builder.RegisterService(server->service_.get());
   server->server_ = builder.BuildAndStart();
@@ -118,7 +122,9 @@ Result<std::unique_ptr<RobotServer>> RobotServer::create(std::unique_ptr<core::R
   spdlog::info("robot server listening on {} (driver {}, robot {}, {}, observers {})",
                server->address(), server->driver_->name(), server->driver_->model()->name(),
                options.tls_cert_file.empty() ? "plaintext" : "TLS",
-               options.allow_observers ? "allowed" : "refused");
+               options.allow_observers  ? "allowed without a token"
+               : observer_token.empty() ? "refused"
+                                        : "with the observer token");
   return server;
 }
 

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "telear/net/server_credentials.hpp"
 #include "telear/net/token_file.hpp"
 #include "telear/net/vision_service.hpp"
 #include "telear/vision/camera_file.hpp"
@@ -41,11 +42,25 @@ Result<std::unique_ptr<VisionServer>> VisionServer::create(VisionServerOptions o
   }
   VisionServiceConfig config;
   config.max_streams = options.max_streams;
+  if (!options.observer_token_file.empty() && options.token_file.empty()) {
+    return Error{"vision server: an observer token needs the operator's token (token_file)"};
+  }
   if (!options.token_file.empty()) {
     auto token = load_token_file(options.token_file);
     if (!token) return Error{"vision server: " + token.error().message};
-    config.auth.emplace(*token, false);
+    std::string observer;
+    if (!options.observer_token_file.empty()) {
+      auto loaded = load_token_file(options.observer_token_file);
+      if (!loaded) return Error{"vision server: observer token: " + loaded.error().message};
+      if (*loaded == *token) {
+        return Error{"vision server: the observer token is the operator's token (it must differ)"};
+      }
+      observer = std::move(loaded).value();
+    }
+    config.auth.emplace(*token, false, std::move(observer));
   }
+  auto credentials = server_credentials(options.tls_cert_file, options.tls_key_file);
+  if (!credentials) return Error{"vision server: " + credentials.error().message};
   if (!options.calibration_file.empty() || !options.calibration_yaml.empty()) {
     const bool from_file = !options.calibration_file.empty();
     const std::string name =
@@ -81,7 +96,7 @@ Result<std::unique_ptr<VisionServer>> VisionServer::create(VisionServerOptions o
 
   grpc::ServerBuilder builder;
   int port = 0;
-  builder.AddListeningPort(options.listen_address, grpc::InsecureServerCredentials(), &port);
+  builder.AddListeningPort(options.listen_address, *credentials, &port);
   builder.RegisterService(impl.service.get());
   impl.server = builder.BuildAndStart();
   if (!impl.server || port == 0) {
@@ -92,9 +107,11 @@ Result<std::unique_ptr<VisionServer>> VisionServer::create(VisionServerOptions o
   impl.port = port;
   impl.address = options.listen_address.substr(0, colon) + ":" + std::to_string(port);
   const vision::StereoSource& source = impl.pipeline->source();
-  spdlog::info("vision server listening on {} (source {}, {}x{} at {} fps, JPEG quality {}, {})",
-               impl.address, source.name(), source.width(), source.height(), source.fps(),
-               options.jpeg_quality, options.token_file.empty() ? "no token" : "token required");
+  spdlog::info(
+      "vision server listening on {} (source {}, {}x{} at {} fps, JPEG quality {}, {}, {})",
+      impl.address, source.name(), source.width(), source.height(), source.fps(),
+      options.jpeg_quality, options.token_file.empty() ? "no token" : "token required",
+      options.tls_cert_file.empty() ? "plaintext" : "TLS");
   return server;
 }
 

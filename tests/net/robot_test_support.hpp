@@ -22,10 +22,13 @@ namespace telear::net::test {
 
 inline constexpr const char* kToken = "s3cret-token";
 
+// Observers allowed (not the default): these tests read state and info with raw stubs and no
+// token; the secure default is tested in tls_test.cpp and robot_server_test.cpp.
 inline RobotServerOptions server_options(const std::string& listen = "127.0.0.1:0") {
   RobotServerOptions options;
   options.listen_address = listen;
   options.token = kToken;
+  options.allow_observers = true;
   options.shutdown_deadline_s = 0.5;
   return options;
 }

@@ -108,7 +108,9 @@ TEST(SessionRecorder, ARecordingOfRunningServersDecodesWithItsOwnSchemas) {
   Eigen::VectorXd ghost(6);
   ghost << 0.1, 0.5, -0.4, 0.0, 0.3, 0.2;
   holder.set_ghost(ghost, 0.25);
-  ASSERT_TRUE(holder.acquire_lease(0.1));
+  // A 1 s heartbeat: a loaded machine (CI) may starve a 100 ms one and lapse the lease, and the
+  // ghost goes with it.
+  ASSERT_TRUE(holder.acquire_lease(1.0));
 
   // The recorder's own clients, as `telear record` has them.
   net::RobotClientOptions robot_options = holder_options;
@@ -118,6 +120,15 @@ TEST(SessionRecorder, ARecordingOfRunningServersDecodesWithItsOwnSchemas) {
   robot.start();
   auto info = robot.get_info();
   ASSERT_TRUE(info) << info.error().message;
+  // The holder's ghost reaches the state stream with its first renewal (a third of the period).
+  std::uint64_t seen = 0;
+  const std::int64_t wait_start = core::monotonic_ns();
+  while (true) {
+    auto s = robot.wait_state(seen, 0.1);
+    if (s && s->ghost_q.size() == 6) break;
+    if (s) seen = s->sequence;
+    ASSERT_LT(core::monotonic_ns() - wait_start, 5'000'000'000) << "no ghost in the state stream";
+  }
   std::atomic<SessionRecorder*> sink{nullptr};
   net::VisionClientOptions vision_options;
   vision_options.address = servers.vision->address();

@@ -5,11 +5,14 @@
 // long whatever prefix matches, so timing reveals nothing about the token).
 //
 // Two kinds of access:
-//   command  needs the right token;
-//   read     (info, state, ping) needs the right token, or none at all when observers are
-//            allowed. A wrong token is refused even where none would do: a client that sends
-//            one means to be an operator, and should learn at once that it is not.
-// Refusals are UNAUTHENTICATED statuses whose message says what was missing or wrong.
+//   command  needs the operator's token;
+//   read     (info, state, ping) needs the operator's token, or the observer token (a second,
+//            read-only token for watchers: a recorder, a dashboard), or none at all when
+//            observers are allowed (off by default: the URDF, the workspace and the arm's state
+//            are the lab's). A wrong token is refused even where none would do: a client that
+//            sends one means to be an operator, and should learn at once that it is not.
+// Refusals are UNAUTHENTICATED statuses whose message says what was missing or wrong; the
+// observer token presented for a command is PERMISSION_DENIED ("read-only").
 
 #include <grpcpp/grpcpp.h>
 
@@ -24,8 +27,9 @@ bool constant_time_equal(const std::string& a, const std::string& b);
 
 class BearerAuth {
  public:
-  // `token` must not be empty (asserts).
-  BearerAuth(std::string token, bool allow_observers);
+  // `token` must not be empty (asserts); `observer_token` empty: none (it must differ from
+  // `token`, asserted).
+  BearerAuth(std::string token, bool allow_observers, std::string observer_token = {});
 
   bool allow_observers() const { return allow_observers_; }
 
@@ -33,11 +37,12 @@ class BearerAuth {
   grpc::Status authorize_read(const grpc::ServerContext& context) const;
 
  private:
-  enum class Presented { kNone, kValid, kWrong, kMalformed };
+  enum class Presented { kNone, kValid, kObserver, kWrong, kMalformed };
   Presented check(const grpc::ServerContext& context) const;
 
   std::string token_;
   bool allow_observers_;
+  std::string observer_token_;
 };
 
 }  // namespace telear::net

@@ -33,10 +33,14 @@ class RobotService;
 
 struct RobotServerOptions {
   std::string listen_address = "127.0.0.1:50051";  // host:port; port 0: an ephemeral port
-  std::string token;            // the bearer token; when empty, read from token_file
-  std::string token_file;       // first line, trimmed (telear/net/bearer_auth.hpp)
-  bool allow_observers = true;  // state readable without a token
-  std::string tls_cert_file;    // PEM; with tls_key_file: TLS
+  std::string token;       // the bearer token; when empty, read from token_file
+  std::string token_file;  // first line, trimmed (telear/net/bearer_auth.hpp)
+  // Reading (info, state, ping) without any token; off: secure by default (bearer_auth.hpp).
+  bool allow_observers = false;
+  // A read-only token for watchers; when empty, read from observer_token_file (empty: none).
+  std::string observer_token;
+  std::string observer_token_file;
+  std::string tls_cert_file;  // PEM; with tls_key_file: TLS (net/server_credentials.hpp)
   std::string tls_key_file;
   int max_receive_bytes = 4 * 1024 * 1024;  // a larger request is refused by gRPC
   LeaseOptions lease;

@@ -26,7 +26,12 @@ struct VisionServerOptions {
   std::unique_ptr<vision::StereoSource> source;    // required
   std::string calibration_file;  // optional stereo camera file (OpenCV YAML) for GetCameraInfo
   std::string token_file;        // optional: every call needs `authorization: Bearer <token>`
-  int jpeg_quality = 85;         // the shared encode's quality
+  // A second accepted token (the vision service only reads): the robot server's observer token
+  // for watchers; empty: none. Needs token_file.
+  std::string observer_token_file;
+  std::string tls_cert_file;  // PEM; with tls_key_file: TLS (net/server_credentials.hpp)
+  std::string tls_key_file;
+  int jpeg_quality = 85;  // the shared encode's quality
   int max_streams = 16;
   double shutdown_grace_s = 0.5;  // how long streaming calls get to finish before cancellation
   // Without calibration_file: the text of a stereo camera file the source knows itself (the ROS
