@@ -57,6 +57,16 @@ void draw_status_panel(PanelContext& ctx, const PanelLayout& layout) {
     }
     ImGui::EndTable();
   }
+  // Glass to glass: the frame code read back from the drawn eye (docs/latency.md); it needs a
+  // stamping source and the raw video at its own size.
+  if (st.shown.samples > 0) {
+    ImGui::Text("capture -> shown p50 %.1f ms, p99 %.1f ms (frame code)", st.shown.p50_s * 1e3,
+                st.shown.p99_s * 1e3);
+  } else if (st.shown_without_code > 0) {
+    ImGui::TextDisabled("capture -> shown: not measured: no frame code");
+  } else {
+    ImGui::TextDisabled("capture -> shown: not measured: no video shown");
+  }
   ImGui::Separator();
   ImGui::BeginChild("events", ImVec2(0, 0), false);
   const auto& events = s.events();

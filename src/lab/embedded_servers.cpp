@@ -88,6 +88,7 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   rig_options.multisample = options.multisample;
   rig_options.noise_sigma = options.noise_sigma;
   rig_options.seed = options.seed;
+  rig_options.frame_code = options.frame_code;
   net::RobotClient* follower = servers->follower_.get();
   rig_options.scene_state = [follower]() -> std::optional<vision::SceneState> {
     const auto sample = follower->latest_state();

@@ -17,6 +17,7 @@ Status open_sim(const VisionSourceOptions& options, VisionSource& opened) {
   if (options.fps > 0) sim.fps = options.fps;
   sim.supersample = options.supersample;
   sim.noise_sigma = options.noise;
+  sim.frame_code = options.frame_code;
   if (options.size) {
     // Constructed in place from the literal: a moved temporary std::string here trips GCC 12's
     // -Warray-bounds false positive once the unity build inlines it.
@@ -81,6 +82,7 @@ Result<VisionSource> open_vision_source(const VisionSourceOptions& options) {
       synthetic.width = options.size->width, synthetic.height = options.size->height;
     }
     if (options.fps > 0) synthetic.fps = options.fps;
+    synthetic.frame_code = options.frame_code;
     auto created = vision::SyntheticSource::create(synthetic);
     if (!created) return created.error();
     opened.source = std::move(*created);

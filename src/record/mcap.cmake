@@ -7,7 +7,7 @@
 # fallback needs include paths this library does not have. TELEAR_PCH is switched off for this
 # one call (a normal variable over the cache entry), then the cache entry shows again.
 set(TELEAR_PCH OFF)
-telear_library(record_mcap mcap_crc32.cpp mcap_reader.cpp mcap_reader_messages.cpp mcap_writer.cpp)
+telear_library(record_mcap mcap_reader.cpp mcap_reader_messages.cpp mcap_writer.cpp)
 unset(TELEAR_PCH)
 # By path rather than pkg-config's imported target: the installed package's config then needs no
 # extra dependency lookup (cmake/telearConfig.cmake.in) for a library every Debian has.
@@ -15,3 +15,5 @@ find_path(TELEAR_ZSTD_INCLUDE_DIR zstd.h REQUIRED)
 find_library(TELEAR_ZSTD_LIBRARY zstd REQUIRED)
 target_include_directories(telear_record_mcap SYSTEM PRIVATE ${TELEAR_ZSTD_INCLUDE_DIR})
 target_link_libraries(telear_record_mcap PRIVATE ${TELEAR_ZSTD_LIBRARY})
+# The CRC-32 every chunk, the data section and the summary carry (telear/core/crc32.hpp).
+target_link_libraries(telear_record_mcap PRIVATE telear::core)

@@ -75,7 +75,7 @@ Result<std::vector<std::uint8_t>> ReaderFile::decompress_chunk(std::uint64_t off
   }
   // A zero CRC means the writer did not compute one (spec).
   if (uncompressed_crc != 0) {
-    const std::uint32_t crc = crc32(out.data(), out.size());
+    const std::uint32_t crc = core::crc32(out.data(), out.size());
     if (crc != uncompressed_crc) {
       return error(where + ": CRC mismatch: the records' CRC-32 is " + hex(crc) +
                    ", the chunk says " + hex(uncompressed_crc));
@@ -137,8 +137,8 @@ Status ReaderFile::read_footer_and_summary(bool& summarized) {
   if (Status ok = read_at(summary_start, footer_offset - summary_start, summary); !ok) return ok;
   if (summary_crc != 0) {
     // The CRC covers the summary and summary offset sections and the footer up to its CRC.
-    std::uint32_t crc = crc32_update(crc32_init(), summary.data(), summary.size());
-    crc = crc32_final(crc32_update(crc, footer.data(), kPrefix + 16));
+    std::uint32_t crc = core::crc32_update(core::crc32_init(), summary.data(), summary.size());
+    crc = core::crc32_final(core::crc32_update(crc, footer.data(), kPrefix + 16));
     if (crc != summary_crc) {
       return error("summary at offset " + std::to_string(summary_start) +
                    ": CRC mismatch: its CRC-32 is " + hex(crc) + ", the footer says " +

@@ -24,7 +24,7 @@
 #include <utility>
 
 #include "mcap_format.hpp"
-#include "telear/record/mcap_crc32.hpp"
+#include "telear/core/crc32.hpp"
 
 namespace telear::record {
 // Named rather than anonymous: McapReader::State derives from ReaderFile, and the library is

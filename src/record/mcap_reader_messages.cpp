@@ -138,7 +138,7 @@ Result<std::vector<McapAttachment>> ReaderFile::attachments() const {
     if (f.failed()) return malformed("Attachment", offset);
     // The CRC covers every field before it; zero means none was computed.
     if (stored_crc != 0) {
-      const std::uint32_t crc = crc32(content->data(), crc_at);
+      const std::uint32_t crc = core::crc32(content->data(), crc_at);
       if (crc != stored_crc) {
         return error("attachment '" + attachment.name + "' at offset " + std::to_string(offset) +
                      ": CRC mismatch: its CRC-32 is " + hex(crc) + ", the record says " +

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "mcap_format.hpp"
-#include "telear/record/mcap_crc32.hpp"
+#include "telear/core/crc32.hpp"
 
 namespace telear::record {
 // Named rather than anonymous: McapWriter::State, which has external linkage, holds these.
@@ -116,8 +116,9 @@ struct McapWriter::State {
   bool closed = false;
   std::optional<Error> failure;  // the first failed write; every later call returns it
 
-  std::uint64_t position = 0;             // bytes written to the file
-  std::uint32_t data_crc = crc32_init();  // over every byte written before the Data End record
+  std::uint64_t position = 0;  // bytes written to the file
+  std::uint32_t data_crc =
+      core::crc32_init();  // over every byte written before the Data End record
 
   // The summary section's copies and indexes, serialized as they will be written.
   McapBuffer summary_schemas;
@@ -133,7 +134,7 @@ struct McapWriter::State {
   // each record is appended, while its bytes are still in cache), the log time range, and per
   // channel the (log time, offset in `chunk`) of each message for the Message Index records.
   McapBuffer chunk;
-  std::uint32_t chunk_crc = crc32_init();
+  std::uint32_t chunk_crc = core::crc32_init();
   std::uint64_t chunk_messages = 0;
   std::uint64_t chunk_start_time = 0;
   std::uint64_t chunk_end_time = 0;
@@ -157,7 +158,7 @@ struct McapWriter::State {
       failure = Error{"McapWriter: writing '" + path + "' failed: " + std::strerror(errno)};
       return *failure;
     }
-    if (in_data_section) data_crc = crc32_update(data_crc, bytes, n);
+    if (in_data_section) data_crc = core::crc32_update(data_crc, bytes, n);
     position += n;
     return Status::Ok();
   }
@@ -314,7 +315,7 @@ Status McapWriter::write(std::uint16_t channel_id, std::uint32_t sequence,
   std::memcpy(record + 15, &log_time_ns, 8);
   std::memcpy(record + 23, &publish_time_ns, 8);
   if (!data.empty()) std::memcpy(record + 31, data.data(), data.size());
-  s.chunk_crc = crc32_update(s.chunk_crc, record, length);
+  s.chunk_crc = core::crc32_update(s.chunk_crc, record, length);
 
   if (s.chunk_messages == 0) {
     s.chunk_start_time = s.chunk_end_time = log_time_ns;
@@ -368,7 +369,7 @@ Status McapWriter::State::write_chunk() {
   scratch.put(chunk_start_time);
   scratch.put(chunk_end_time);
   scratch.put(static_cast<std::uint64_t>(chunk.size()));  // uncompressed_size
-  scratch.put(crc32_final(chunk_crc));                    // uncompressed_crc
+  scratch.put(core::crc32_final(chunk_crc));              // uncompressed_crc
   scratch.put_string(compression);
   scratch.put(static_cast<std::uint64_t>(records_size));  // the records' uint64 length prefix
   scratch.patch(at + 1, static_cast<std::uint64_t>(scratch.size() - kRecordPrefix + records_size));
@@ -417,7 +418,7 @@ Status McapWriter::State::write_chunk() {
 
   ++statistics.chunk_count;
   chunk.clear();
-  chunk_crc = crc32_init();
+  chunk_crc = core::crc32_init();
   chunk_messages = 0;
   chunk_channels.clear();
   return flush();
@@ -440,9 +441,9 @@ Status McapWriter::attach(std::string_view name, std::string_view media_type,
   const std::uint64_t content_length = s.scratch.size() - kRecordPrefix + data.size() + 4;
   s.scratch.patch(at + 1, content_length);
   // crc: of every field before it (the record's content, not its opcode and length)
-  std::uint32_t crc = crc32_update(crc32_init(), s.scratch.data() + kRecordPrefix,
-                                   s.scratch.size() - kRecordPrefix);
-  crc = crc32_final(crc32_update(crc, data.data(), data.size()));
+  std::uint32_t crc = core::crc32_update(core::crc32_init(), s.scratch.data() + kRecordPrefix,
+                                         s.scratch.size() - kRecordPrefix);
+  crc = core::crc32_final(core::crc32_update(crc, data.data(), data.size()));
   if (Status ok = s.emit(s.scratch); !ok) return ok;
   if (Status ok = s.emit(data.data(), data.size()); !ok) return ok;
   if (Status ok = s.emit(reinterpret_cast<const std::uint8_t*>(&crc), 4); !ok) return ok;
@@ -493,7 +494,7 @@ Status McapWriter::close() {
 Status McapWriter::State::write_summary_and_close() {
   scratch.clear();
   std::size_t data_end = scratch.begin_record(kOpDataEnd);
-  scratch.put(crc32_final(data_crc));
+  scratch.put(core::crc32_final(data_crc));
   scratch.end_record(data_end);
   if (Status ok = emit(scratch); !ok) return ok;
 
@@ -541,7 +542,7 @@ Status McapWriter::State::write_summary_and_close() {
   summary.put(std::uint64_t{8 + 8 + 4});  // the length first: the CRC covers it
   summary.put(summary_start);
   summary.put(summary_offset_start);
-  summary.put(crc32(summary.data(), summary.size()));
+  summary.put(core::crc32(summary.data(), summary.size()));
   summary.put_bytes(kMagic, sizeof(kMagic));
   if (Status ok = emit(summary, /*in_data_section=*/false); !ok) return ok;
 

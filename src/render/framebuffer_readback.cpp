@@ -10,10 +10,15 @@ namespace telear::render {
 
 void read_bound_framebuffer(int width, int height, int channels, std::uint8_t* pixels,
                             std::vector<std::uint8_t>& scratch) {
+  read_bound_framebuffer_region(0, 0, width, height, channels, pixels, scratch);
+}
+
+void read_bound_framebuffer_region(int x, int y_bottom, int width, int height, int channels,
+                                   std::uint8_t* pixels, std::vector<std::uint8_t>& scratch) {
   const std::size_t w = static_cast<std::size_t>(width);
   scratch.resize(w * static_cast<std::size_t>(height) * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, scratch.data());
+  glReadPixels(x, y_bottom, width, height, GL_RGBA, GL_UNSIGNED_BYTE, scratch.data());
   for (int y = 0; y < height; ++y) {
     const std::uint8_t* s = scratch.data() + static_cast<std::size_t>(height - 1 - y) * w * 4;
     std::uint8_t* d = pixels + static_cast<std::size_t>(y) * w * static_cast<std::size_t>(channels);

@@ -113,6 +113,16 @@ void OffscreenTarget::read_pixels(int channels, std::uint8_t* pixels) const {
   read_bound_framebuffer(width_, height_, channels, pixels, scratch_);
 }
 
+void OffscreenTarget::read_region(int x, int y, int width, int height, int channels,
+                                  std::uint8_t* pixels) const {
+  assert((channels == 3 || channels == 4) && "OffscreenTarget::read_region(): 3 or 4 channels");
+  assert(x >= 0 && y >= 0 && width > 0 && height > 0 && x + width <= width_ &&
+         y + height <= height_ && "OffscreenTarget::read_region(): outside the target");
+  resolve();
+  framebuffer_.bind(GL_READ_FRAMEBUFFER);
+  read_bound_framebuffer_region(x, height_ - y - height, width, height, channels, pixels, scratch_);
+}
+
 core::Image OffscreenTarget::read_rgb() const {
   core::Image image(width_, height_, 3);
   read_pixels(3, image.pixels.data());

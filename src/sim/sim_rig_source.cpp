@@ -8,6 +8,7 @@
 #include "telear/sim/grasp_model.hpp"
 #include "telear/sim/scene_renderer.hpp"
 #include "telear/sim/stereo_rig.hpp"
+#include "telear/vision/frame_code.hpp"
 
 namespace telear::sim {
 
@@ -117,6 +118,11 @@ Result<vision::StereoCapture> SimRigSource::capture() {
   out.capture_ns_right = out.capture_ns_left;
   out.left = gl_->scene.render(sim::Eye::kLeft, out.frame_number);
   out.right = gl_->scene.render(sim::Eye::kRight, out.frame_number);
+  if (options_.frame_code) {  // cameras smaller than 304x64 have no room: not stamped
+    const vision::FrameCode code{static_cast<std::uint32_t>(out.frame_number), out.capture_ns_left};
+    vision::write_frame_code(out.left, code);
+    vision::write_frame_code(out.right, code);
+  }
   out.scene = last_state_;
   return out;
 }

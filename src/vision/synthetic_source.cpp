@@ -5,6 +5,7 @@
 #include <random>
 
 #include "telear/core/image_size.hpp"
+#include "telear/vision/frame_code.hpp"
 
 namespace telear::vision {
 namespace {
@@ -48,6 +49,10 @@ Result<std::unique_ptr<SyntheticSource>> SyntheticSource::create(
   if (options.distinct_frames < 1 || options.distinct_frames > 64) {
     return Error{"synthetic source: distinct_frames must be in 1..64"};
   }
+  if (options.frame_code && !frame_code_rect(options.width, options.height)) {
+    return Error{"synthetic source: the frame code needs at least 304x64 pixels, the size is " +
+                 core::to_string(core::ImageSize{options.width, options.height})};
+  }
   return std::unique_ptr<SyntheticSource>(new SyntheticSource(options));
 }
 
@@ -70,6 +75,11 @@ Result<StereoCapture> SyntheticSource::capture() {
   out.left = left_[k];
   out.capture_ns_right = core::monotonic_ns();
   out.right = right_[k];
+  if (options_.frame_code) {
+    const auto number = static_cast<std::uint32_t>(out.frame_number);
+    write_frame_code(out.left, {number, out.capture_ns_left});
+    write_frame_code(out.right, {number, out.capture_ns_right});
+  }
   return out;
 }
 

@@ -37,6 +37,9 @@ struct EmbeddedServersOptions {
   int multisample = 1;       // MSAA samples per pixel of the video (sim::SceneOptions)
   double noise_sigma = 1.0;  // grey levels
   std::uint64_t seed = 1;
+  // Both eyes carry the frame code (telear/vision/frame_code.hpp), so the operator's view
+  // measures capture -> shown (the console's status panel, docs/latency.md).
+  bool frame_code = true;
   // The robot server's collision authority (net/robot_server.hpp): the robot checked and its
   // workspace (empty: self-collision only); neither: no checks. serve_robot sets both for the
   // robot's shipped workspace.

@@ -43,6 +43,7 @@ struct VisionSourceOptions {
   std::optional<core::ImageSize> size;  // none: the source's own
   int supersample = 2;                  // sim
   double noise = 1.0;                   // sim, grey levels
+  bool frame_code = false;              // sim, synthetic: stamp the frame code (frame_code.hpp)
   std::string ros_master;               // ros: http://HOST:PORT; empty: $ROS_MASTER_URI
   double sync_tolerance_ms = 20.0;      // ros: the largest stamp difference of a pair
   bool camera_info = true;              // ros: the calibration from camera_info (no file given)

@@ -16,6 +16,12 @@ namespace telear::render {
 void read_bound_framebuffer(int width, int height, int channels, std::uint8_t* pixels,
                             std::vector<std::uint8_t>& scratch);
 
+// The rectangle whose bottom-left pixel is (x, y_bottom) in GL's convention (rows counted
+// from the bottom), into image order likewise: what a small read-back (the frame code's strip,
+// telear/render/frame_code_readback.hpp) asks for instead of the whole framebuffer.
+void read_bound_framebuffer_region(int x, int y_bottom, int width, int height, int channels,
+                                   std::uint8_t* pixels, std::vector<std::uint8_t>& scratch);
+
 core::Image read_bound_framebuffer_rgb(int width, int height);
 
 }  // namespace telear::render

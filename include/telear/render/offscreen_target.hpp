@@ -56,6 +56,9 @@ class OffscreenTarget {
   void read_pixels(int channels, std::uint8_t* pixels) const;
   core::Image read_rgb() const;
   core::Image read_rgba() const;
+  // Reads only the rectangle whose top-left pixel is (x, y) in image order (top row first),
+  // as read_pixels() does the whole target; it must lie within the target (asserted).
+  void read_region(int x, int y, int width, int height, int channels, std::uint8_t* pixels) const;
 
  private:
   const Framebuffer& draw_framebuffer() const {

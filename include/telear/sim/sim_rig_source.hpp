@@ -12,6 +12,11 @@
 // Timing. capture() is paced at `fps`; each eye is stamped when its render finished (the
 // "exposure" of a simulated camera is instantaneous). On llvmpipe a 640x480 eye costs a few
 // to tens of ms depending on `supersample`: the achieved rate may be below `fps`.
+//
+// Frame code. With `frame_code` both eyes carry the pair's number and capture time in their
+// pixels (telear/vision/frame_code.hpp: a strip in the bottom-left corner, where the rigs show
+// the floor), so the operator's view can measure capture -> shown; the embedded servers the
+// console and the demo start turn it on (lab/embedded_servers.hpp).
 
 #include <functional>
 #include <memory>
@@ -31,6 +36,9 @@ struct SimRigSourceOptions {
   int multisample = 1;       // MSAA samples per pixel (sim::SceneOptions::multisample)
   double noise_sigma = 1.0;  // grey levels
   std::uint64_t seed = 1;
+  // Stamp both eyes with the frame code; cameras smaller than 304x64 have no room and are not
+  // stamped (the embedded servers ask for it whatever the rig).
+  bool frame_code = false;
   // Where the arm is; called once per captured pair. nullopt (or no function): the last
   // known state, initially the robot's "qr" configuration (zeros without one).
   std::function<std::optional<vision::SceneState>()> scene_state;

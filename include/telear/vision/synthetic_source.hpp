@@ -4,7 +4,9 @@
 //
 // A few distinct pairs are made once at construction (a seeded mix of gradients, a checker,
 // a moving bar and per-pixel noise, so JPEG sizes are like a camera's, not like a flat
-// image's) and cycled; each capture() copies one and stamps it with the capture time.
+// image's) and cycled; each capture() copies one and stamps it with the capture time; with
+// `frame_code` it also writes each eye's frame number and capture time into its pixels
+// (telear/vision/frame_code.hpp: glass-to-glass latency, `telear bench latency`).
 
 #include <cstdint>
 #include <vector>
@@ -19,6 +21,7 @@ struct SyntheticSourceOptions {
   int distinct_frames = 8;        // 1..64 pre-made pairs, cycled
   double noise_sigma = 4.0;       // grey levels
   std::uint64_t seed = 1;
+  bool frame_code = false;  // stamp each eye with its frame code (needs at least 304x64)
 };
 
 class SyntheticSource final : public StereoSource {

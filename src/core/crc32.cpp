@@ -1,14 +1,14 @@
-#include "telear/record/mcap_crc32.hpp"
+#include "telear/core/crc32.hpp"
 
 #include <array>
 #include <bit>
 #include <cstring>
 
-namespace telear::record {
+namespace telear::core {
 namespace {
 
 // Slicing-by-8 (Intel's "A Systematic Approach to Building High Performance, Software-Based CRC
-// Generators"): eight table lookups per 8 bytes instead of one per byte. The writer checksums
+// Generators"): eight table lookups per 8 bytes instead of one per byte. The MCAP writer checksums
 // every byte twice (the chunk's records, the data section), so a byte-wise loop (~400 MB/s)
 // would cost more than zstd's level 1; this one runs at a few GB/s.
 constexpr std::uint32_t kPolynomial = 0xEDB88320u;  // 0x04C11DB7 reflected
@@ -35,8 +35,8 @@ constexpr auto kCrc32Tables = make_crc32_tables();
 std::uint32_t crc32_update(std::uint32_t crc, const void* data, std::size_t size) {
   const auto* p = static_cast<const std::uint8_t*>(data);
   const auto& t = kCrc32Tables;
-  // The 8-byte step reads little-endian words; MCAP's writers and readers are little-endian
-  // machines (x86-64, aarch64), asserted at compile time.
+  // The 8-byte step reads little-endian words; telear runs on little-endian machines (x86-64,
+  // aarch64), asserted at compile time.
   static_assert(std::endian::native == std::endian::little);
   while (size >= 8) {
     std::uint32_t lo = 0;
@@ -53,4 +53,4 @@ std::uint32_t crc32_update(std::uint32_t crc, const void* data, std::size_t size
   return crc;
 }
 
-}  // namespace telear::record
+}  // namespace telear::core
