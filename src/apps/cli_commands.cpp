@@ -76,6 +76,8 @@ void add_record_command(CLI::App& app, Commands& commands) {
   record_app->add_option("--vision", record.vision_server,
                          "the vision server, HOST:PORT (none: no video recorded)");
   record_app->add_option("--token-file", record.token_file, "file whose first line is the token");
+  record_app->add_option("--tls-ca", record.tls_ca_file,
+                         "the servers speak TLS: trust this CA (PEM)");
   record_app->add_option("-o,--output", record.output, "the MCAP file to write")->required();
   record_app->add_option("--seconds", record.seconds, "how long to record; 0: until Ctrl-C")
       ->capture_default_str();

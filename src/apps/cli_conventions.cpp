@@ -12,6 +12,8 @@
 #include "apps/cli_parsing.hpp"
 #include "apps/console_command.hpp"
 #include "bench/kin_bench_command.hpp"
+#include "bench/latency_bench_command.hpp"
+#include "bench/prediction_bench_command.hpp"
 #include "bench/render_bench_command.hpp"
 #include "bench/stream_bench_command.hpp"
 
@@ -56,6 +58,8 @@ void add_console_command(CLI::App& app, Commands& commands) {
   console_app->add_option("--vision", console.vision,
                           "vision server HOST:PORT (none: embedded sim)");
   console_app->add_option("--token-file", console.token_file, "file whose first line is the token");
+  console_app->add_option("--tls-ca", console.tls_ca_file,
+                          "the servers speak TLS: trust this CA (PEM)");
   add_robot_arguments(console_app, arguments->arm, /*draws_meshes=*/true, "--arm");
   console_app->add_option("--calibration", console.calibration, "registered stereo camera file");
   console_app->add_option("--workspace", console.workspace,
@@ -131,7 +135,7 @@ void add_replay_command(CLI::App& app, Commands& commands) {
                       }});
 }
 
-// [SECTION] bench (one subcommand per benchmark: render, kin, stream)
+// [SECTION] bench (one subcommand per benchmark: render, kin, stream, prediction, latency)
 
 void add_bench_commands(CLI::App& app, Commands& commands) {
   CLI::App* bench_app = app.add_subcommand("bench", "measured figures beside the seed's");
@@ -195,12 +199,53 @@ void add_bench_commands(CLI::App& app, Commands& commands) {
       "the client decodes the two eyes in turn (the parallel decode's baseline)");
   bench_stream->add_option("--json", bench_stream_options.json,
                            "also write the results as JSON to FILE");
+  auto prediction_options = std::make_shared<PredictionBenchOptions>();
+  PredictionBenchOptions& bench_prediction_options = *prediction_options;
+  CLI::App* bench_prediction = bench_app->add_subcommand(
+      "prediction", "the predicted arm against the simulator's truth under a network delay");
+  bench_prediction
+      ->add_option("--delay-ms", bench_prediction_options.delay_ms,
+                   "video and robot state held back by this much")
+      ->capture_default_str();
+  bench_prediction->add_option("--moves", bench_prediction_options.moves, "moves of the plan, 1..3")
+      ->capture_default_str();
+  bench_prediction
+      ->add_option("--speed", bench_prediction_options.speed,
+                   "the plan's share of the arm's speed limits")
+      ->capture_default_str();
+  bench_prediction->add_option("--fps", bench_prediction_options.fps, "display ticks per second")
+      ->capture_default_str();
+  bench_prediction->add_option("--json", bench_prediction_options.json,
+                               "also write the results as JSON to FILE");
+
+  auto latency_options = std::make_shared<LatencyBenchOptions>();
+  LatencyBenchOptions& bench_latency_options = *latency_options;
+  CLI::App* bench_latency = bench_app->add_subcommand(
+      "latency", "glass to glass: capture -> shown through the vision service and the AR view");
+  bench_latency
+      ->add_option("--resolution", bench_latency_options.resolution, "WIDTHxHEIGHT per eye")
+      ->capture_default_str()
+      ->check(image_size_validator({304, 64}, {8192, 8192}));
+  bench_latency->add_option("--seconds", bench_latency_options.seconds, "measured seconds")
+      ->capture_default_str();
+  bench_latency->add_option("--fps", bench_latency_options.fps, "the source's frame rate")
+      ->capture_default_str();
+  bench_latency->add_option("--quality", bench_latency_options.quality, "JPEG quality 1..100")
+      ->capture_default_str();
+  bench_latency->add_option("--json", bench_latency_options.json,
+                            "also write the results as JSON to FILE");
+  commands.push_back({bench_latency, [latency_options] {
+                        return run_bench_latency(*latency_options, std::cout, std::cerr);
+                      }});
 
   commands.push_back({bench_render, [render_options] {
                         return run_bench_render(*render_options, std::cout, std::cerr);
                       }});
   commands.push_back({bench_stream, [stream_options] {
                         return run_bench_stream(*stream_options, std::cout, std::cerr);
+                      }});
+  commands.push_back({bench_prediction, [prediction_options] {
+                        return run_bench_prediction(*prediction_options, std::cout, std::cerr);
                       }});
   commands.push_back({bench_kin, [kin_options] {
 #ifdef TELEAR_HAVE_KIN_BENCH

@@ -33,6 +33,7 @@ int run_record(const RecordOptions& options, std::ostream& out, std::ostream& er
     recording.token = *t;
   }
   recording.robot_address = options.robot_server;
+  recording.tls_ca_file = options.tls_ca_file;
   recording.vision_address = options.vision_server;
   recording.state_rate_hz = options.state_rate_hz;
   recording.recorder.path = options.output;

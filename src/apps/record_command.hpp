@@ -12,6 +12,7 @@ struct RecordOptions {
   std::string robot_server;   // HOST:PORT
   std::string vision_server;  // HOST:PORT; empty: no video recorded
   std::string token_file;     // the servers' bearer token (first line)
+  std::string tls_ca_file;    // the servers speak TLS: trust this CA (PEM)
   std::string output;         // the .mcap file
   double seconds = 0.0;       // 0: until interrupted (SIGINT, SIGTERM)
   double state_rate_hz = 50.0;

@@ -180,6 +180,9 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
     case ActionKind::kViewReported:
       ui.show_reported = a.value != 0.0;
       return Status::Ok();
+    case ActionKind::kViewPredicted:
+      ui.show_predicted = a.value != 0.0;
+      return Status::Ok();
     case ActionKind::kViewPlots:
       ui.show_plots = a.value != 0.0;
       return Status::Ok();
@@ -316,6 +319,8 @@ const char* to_string(ActionKind kind) {
       return "view mode";
     case ActionKind::kViewReported:
       return "view reported";
+    case ActionKind::kViewPredicted:
+      return "view predicted";
     case ActionKind::kViewPlots:
       return "view plots";
     case ActionKind::kCaptureOpen:

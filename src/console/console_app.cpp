@@ -32,6 +32,7 @@
 #include "telear/net/token_file.hpp"
 #include "telear/record/server_recorder.hpp"
 #include "telear/render/ar_view.hpp"
+#include "telear/render/frame_code_readback.hpp"
 #include "telear/render/gl_objects.hpp"
 #include "telear/render/glfw_context.hpp"
 #include "telear/render/image_io.hpp"
@@ -250,6 +251,8 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   } else {
     robot.address = options.robot;
     vision.address = options.vision;
+    robot.tls_root_certificate_file = options.tls_ca_file;
+    vision.tls_root_certificate_file = options.tls_ca_file;
     if (!options.token_file.empty()) {
       auto token = net::load_token_file(options.token_file);
       if (!token) return token.error();
@@ -298,6 +301,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     recording.robot_address = robot.address;
     recording.vision_address = vision.address;
     recording.token = robot.token;
+    recording.tls_ca_file = robot.tls_root_certificate_file;
     recording.client_name = "telear-console-record";
     recording.recorder.path = options.record;
     recording.recorder.metadata["recorded_by"] = "telear console";
@@ -469,6 +473,11 @@ bool ConsoleApp::frame() {
   render::ArViewInput input = view::ar_view_input(v);
   if (input.ghost_q.size() == 0) input.ghost_q = session_->ghost().q();  // before the first update
   m.view->render(input);
+  // Glass to glass: a newly drawn frame's code read back from its eye (docs/latency.md).
+  if (v.frame && input.mode == render::ViewMode::kAr && !session_->shown_noted(v.frame->frame_id)) {
+    const render::ShownFrameCode shown = render::read_shown_frame_code(m.view->eye(0));
+    session_->note_shown(v.frame->frame_id, shown.code, shown.shown_ns);
+  }
   ViewTextures textures;
   textures.left = m.view->eye(0).colour_texture().id();
   textures.right = m.view->eye(1).colour_texture().id();

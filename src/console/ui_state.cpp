@@ -15,6 +15,7 @@ render::ArViewOptions with_view_settings(render::ArViewOptions options, const Ui
       ui.wireframe ? render::DrawOptions::Style::kWireframe : render::DrawOptions::Style::kSolid;
   options.ghost_alpha = ui.ghost_opacity;
   options.show_reported_ghost = ui.show_reported;
+  options.show_predicted = ui.show_predicted;
   options.overlay_mode =
       ui.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
   return options;

@@ -67,6 +67,11 @@ bool draw_view_panel(PanelContext& ctx, const PanelLayout& layout, const ViewTex
     ctx.act({.kind = ActionKind::kViewReported, .value = reported ? 1.0 : 0.0});
   }
   ImGui::SameLine();
+  bool predicted = ui.show_predicted;
+  if (ImGui::Checkbox("predicted", &predicted)) {
+    ctx.act({.kind = ActionKind::kViewPredicted, .value = predicted ? 1.0 : 0.0});
+  }
+  ImGui::SameLine();
   bool undistorted = ui.undistorted;
   if (ImGui::Checkbox("undistort", &undistorted)) {
     ctx.act({.kind = ActionKind::kViewVideo, .text = undistorted ? "undistorted" : "raw"});
@@ -96,6 +101,19 @@ bool draw_view_panel(PanelContext& ctx, const PanelLayout& layout, const ViewTex
   }
   ImGui::SameLine();
   ImGui::TextDisabled("%s", v.display.reason.c_str());
+  // Which arm is which (render::ArViewOptions' colours), and what the predictor says.
+  ImGui::TextColored(ImVec4(0.2f, 0.75f, 1, 1), "ghost: plan");
+  ImGui::SameLine();
+  ImGui::TextColored(ImVec4(1, 0.85f, 0.2f, 1), "yellow: reported (as late as the state)");
+  ImGui::SameLine();
+  ImGui::TextColored(ImVec4(0.95f, 0.2f, 0.9f, 1), "magenta wire: predicted now");
+  ImGui::SameLine();
+  if (v.show_prediction && ui.show_predicted) {
+    ImGui::Text("%s", v.prediction.summary().c_str());
+  } else {
+    ImGui::TextDisabled("%s", v.prediction.available ? "prediction not drawn: the state is fresh"
+                                                     : v.prediction.summary().c_str());
+  }
   if (ui.layout == ViewLayout::kPageFlip && !ui.page_flip_granted) {
     ImGui::TextColored(ImVec4(1, 0.7f, 0.2f, 1), "%s", ui.page_flip_message.c_str());
   }

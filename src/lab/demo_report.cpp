@@ -131,6 +131,18 @@ std::string demo_report_json(const DemoFacts& facts) {
                        {"vr_to_ar", facts.vr_to_ar},
                        {"injected_delay_ms", facts.injected_delay_ms},
                        {"switches", switches}};
+  if (const auto& p = facts.prediction) {
+    report["prediction"] = {{"delay_ms", facts.injected_delay_ms},
+                            {"frames", p->frames},
+                            {"frames_predicted", p->frames_predicted},
+                            {"horizon_ms_p50", p->horizon_ms_p50},
+                            {"tool_error_mm_p50_predicted", p->predicted_mm_p50},
+                            {"tool_error_mm_p95_predicted", p->predicted_mm_p95},
+                            {"tool_error_mm_max_predicted", p->predicted_mm_max},
+                            {"tool_error_mm_p50_unpredicted", p->unpredicted_mm_p50},
+                            {"tool_error_mm_p95_unpredicted", p->unpredicted_mm_p95},
+                            {"tool_error_mm_max_unpredicted", p->unpredicted_mm_max}};
+  }
   if (!facts.mcap_json.empty()) {
     report["recording"] = nlohmann::json::parse(facts.mcap_json, nullptr, false);
     nlohmann::json plots = nlohmann::json::array();
@@ -225,8 +237,16 @@ std::string demo_report_markdown(const DemoFacts& facts) {
   }
   md += "\n- display: " + std::to_string(facts.ar_to_vr) + " AR -> VR and " +
         std::to_string(facts.vr_to_ar) + " VR -> AR switches (injected delay " +
-        std::to_string(facts.injected_delay_ms) + " ms)\n- total " + fixed(facts.seconds, 1) +
-        " s\n";
+        std::to_string(facts.injected_delay_ms) + " ms)\n";
+  if (const auto& p = facts.prediction) {
+    md += "- predicted arm, while the states were late too (" + std::to_string(p->frames) +
+          " frames, " + std::to_string(p->frames_predicted) + " predicted " +
+          fixed(p->horizon_ms_p50, 0) + " ms ahead): tool error against the truth p50 / p95 " +
+          fixed(p->predicted_mm_p50, 2) + " / " + fixed(p->predicted_mm_p95, 2) +
+          " mm, without prediction " + fixed(p->unpredicted_mm_p50, 1) + " / " +
+          fixed(p->unpredicted_mm_p95, 1) + " mm\n";
+  }
+  md += "- total " + fixed(facts.seconds, 1) + " s\n";
   // The recording's plots (`telear report`), drawn into the same folder.
   if (!facts.plots.empty() || !facts.plot_error.empty()) {
     md += "\n## Plots of the recording\n\n";

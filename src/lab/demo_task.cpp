@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "telear/core/clock.hpp"
+#include "telear/core/kinematics.hpp"
 #include "telear/core/number_format.hpp"
 
 namespace telear::lab {
@@ -17,6 +18,8 @@ using Clock = std::chrono::steady_clock;
 constexpr double kMaxLift_m = 0.015;  // the most a step is raised off the table
 // A step closer than this to the workspace is raised (touching is not a clearance).
 constexpr double kMinStepClearance_m = 0.008;
+// The predicted arm's key frame: its tool this far from the delayed arm's, so that both show.
+constexpr double kPredictedKeyFrameSeparation_m = 0.1;
 
 Error phase_error(const std::string& phase, const std::string& message) {
   return Error{phase + ": " + message};
@@ -243,13 +246,31 @@ Result<DemoTaskOutcome> run_demo_task(session::Session& session, SessionRecorder
   const auto exec_start = Clock::now();
   const double duration = outcome.plan_duration_s;
   const double delay_s = inputs.delay_ms / 1000.0;
-  bool execution_key = false, vr_key = false;
+  bool execution_key = false, vr_key = false, predicted_key = false;
+  PredictionErrorSeries prediction(session.model());
   while (session.executing()) {
     const double t = core::seconds_since(exec_start);
     if (t > duration + 30) return phase_error("execution", "the execution did not finish in time");
     const bool in_window = t > 0.4 * duration && t < 0.4 * duration + 3.0;
     session.set_injected_video_delay(in_window ? delay_s : 0.0);
+    // The states late too once the switch to VR has been shown (its key frame replays as drawn:
+    // a recording holds the states as received, not as held back).
+    const bool states_late = in_window && vr_key && delay_s > 0.0;
+    session.set_injected_state_delay(states_late ? delay_s : 0.0);
+    // The truth just before the view's update: the prediction is for that moment.
+    const Eigen::VectorXd truth =
+        states_late && inputs.true_q ? inputs.true_q() : Eigen::VectorXd();
     recorder.tick();
+    const session::SessionView& view = session.view();
+    if (truth.size() > 0) prediction.add(view, truth);
+    if (!predicted_key && states_late && view.show_prediction && view.real &&
+        (core::tool_pose(session.model(), view.prediction.q).translation() -
+         core::tool_pose(session.model(), view.real->state.q).translation())
+                .norm() >= kPredictedKeyFrameSeparation_m) {
+      if (auto k = recorder.key_frame("keyframe_5b_predicted"); !k)
+        return phase_error("execution", k.error().message);
+      predicted_key = true;
+    }
     if (!execution_key && t > 0.3 * duration) {
       if (auto k = recorder.key_frame("keyframe_4_execution"); !k)
         return phase_error("execution", k.error().message);
@@ -262,6 +283,8 @@ Result<DemoTaskOutcome> run_demo_task(session::Session& session, SessionRecorder
     }
   }
   session.set_injected_video_delay(0.0);
+  session.set_injected_state_delay(0.0);
+  if (prediction.frames() > 0) outcome.prediction = prediction.summary();
   recorder.ticks(static_cast<int>(inputs.fps * 1.5));
   if (auto k = recorder.key_frame("keyframe_6_done"); !k)
     return phase_error("execution", k.error().message);

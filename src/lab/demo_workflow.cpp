@@ -377,6 +377,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   task.camera_base_m = cameras.left.T_cam_base.inverse().translation();
   task.fps = options.fps;
   task.delay_ms = options.delay_ms;
+  task.true_q = [robot = &(*servers)->driver().robot()] { return robot->state().q; };
   task.table_surface_z_m = table_z;
   auto outcome = run_demo_task(session, recorder, task, progress);
   if (!outcome) return outcome.error();
@@ -400,7 +401,8 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
       for (std::size_t i = 0; i < r.key_frames.size() && i < r.key_frame_view_ns.size(); ++i) {
         recorded["key_frames"].push_back(
             {{"file", std::filesystem::path(r.key_frames[i]).filename().string()},
-             {"t_s", static_cast<double>(mcap->wall_ns(r.key_frame_view_ns[i]) - start) * 1e-9}});
+             {"t_s", static_cast<double>(mcap->wall_ns(r.key_frame_view_ns[i]) - start) * 1e-9},
+             {"predicted", i < r.key_frame_predicted.size() && r.key_frame_predicted[i]}});
       }
     }
     facts.mcap_json = recorded.dump();
@@ -453,6 +455,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   facts.vr_to_ar = session.display().vr_to_ar_switches();
   facts.switches = session.display().switches();
   facts.injected_delay_ms = options.delay_ms;
+  facts.prediction = outcome->prediction;
   facts.seconds = core::seconds_since(demo_start);
   if (Status s = write_demo_report(facts, options.out_dir); !s) return s.error();
 

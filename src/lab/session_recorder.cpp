@@ -60,6 +60,7 @@ void SessionRecorder::tick() {
   const session::SessionView& v = session_.view();
   last_view_ns_ = core::monotonic_ns();
   if (options_.on_view) options_.on_view(v, last_view_ns_);
+  last_view_predicted_ = v.show_prediction && view_.options().show_predicted;
   if (v.frame && v.frame->frame_id != last_frame_id_) {
     last_frame_id_ = v.frame->frame_id;
     recording_.latency.add(v.frame->latency);
@@ -101,6 +102,7 @@ Result<std::string> SessionRecorder::key_frame(const std::string& name) {
   if (Status s = render::write_png(path, last_image_); !s.ok()) return s.error();
   recording_.key_frames.push_back(path);
   recording_.key_frame_view_ns.push_back(last_view_ns_);
+  recording_.key_frame_predicted.push_back(last_view_predicted_);
   return path;
 }
 

@@ -70,6 +70,7 @@ Result<std::unique_ptr<ServerRecorder>> ServerRecorder::start(
   net::RobotClientOptions robot_options;
   robot_options.address = options.robot_address;
   robot_options.token = options.token;
+  robot_options.tls_root_certificate_file = options.tls_ca_file;
   robot_options.client_name = options.client_name;
   robot_options.state_rate_hz = options.state_rate_hz;
   impl->robot = std::make_unique<net::RobotClient>(robot_options);
@@ -88,6 +89,7 @@ Result<std::unique_ptr<ServerRecorder>> ServerRecorder::start(
     net::VisionClientOptions vision_options;
     vision_options.address = options.vision_address;
     vision_options.token = options.token;
+    vision_options.tls_root_certificate_file = options.tls_ca_file;
     vision_options.client_name = options.client_name;
     vision_options.on_received = [sink = &impl->sink](const net::ReceivedStereoFrame& frame) {
       if (SessionRecorder* r = sink->load()) r->add_frame(frame);

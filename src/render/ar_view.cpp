@@ -19,7 +19,8 @@ ArView::ArView(const core::RobotModel& model, const core::ArmBody& body)
     : model_(&model),
       body_(body),
       ghost_pose_(std::make_unique<core::ArmBodyPose>(model, body_)),
-      reported_pose_(std::make_unique<core::ArmBodyPose>(model, body_)) {}
+      reported_pose_(std::make_unique<core::ArmBodyPose>(model, body_)),
+      predicted_pose_(std::make_unique<core::ArmBodyPose>(model, body_)) {}
 
 Result<ArView> ArView::create(const core::RobotModel& model, const core::ArmBody& body,
                               const vision::StereoCameraModel& cameras,
@@ -32,8 +33,11 @@ Result<ArView> ArView::create(const core::RobotModel& model, const core::ArmBody
   if (!ghost) return ghost.error();
   auto reported = ArmRenderer::create(view.body_);
   if (!reported) return reported.error();
+  auto predicted = ArmRenderer::create(view.body_);
+  if (!predicted) return predicted.error();
   view.ghost_ = std::move(ghost.value());
   view.reported_ = std::move(reported.value());
+  view.predicted_ = std::move(predicted.value());
   if (!objects.empty()) {
     auto scene = create_scene_renderer(objects);
     if (!scene) return scene.error();
@@ -78,6 +82,11 @@ void ArView::render(const ArViewInput& input) {
     reported_pose_->set_gripper_opening(body_.gripper_opening_m(input.reported_gripper));
     reported_.update(*reported_pose_);
   }
+  if (draws_predicted(input)) {
+    predicted_pose_->set_configuration(input.predicted_q);
+    predicted_pose_->set_gripper_opening(body_.gripper_opening_m(input.predicted_gripper));
+    predicted_.update(*predicted_pose_);
+  }
   const bool video_ok = input.mode == ViewMode::kAr && frame_fits(input.left, cameras_.left) &&
                         frame_fits(input.right, cameras_.right);
   if (input.mode == ViewMode::kVr) {
@@ -116,6 +125,10 @@ void ArView::draw_eye(int index, const ArViewInput& input, bool video_ok) {
   reported.alpha = options_.reported_alpha;
   reported.colour = options_.reported_colour;
   DrawOptions real;  // VR: the arm as the robot reports it, opaque in its own colours
+  DrawOptions predicted;
+  predicted.style = DrawOptions::Style::kWireframe;
+  predicted.colour = options_.predicted_colour;
+  const bool draw_predicted = draws_predicted(input);
 
   overlay.render(eyes_[index],
                  [&](const Eigen::Matrix4f& projection, const Eigen::Matrix4f& T_view_base) {
@@ -125,6 +138,9 @@ void ArView::draw_eye(int index, const ArViewInput& input, bool video_ok) {
                    } else if (draw_reported && options_.show_reported_ghost) {
                      reported_.draw(projection, T_view_base, reported);
                    }
+                   // Before the ghost, which writes depth: where the two coincide (the arm on
+                   // its plan) the wire-frame stays visible through the translucent ghost.
+                   if (draw_predicted) predicted_.draw(projection, T_view_base, predicted);
                    ghost_.draw(projection, T_view_base, ghost);
                  });
   draw_status_border(eyes_[index]);

@@ -28,6 +28,7 @@ Session::Session(core::RobotModelPtr model, SessionOptions options)
       ghost_(model_),
       plan_(model_),
       display_(options_.display),
+      predictor_(options_.prediction),
       epoch_ns_(core::monotonic_ns()) {}
 
 Session::~Session() {
@@ -42,6 +43,13 @@ Result<std::unique_ptr<Session>> Session::create(core::RobotModelPtr model,
   }
   if (!(std::isfinite(options.injected_video_delay_s) && options.injected_video_delay_s >= 0.0)) {
     return Error{"session: injected_video_delay_s must be >= 0"};
+  }
+  if (!(std::isfinite(options.injected_state_delay_s) && options.injected_state_delay_s >= 0.0)) {
+    return Error{"session: injected_state_delay_s must be >= 0"};
+  }
+  if (Status s = options.prediction.validate(); !s) return Error{"session: " + s.error().message};
+  if (!(std::isfinite(options.prediction_min_delay_s) && options.prediction_min_delay_s >= 0.0)) {
+    return Error{"session: prediction_min_delay_s must be a finite number >= 0"};
   }
   if (Status s = options.display.validate(); !s.ok()) {
     return Error{"session: display options: " + s.error().message};
@@ -224,14 +232,18 @@ void Session::update_clearance(const Eigen::VectorXd& q, double gripper) {
   view_.ghost_contact_frames = clearance_->update(q, gripper).contact_frames;
 }
 
+std::optional<net::RobotStateSample> Session::reported_state() const {
+  return options_.injected_state_delay_s > 0.0 ? delivered_state_ : robot_->latest_state();
+}
+
 std::optional<Eigen::VectorXd> Session::real_q() const {
-  const auto state = robot_->latest_state();
+  const auto state = reported_state();
   if (!state || state->state.q.size() != model_->dof()) return std::nullopt;
   return state->state.q;
 }
 
 Status Session::ghost_to_real() {
-  const auto state = robot_->latest_state();
+  const auto state = reported_state();
   if (!state) return Error{"ghost = real: no state from the robot server yet"};
   Status s = ghost_.reset_to(state->state.q, state->state.gripper);
   if (!s.ok()) log(SessionEvent::Kind::kError, "ghost = real: " + s.error().message);
@@ -344,6 +356,7 @@ Result<net::PlanAck> Session::execute_plan() {
   auto trajectory = plan_.trajectory();
   if (!trajectory) return Error{"execute: " + trajectory.error().message};
   const std::string id = "plan-" + std::to_string(epoch_ns_) + "-" + std::to_string(++executions_);
+  const double sent_s = now();
   auto ack = robot_->execute_plan(id, *trajectory);
   if (!ack) {
     log(SessionEvent::Kind::kError, ack.error().message, WorkflowStep::kExecute, id);
@@ -351,6 +364,8 @@ Result<net::PlanAck> Session::execute_plan() {
   }
   executed_hash_ = ack->plan_hash;
   stop_preview();
+  // The robot took the plan up between the request and its answer: the middle of the two.
+  predictor_.follow(*trajectory, id, 0.5 * (sent_s + now()));
   monitor_.emplace(model_, std::move(*trajectory), 0.0, options_.monitor);
   executing_id_ = id;
   executing_ = true;
@@ -380,10 +395,12 @@ Status Session::cancel_execution(const std::string& reason) {
 
 void Session::update(double dt) {
   const double t = now();
-  view_.real = robot_->latest_state();
+  deliver_states(t);
+  view_.real = delivered_state_;
+  double capture_s = 0.0;
   if (view_.real) {
     const auto& real = *view_.real;
-    const double capture_s = core::ns_to_s(real.capture_client_ns() - epoch_ns_);
+    capture_s = core::ns_to_s(real.capture_client_ns() - epoch_ns_);
     view_.real_state_age_s = std::max(0.0, t - capture_s);
     if (state_history_.empty() || state_history_.back().first < capture_s) {
       state_history_.emplace_back(capture_s, real.state.q);
@@ -397,6 +414,10 @@ void Session::update(double dt) {
   }
 
   update_monitor();
+  if (!executing_) predictor_.stop();
+  view_.prediction = predictor_.predict(t, {view_.real ? &view_.real->state : nullptr, capture_s});
+  view_.show_prediction =
+      view_.prediction.available && view_.prediction.horizon_s >= options_.prediction_min_delay_s;
   view_.executing = executing_;
   view_.previewing = preview_.has_value() && !executing_;
   if (executing_ && monitor_ && view_.real) {
@@ -428,6 +449,22 @@ void Session::update(double dt) {
   live_series_.update(t, view_.real ? &*view_.real : nullptr, t - view_.real_state_age_s,
                       recent_frames_.empty() ? nullptr : recent_frames_.back().second.get(),
                       view_.display);
+}
+
+void Session::deliver_states(double t) {
+  if (auto latest = robot_->latest_state(); latest && latest->sequence != state_sequence_) {
+    state_sequence_ = latest->sequence;
+    held_states_.push_back(std::move(*latest));
+  }
+  // The newest state old enough to be "delivered" (all of them without a delay).
+  const std::int64_t now_ns = epoch_ns_ + core::s_to_ns(t);
+  const std::int64_t delay_ns = core::s_to_ns(options_.injected_state_delay_s);
+  while (!held_states_.empty() &&
+         (delay_ns == 0 || held_states_.front().receive_ns + delay_ns <= now_ns)) {
+    delivered_state_ = std::move(held_states_.front());
+    held_states_.pop_front();
+  }
+  while (held_states_.size() > 1024) held_states_.pop_front();  // a delay longer than the buffer
 }
 
 void Session::update_capture() {
@@ -536,6 +573,23 @@ void Session::update_registration(double t) {
   ++residual_checks_;
 }
 
+void Session::note_shown(std::uint64_t frame_id, const std::optional<vision::FrameCode>& code,
+                         std::int64_t shown_ns) {
+  if (frame_id == shown_frame_id_) return;
+  shown_frame_id_ = frame_id;
+  std::optional<double> shown_s;
+  if (code && code->frame == static_cast<std::uint32_t>(frame_id)) {
+    std::int64_t capture_ns = code->capture_ns;  // server clock
+    if (auto offset = vision_->clock_offset()) capture_ns -= offset->offset_ns;
+    shown_s = core::ns_to_s(shown_ns - capture_ns);
+  }
+  const double t = now();
+  recent_shown_.emplace_back(t, shown_s);
+  while (!recent_shown_.empty() && recent_shown_.front().first < t - 2.0) {
+    recent_shown_.pop_front();
+  }
+}
+
 SessionStats Session::stats() const {
   SessionStats stats;
   if (recent_frames_.size() >= 2) {
@@ -559,6 +613,17 @@ SessionStats Session::stats() const {
   stats.residual = residual_;
   stats.residual_checks = residual_checks_;
   stats.frame_age_s = view_.display.frame_age.value_or(0.0);
+  std::vector<double> shown;
+  const double window_start = now() - 2.0;  // a stopped video leaves no figure behind
+  for (const auto& [time, seconds] : recent_shown_) {
+    if (time < window_start) continue;
+    if (seconds) {
+      shown.push_back(*seconds);
+    } else {
+      ++stats.shown_without_code;
+    }
+  }
+  stats.shown = net::summarize_latency(shown);
   return stats;
 }
 

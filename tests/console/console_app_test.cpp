@@ -158,6 +158,11 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   const Stats panels =
       region_stats(image, static_cast<int>(kWidth * 0.7), 80, kWidth - 5, kHeight - 40);
   EXPECT_GT(panels.stddev, 5.0);  // text and widgets
+  // Glass to glass: this stream is scaled (320x240 of the rig's 640x480), so the frame code the
+  // embedded servers stamp does not survive it: capture -> shown is "not measured: no frame
+  // code" (docs/latency.md); ConsoleApp.MeasuresCaptureToShownFromTheFrameCode measures it.
+  EXPECT_EQ(session.stats().shown.samples, 0);
+  EXPECT_GT(session.stats().shown_without_code, 0);
 
   // The recording (--record): the session's states, its ghost, the video, its own events.
   auto recorded = app.stop_recording();
@@ -213,6 +218,27 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
     return app.session().robot_connected() && app.session().view().frame != nullptr &&
            app.session().in_control();
   }));
+  app.session().disconnect();
+}
+
+// Glass to glass (docs/latency.md): at the rig's own size the frame code the embedded servers
+// stamp reaches the AR view unscaled, and the console reads it back from the drawn eye.
+TEST(ConsoleApp, MeasuresCaptureToShownFromTheFrameCode) {
+  test_files::TempDir tmp("console_shown");
+  const std::string script = (tmp.path() / "wait.txt").string();
+  std::ofstream(script) << "wait-until connected 30\n";
+  ConsoleOptions options = telear::test::scripted_headless_console(script, 960, 600);
+  options.resolution = "640x480";  // the rig's own size: an unscaled stream
+  std::ostringstream log;
+  auto created = ConsoleApp::create(options, log);
+  ASSERT_TRUE(created) << created.error().message;
+  ConsoleApp& app = **created;
+  ASSERT_TRUE(run_until(app, 20, [&] { return app.session().stats().shown.samples >= 3; }))
+      << log.str();
+  const session::SessionStats stats = app.session().stats();
+  EXPECT_GT(stats.shown.p50_s, 0.0);
+  EXPECT_LT(stats.shown.p50_s, 5.0);  // a capture time of this run, not a stray value
+  EXPECT_EQ(stats.shown_without_code, 0);
   app.session().disconnect();
 }
 

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "telear/console/ui_state.hpp"
+
 namespace telear::console {
 namespace {
 
@@ -85,6 +87,24 @@ TEST(UiScript, ErrorsNameTheLine) {
   auto missing = load_ui_script("/nonexistent/script.txt", 6);
   ASSERT_FALSE(missing);
   EXPECT_THAT(missing.error().message, HasSubstr("cannot be read"));
+}
+
+// Issue 23: the predicted arm's toggle, from a script line to the AR view's option.
+TEST(UiScript, ViewPredictedTogglesThePredictedArm) {
+  auto lines = parse_ui_script("view predicted off\nview predicted on\n", 6);
+  ASSERT_TRUE(lines) << lines.error().message;
+  const auto& off = std::get<UiAction>((*lines)[0].step);
+  EXPECT_EQ(off.kind, ActionKind::kViewPredicted);
+  EXPECT_EQ(off.value, 0.0);
+  EXPECT_EQ(std::get<UiAction>((*lines)[1].step).value, 1.0);
+  UiState ui;
+  EXPECT_TRUE(with_view_settings({}, ui).show_predicted);
+  ui.show_predicted = false;
+  EXPECT_FALSE(with_view_settings({}, ui).show_predicted);
+
+  auto bad = parse_ui_script("view predicted maybe\n", 6);
+  ASSERT_FALSE(bad);
+  EXPECT_THAT(bad.error().message, HasSubstr("view predicted maybe: view predicted on|off"));
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // The operator's stereo view (telear/render/ar_view.hpp): video under the ghost in AR, the virtual
-// scene in VR, the status frame that tells live from virtual from stale.
+// scene in VR, the status frame that tells live from virtual from stale, the predicted arm.
 #include "telear/render/ar_view.hpp"
 
 #include <gtest/gtest.h>
@@ -162,6 +162,45 @@ TEST_F(ArViewTest, GhostLinksInContactAreDrawnRed) {
   input.ghost_highlight_frames.clear();
   view->render(input);
   EXPECT_EQ(count_contact_red(view->eye(0).read_rgb()), 0);
+}
+
+// Pixels of the predicted arm's magenta: red and blue well above green.
+long count_magenta(const core::Image& image) {
+  long n = 0;
+  for (std::size_t i = 0; i + 2 < image.pixels.size(); i += 3) {
+    const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+    if (r > g + 80 && b > g + 80) ++n;
+  }
+  return n;
+}
+
+TEST_F(ArViewTest, ThePredictedArmIsAMagentaWireFrameInBothModesAndCanBeHidden) {
+  auto view = ArView::create(*model, body, cameras, {},
+                             {.layout = StereoLayout::kSeparate, .status_border_px = 0});
+  ASSERT_TRUE(view) << view.error().message;
+  const Eigen::VectorXd qz = model->named_configuration("qz").value();
+  Eigen::VectorXd ahead = qz;
+  ahead[0] += 1.0;  // where the arm is now, away from the ghost and the reported arm
+  for (const ViewMode mode : {ViewMode::kAr, ViewMode::kVr}) {
+    ArViewInput input = input_at(qz);
+    input.mode = mode;
+    input.reported_q = qz;
+    view->render(input);
+    EXPECT_EQ(count_magenta(view->eye(0).read_rgb()), 0);
+    input.predicted_q = ahead;
+    view->render(input);
+    const long drawn = count_magenta(view->eye(0).read_rgb());
+    EXPECT_GT(drawn, 50) << (mode == ViewMode::kAr ? "AR" : "VR");
+    // A wire-frame: its edges, far fewer pixels than the solid ghost covers.
+    EXPECT_LT(drawn, 160 * 120 / 10);
+    ArViewOptions hidden = view->options();
+    hidden.show_predicted = false;
+    view->set_options(hidden);
+    view->render(input);
+    EXPECT_EQ(count_magenta(view->eye(0).read_rgb()), 0);
+    hidden.show_predicted = true;
+    view->set_options(hidden);
+  }
 }
 
 }  // namespace

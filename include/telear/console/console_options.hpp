@@ -16,6 +16,7 @@ struct ConsoleOptions {
   std::string robot;        // HOST:PORT
   std::string vision;       // HOST:PORT
   std::string token_file;   // first line: the bearer token
+  std::string tls_ca_file;  // the servers speak TLS: trust this CA (PEM); empty: plaintext
   std::string calibration;  // registered stereo camera file; empty: see docs/console.md
   LocalServersStarter start_local_servers;  // empty: the addresses are required
   // The arm drawn as the ghost (--arm, --tip, --package-path, --missing-meshes): the same

@@ -50,14 +50,15 @@ enum class ActionKind {
   kExecute,
   kCancel,
   // view
-  kViewLayout,    // text = sbs | tb | anaglyph | left | right | separate | page-flip
-  kViewStyle,     // text = solid | wire
-  kViewSegments,  // index = segments (0: the body's own)
-  kViewOpacity,   // value = ghost opacity (0, 1]
-  kViewVideo,     // text = raw | undistorted
-  kViewMode,      // text = auto | ar | vr
-  kViewReported,  // value != 0: show the reported ghost
-  kViewPlots,     // value != 0: show the Plots panel
+  kViewLayout,     // text = sbs | tb | anaglyph | left | right | separate | page-flip
+  kViewStyle,      // text = solid | wire
+  kViewSegments,   // index = segments (0: the body's own)
+  kViewOpacity,    // value = ghost opacity (0, 1]
+  kViewVideo,      // text = raw | undistorted
+  kViewMode,       // text = auto | ar | vr
+  kViewReported,   // value != 0: show the reported ghost
+  kViewPredicted,  // value != 0: show the predicted arm
+  kViewPlots,      // value != 0: show the Plots panel
   // registration capture (the Registration panel)
   kCaptureOpen,   // text = folder, spec = the target (empty: the robot's marker)
   kCaptureAdd,    // the pose the real arm is at

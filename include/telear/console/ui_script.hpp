@@ -16,7 +16,7 @@
 //   validate | execute | cancel
 //   view layout sbs|tb|anaglyph|left|right|separate|page-flip
 //   view style solid|wire   view segments N   view opacity F   view video raw|undistorted
-//   view mode auto|ar|vr    view reported on|off
+//   view mode auto|ar|vr    view reported on|off   view predicted on|off
 //   registration open FOLDER | add | solve | close   (the Registration panel's buttons)
 //   wait SECONDS                                  (display time passes, the session runs)
 //   wait-until idle|connected|disconnected|video|preview-end|in-control [TIMEOUT_S]

@@ -28,10 +28,10 @@ std::optional<ViewLayout> parse_layout(const std::string& name);
 enum class InputTarget { kGhost, kReal };
 
 struct UiState;
-// The view settings the operator chose (style, ghost opacity, the real arm shown, raw or
-// undistorted video) applied to the AR view's options: the console's view each frame, and
-// replay's with a default UiState, so that both draw alike. The layout is not among them (it
-// needs the view rebuilt).
+// The view settings the operator chose (style, ghost opacity, the real arm shown, the predicted
+// arm shown, raw or undistorted video) applied to the AR view's options: the console's view each
+// frame, and replay's with a default UiState, so that both draw alike. The layout is not among them
+// (it needs the view rebuilt).
 render::ArViewOptions with_view_settings(render::ArViewOptions options, const UiState& ui);
 
 struct UiState {
@@ -41,6 +41,7 @@ struct UiState {
   int segments = 0;  // 0: the body file's own
   float ghost_opacity = 0.55f;
   bool show_reported = true;
+  bool show_predicted = true;  // the predicted arm when the link is late (session::ArmPredictor)
   bool undistorted = false;
   bool body_dirty = false;  // segments changed: the view's arm body must be rebuilt
   bool page_flip_granted = false;

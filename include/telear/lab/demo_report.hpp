@@ -14,7 +14,10 @@
 // max_error_rad, max_error_joint (1-based), rms_error_rad, samples, tolerance_rad,
 // max_command_deviation_rad, plan_duration_s, waypoints, previewed_hash, executed_hash,
 // executed_is_previewed}, display.{ar_to_vr, vr_to_ar,
-// injected_delay_ms, switches}, recording.{path, messages.<topic>, dropped, bytes, plots (PNG file
+// injected_delay_ms, switches}, prediction.{delay_ms, frames, frames_predicted, horizon_ms_p50,
+// tool_error_mm_p50_predicted, tool_error_mm_p95_predicted, tool_error_mm_max_predicted, the
+// same _unpredicted} (the delay window's states late, against the simulator's truth; absent
+// without one), recording.{path, messages.<topic>, dropped, bytes, plots (PNG file
 // names), summary (recording_report.md), plot_error} (absent without a recording), outputs.{video,
 // video_codec, video_warning, video_frames, key_frames}, collision.{first_rehearsal,
 // final_plan}.{collision_free, time_s, link, object, depth_m (the first contact) | min_clearance_m,
@@ -29,6 +32,7 @@
 
 #include "telear/core/result.hpp"
 #include "telear/geometry/trajectory_collision.hpp"
+#include "telear/lab/prediction_error.hpp"
 #include "telear/lab/session_recorder.hpp"
 #include "telear/net/command_bytes.hpp"
 #include "telear/session/display_mode.hpp"
@@ -71,6 +75,8 @@ struct DemoFacts {
   int vr_to_ar = 0;
   std::vector<session::ModeSwitch> switches;
   int injected_delay_ms = 0;
+  // The predicted and the delayed arm's tool against the truth while the states were late.
+  std::optional<PredictionErrorSummary> prediction;
   double seconds = 0.0;  // the whole demo so far
   // The collision checks of the first rehearsal (into the table) and of the executed plan,
   // when the session checked collisions.

@@ -17,10 +17,13 @@
 // rotation is chosen once for all steps (include/telear/lab/grasp_choice.hpp). The plan is
 // timed at half the arm's speed and acceleration limits, previewed at 2x; during execution,
 // from 40 % of the plan's duration for 3 s, the video is held back by `delay_ms` (the display
-// switches to VR and back). Key frames: keyframe_1_start, keyframe_2a_collision (with a
-// checker), keyframe_2_rehearsal_grasp,
-// keyframe_3_preview, keyframe_4_execution, keyframe_5_vr_while_video_late (when VR was
-// shown), keyframe_6_done. Runs on the recorder's (OpenGL) thread; seconds of wall time.
+// switches to VR and back), and from the first VR frame to the window's end the robot's states
+// too (the whole link late): the view draws the predicted arm (session::ArmPredictor), measured
+// against the simulator's truth when `true_q` is given. Key frames: keyframe_1_start,
+// keyframe_2a_collision (with a checker), keyframe_2_rehearsal_grasp, keyframe_3_preview,
+// keyframe_4_execution, keyframe_5_vr_while_video_late (when VR was shown),
+// keyframe_5b_predicted (the predicted arm 10 cm or more from the delayed one), keyframe_6_done.
+// Runs on the recorder's (OpenGL) thread; seconds of wall time.
 
 #include <cstdint>
 #include <functional>
@@ -29,6 +32,7 @@
 
 #include "telear/core/result.hpp"
 #include "telear/lab/grasp_choice.hpp"
+#include "telear/lab/prediction_error.hpp"
 #include "telear/lab/session_recorder.hpp"
 #include "telear/net/command_bytes.hpp"
 #include "telear/session/session.hpp"
@@ -57,7 +61,10 @@ struct DemoTaskInputs {
   Eigen::Vector3d grip_in_link_m = Eigen::Vector3d::Zero();  // the gripper's centre in link 6
   Eigen::Vector3d camera_base_m = Eigen::Vector3d::Zero();   // the left camera's centre
   double fps = 15.0;                                         // the recorder's tick rate
-  int delay_ms = 400;                                        // injected video delay; 0: none
+  int delay_ms = 400;  // injected video (then state) delay; 0: none
+  // The simulated arm's true joints now (EmbeddedServers' robot), for the predicted arm's error
+  // during the delay; empty: not measured.
+  std::function<Eigen::VectorXd()> true_q;
   double connect_timeout_s = 30.0;  // for the first robot state and video frame
   // Height (base z) of the table's top under the box: the first rehearsal, when the session
   // checks collisions, lowers the gripper 5 cm below it.
@@ -81,6 +88,8 @@ struct DemoTaskOutcome {
   // executed plan's.
   std::optional<geometry::TrajectoryCheckReport> first_rehearsal_check;
   std::optional<geometry::TrajectoryCheckReport> final_plan_check;
+  // The tool drawn against the truth while the states were late (with inputs.true_q).
+  std::optional<PredictionErrorSummary> prediction;
 };
 
 // The task's steps for these inputs: the box, and the place 0.2 m along -y of it.

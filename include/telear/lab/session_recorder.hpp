@@ -56,6 +56,8 @@ struct Recording {
   // When each key frame's view was drawn (the monotonic clock): where a replay of the task's
   // recording finds it (its ghost message is stamped with the same time).
   std::vector<std::int64_t> key_frame_view_ns;
+  // Whether each key frame's view drew the predicted arm (a replay draws none).
+  std::vector<bool> key_frame_predicted;
 };
 
 struct RecorderOptions {
@@ -99,7 +101,8 @@ class SessionRecorder {
   std::uint64_t last_frame_id_ = 0;
   int residual_checks_ = 0;
   core::Image last_image_;
-  std::int64_t last_view_ns_ = 0;  // when last_image_'s view was drawn
+  std::int64_t last_view_ns_ = 0;     // when last_image_'s view was drawn
+  bool last_view_predicted_ = false;  // ... with the predicted arm
 };
 
 }  // namespace telear::lab

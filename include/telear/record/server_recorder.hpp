@@ -21,6 +21,7 @@ struct ServerRecorderOptions {
   std::string robot_address;   // HOST:PORT
   std::string vision_address;  // HOST:PORT; empty: no video
   std::string token;           // the servers' bearer token
+  std::string tls_ca_file;     // TLS: the CA the servers' certificates are signed by
   std::string client_name = "telear-record";
   double state_rate_hz = 50.0;  // 1..250 (the robot server's bounds)
   // false: no video stream of its own -- the caller feeds add_frame() and add_latency() from

@@ -11,6 +11,9 @@
 // Ghost links in contact (ArViewInput::ghost_highlight_frames) are drawn red.
 // VR mode (late or stopped video): no video; the whole scene is drawn virtually — the
 // workspace objects, the arm opaque at its reported pose, the ghost over it.
+// In both modes, when the video and the robot's state are late, the predicted arm: where the arm
+// is *now* (session::ArmPredictor's phantom robot), a wire-frame in its own colour (magenta),
+// so that it reads apart from the ghost (blue) and the reported arm (yellow).
 //
 // A coloured frame around each eye says what the operator is looking at: green = live AR,
 // amber = VR, red = stale (the video shown, if any, is old: it is never passed off as live).
@@ -52,6 +55,8 @@ struct ArViewOptions {
   bool show_reported_ghost = true;
   float reported_alpha = 0.25f;
   Eigen::Vector3f reported_colour{1.0f, 0.85f, 0.2f};
+  bool show_predicted = true;
+  Eigen::Vector3f predicted_colour{0.95f, 0.2f, 0.9f};
   int status_border_px = 4;  // 0: no frame around the eyes
   Eigen::Vector3f vr_background{0.16f, 0.18f, 0.22f};
 };
@@ -69,6 +74,8 @@ struct ArViewInput {
   std::vector<int> ghost_highlight_frames;
   Eigen::VectorXd reported_q;  // empty: not drawn
   double reported_gripper = 1.0;
+  Eigen::VectorXd predicted_q;  // the arm predicted now; empty: not drawn
+  double predicted_gripper = 1.0;
 };
 
 class ArView {
@@ -97,12 +104,15 @@ class ArView {
  private:
   ArView(const core::RobotModel& model, const core::ArmBody& body);
   void draw_eye(int index, const ArViewInput& input, bool video_ok);
+  bool draws_predicted(const ArViewInput& input) const {
+    return options_.show_predicted && input.predicted_q.size() == model_->dof();
+  }
   void draw_status_border(const OffscreenTarget& target) const;
 
   const core::RobotModel* model_ = nullptr;
   core::ArmBody body_;
-  std::unique_ptr<core::ArmBodyPose> ghost_pose_, reported_pose_;
-  ArmRenderer ghost_, reported_;
+  std::unique_ptr<core::ArmBodyPose> ghost_pose_, reported_pose_, predicted_pose_;
+  ArmRenderer ghost_, reported_, predicted_;
   std::optional<MeshSetRenderer> objects_;
   vision::StereoCameraModel cameras_;
   Overlay overlays_[2];

@@ -32,6 +32,9 @@
 // back to AR with hysteresis. options.injected_video_delay_s holds each decoded frame back
 // that long before the session shows it (a stand-in for a slow network, to demonstrate the
 // switch); view().frame is then the newest frame old enough to be "delivered".
+// options.injected_state_delay_s does the same to the robot's states (the whole link late, as
+// over a WAN). While a plan executes, view().prediction is the arm predicted *now* across the
+// state's age (ArmPredictor, arm_predictor.hpp: the plan plus the Smith feedback), or why not.
 //
 // Registration check. Every options.registration_check_period_s, the newest frame's gripper
 // marker is detected in both eyes and compared with where FK + calibration put it (at the
@@ -60,6 +63,7 @@
 #include "telear/net/latency_summary.hpp"
 #include "telear/net/robot_client.hpp"
 #include "telear/net/vision_client.hpp"
+#include "telear/session/arm_predictor.hpp"
 #include "telear/session/display_mode.hpp"
 #include "telear/session/execution_monitor.hpp"
 #include "telear/session/ghost_arm.hpp"
@@ -69,6 +73,7 @@
 #include "telear/session/plan_preview.hpp"
 #include "telear/session/plan_validation.hpp"
 #include "telear/session/registration_check.hpp"
+#include "telear/vision/frame_code.hpp"
 
 namespace telear::session {
 
@@ -89,6 +94,14 @@ struct SessionOptions {
   MonitorOptions monitor;
   double sample_rate_hz = 100.0;  // the plan's sampling for ExecuteTrajectory
   double injected_video_delay_s = 0.0;
+  // Holds each robot state back this long before the session uses it (the view, the monitor,
+  // the prediction, ghost = real), as injected_video_delay_s holds the video: with both the
+  // whole link is late (telear demo's delay window, telear bench prediction).
+  double injected_state_delay_s = 0.0;
+  // The predicted arm (arm_predictor.hpp), drawn (SessionView::show_prediction) once the state
+  // is prediction_min_delay_s old: below, the reported arm is where the arm is, to the eye.
+  ArmPredictorOptions prediction;
+  double prediction_min_delay_s = 0.1;
   double jog_validity_s = 0.5;  // a real jog's expiry from now
   // The lease's heartbeat period asked of the server (0: its default, 250 ms). A machine that
   // also simulates the robot and renders its cameras may starve the heartbeat thread for
@@ -152,6 +165,11 @@ struct SessionView {
   // Chain frames of the ghost's links in contact at ghost_q (drawn red); empty without a
   // collision checker.
   std::vector<int> ghost_contact_frames;
+  // The arm predicted now from the executing plan and the reported state (arm_predictor.hpp),
+  // or why not; show_prediction: available and at least options.prediction_min_delay_s ahead,
+  // the view draws prediction.q as a third arm.
+  ArmPrediction prediction;
+  bool show_prediction = false;
 };
 
 using net::LatencySummary;
@@ -168,6 +186,10 @@ struct SessionStats {
   StereoResidual residual;  // last registration check
   int residual_checks = 0;
   double frame_age_s = 0.0;
+  // Capture -> shown (glass to glass, docs/latency.md) over the last ~2 s: the frames the UI
+  // drew and read back by their frame code (Session::note_shown); samples 0: not measured.
+  LatencySummary shown{};
+  int shown_without_code = 0;  // frames drawn in that window with no readable code of theirs
 };
 
 class Session {
@@ -255,8 +277,18 @@ class Session {
   void update(double dt);
   const SessionView& view() const { return view_; }
   SessionStats stats() const;
+  // Glass to glass: what the UI read back from the frame buffer it drew view().frame into
+  // (telear/render/frame_code_readback.hpp): the frame's id, its frame code (nullopt: none
+  // readable) and when the read returned (this machine's monotonic_ns). The code's capture
+  // time (server clock) is converted with the vision client's clock offset, like every stage.
+  // A frame counts once, the first time it is drawn (shown_noted() tells the UI not to read it
+  // again); a code of another frame number counts as none.
+  void note_shown(std::uint64_t frame_id, const std::optional<vision::FrameCode>& code,
+                  std::int64_t shown_ns);
+  bool shown_noted(std::uint64_t frame_id) const { return frame_id == shown_frame_id_; }
   DisplayModeSelector& display() { return display_; }
   void set_injected_video_delay(double seconds) { options_.injected_video_delay_s = seconds; }
+  void set_injected_state_delay(double seconds) { options_.injected_state_delay_s = seconds; }
 
   const std::deque<SessionEvent>& events() const { return events_; }
   // The live plots' series (telear/session/live_series.hpp), fed by update().
@@ -273,6 +305,9 @@ class Session {
   void update_capture();
   void update_clearance(const Eigen::VectorXd& q, double gripper);
   std::optional<Eigen::VectorXd> real_q() const;
+  // The robot's newest state as this session sees it: held back by injected_state_delay_s.
+  std::optional<net::RobotStateSample> reported_state() const;
+  void deliver_states(double now);
 
   core::RobotModelPtr model_;
   SessionOptions options_;
@@ -301,6 +336,14 @@ class Session {
   std::deque<std::pair<std::uint64_t, std::shared_ptr<const net::DecodedStereoFrame>>> delayed_;
   std::deque<std::pair<double, std::shared_ptr<const net::DecodedStereoFrame>>> recent_frames_;
   std::deque<std::pair<double, Eigen::VectorXd>> state_history_;  // capture time (s), q
+  // The last note_shown()'s frame; the session time of each and its capture -> shown (s;
+  // nullopt: no code).
+  std::uint64_t shown_frame_id_ = 0;
+  std::deque<std::pair<double, std::optional<double>>> recent_shown_;
+  std::deque<net::RobotStateSample> held_states_;  // received, not yet delivered (state delay)
+  std::optional<net::RobotStateSample> delivered_state_;
+  std::uint64_t state_sequence_ = 0;  // the newest state taken from the client
+  ArmPredictor predictor_;
   SessionView view_;
   std::deque<SessionEvent> events_;
   std::unique_ptr<net::VisionClient> capture_vision_;  // before capture_: outlives it
