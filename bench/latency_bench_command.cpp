@@ -13,6 +13,7 @@
 #include <ostream>
 #include <vector>
 
+#include "bench/quiet_log.hpp"
 #include "telear/core/arm_body.hpp"
 #include "telear/core/clock.hpp"
 #include "telear/core/image_size.hpp"
@@ -179,18 +180,6 @@ Result<Measured> measure(const core::ImageSize& size, const LatencyBenchOptions&
   }
   return m;
 }
-
-// The servers log every stream at info; the benchmark keeps only warnings.
-class QuietLog {
- public:
-  QuietLog() : level_(spdlog::get_level()) { spdlog::set_level(spdlog::level::warn); }
-  ~QuietLog() { spdlog::set_level(level_); }
-  QuietLog(const QuietLog&) = delete;
-  QuietLog& operator=(const QuietLog&) = delete;
-
- private:
-  spdlog::level::level_enum level_;
-};
 
 }  // namespace
 

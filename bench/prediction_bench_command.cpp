@@ -10,6 +10,7 @@
 #include <ostream>
 #include <thread>
 
+#include "bench/quiet_log.hpp"
 #include "telear/core/angles.hpp"
 #include "telear/core/clock.hpp"
 #include "telear/core/robot_loader.hpp"
@@ -43,18 +44,6 @@ Eigen::VectorXd waypoint(int k) {
   for (int j = 0; j < 6; ++j) q[j] = core::radians_from_degrees(kWaypointsDeg[k][j]);
   return q;
 }
-
-// The servers log every command and stream at info; the benchmark keeps only warnings.
-class QuietLog {
- public:
-  QuietLog() : level_(spdlog::get_level()) { spdlog::set_level(spdlog::level::warn); }
-  ~QuietLog() { spdlog::set_level(level_); }
-  QuietLog(const QuietLog&) = delete;
-  QuietLog& operator=(const QuietLog&) = delete;
-
- private:
-  spdlog::level::level_enum level_;
-};
 
 struct Measured {
   lab::PredictionErrorSummary errors;

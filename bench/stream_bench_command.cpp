@@ -14,6 +14,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bench/quiet_log.hpp"
 #include "telear/core/clock.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/robot_loader.hpp"
@@ -369,19 +370,6 @@ nlohmann::json to_json(const RobotResult& r) {
           {"command_bytes_plan_10hz", bytes(r.bytes_10hz)},
           {"command_bytes_plan_message", r.plan_message_bytes}};
 }
-
-// The servers log every command and stream at info; a benchmark of thousands of calls keeps
-// only warnings and restores the level on the way out.
-class QuietLog {
- public:
-  QuietLog() : level_(spdlog::get_level()) { spdlog::set_level(spdlog::level::warn); }
-  ~QuietLog() { spdlog::set_level(level_); }
-  QuietLog(const QuietLog&) = delete;
-  QuietLog& operator=(const QuietLog&) = delete;
-
- private:
-  spdlog::level::level_enum level_;
-};
 
 }  // namespace
 
