@@ -402,7 +402,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
         recorded["key_frames"].push_back(
             {{"file", std::filesystem::path(r.key_frames[i]).filename().string()},
              {"t_s", static_cast<double>(mcap->wall_ns(r.key_frame_view_ns[i]) - start) * 1e-9},
-             {"predicted", i < r.key_frame_predicted.size() && r.key_frame_predicted[i]}});
+             {"predicted", i < r.key_frame_predicted.size() && r.key_frame_predicted[i]},
+             {"states_held_back",
+              i < r.key_frame_states_held_back.size() && r.key_frame_states_held_back[i]}});
       }
     }
     facts.mcap_json = recorded.dump();

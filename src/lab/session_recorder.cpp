@@ -61,6 +61,7 @@ void SessionRecorder::tick() {
   last_view_ns_ = core::monotonic_ns();
   if (options_.on_view) options_.on_view(v, last_view_ns_);
   last_view_predicted_ = v.show_prediction && view_.options().show_predicted;
+  last_view_states_held_ = session_.options().injected_state_delay_s > 0.0;
   if (v.frame && v.frame->frame_id != last_frame_id_) {
     last_frame_id_ = v.frame->frame_id;
     recording_.latency.add(v.frame->latency);
@@ -103,6 +104,7 @@ Result<std::string> SessionRecorder::key_frame(const std::string& name) {
   recording_.key_frames.push_back(path);
   recording_.key_frame_view_ns.push_back(last_view_ns_);
   recording_.key_frame_predicted.push_back(last_view_predicted_);
+  recording_.key_frame_states_held_back.push_back(last_view_states_held_);
   return path;
 }
 

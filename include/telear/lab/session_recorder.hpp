@@ -58,6 +58,9 @@ struct Recording {
   std::vector<std::int64_t> key_frame_view_ns;
   // Whether each key frame's view drew the predicted arm (a replay draws none).
   std::vector<bool> key_frame_predicted;
+  // Whether the session held the robot's states back then (injected_state_delay_s): the view
+  // drew the arm late, the recording holds the states as they arrived.
+  std::vector<bool> key_frame_states_held_back;
 };
 
 struct RecorderOptions {
@@ -101,8 +104,9 @@ class SessionRecorder {
   std::uint64_t last_frame_id_ = 0;
   int residual_checks_ = 0;
   core::Image last_image_;
-  std::int64_t last_view_ns_ = 0;     // when last_image_'s view was drawn
-  bool last_view_predicted_ = false;  // ... with the predicted arm
+  std::int64_t last_view_ns_ = 0;       // when last_image_'s view was drawn
+  bool last_view_predicted_ = false;    // ... with the predicted arm
+  bool last_view_states_held_ = false;  // ... with the states held back
 };
 
 }  // namespace telear::lab
