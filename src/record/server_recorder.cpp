@@ -130,8 +130,9 @@ void ServerRecorder::add_frame(const net::ReceivedStereoFrame& frame) {
   if (SessionRecorder* r = impl_->sink.load()) r->add_frame(frame);
 }
 
-void ServerRecorder::add_latency(const net::DecodedStereoFrame& frame) {
-  if (SessionRecorder* r = impl_->sink.load()) r->add_latency(frame);
+void ServerRecorder::add_latency(const net::DecodedStereoFrame& frame,
+                                 std::optional<std::int64_t> shown_ns) {
+  if (SessionRecorder* r = impl_->sink.load()) r->add_latency(frame, shown_ns);
 }
 
 void ServerRecorder::add_plan_event(PlanEventKind kind, const std::string& text,

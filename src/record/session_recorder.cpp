@@ -521,11 +521,12 @@ void SessionRecorder::add_state(const net::RobotStateSample& sample) {
                 [impl, copy, log_wall] { impl->write_state(*copy, log_wall); });
 }
 
-void SessionRecorder::add_latency(const net::DecodedStereoFrame& frame) {
+void SessionRecorder::add_latency(const net::DecodedStereoFrame& frame,
+                                  std::optional<std::int64_t> shown_ns) {
   Impl* impl = impl_.get();
   const std::int64_t capture_wall =
       impl->wall(std::max(frame.capture_ns_left, frame.capture_ns_right));
-  const std::int64_t log_wall = impl->wall(frame.decoded_ns);
+  const std::int64_t log_wall = impl->wall(shown_ns.value_or(frame.decoded_ns));
   telear::record::v1::LatencyStages stages;
   set_time(stages.mutable_timestamp(), capture_wall);
   stages.set_frame_id(frame.frame_id);

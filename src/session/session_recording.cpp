@@ -52,7 +52,9 @@ void record_session_view(record::ServerRecorder& recorder, const SessionView& vi
   if (view.ghost_q.size() > 0) recorder.add_ghost(view.ghost_q, view.ghost_gripper, monotonic_ns);
   if (view.frame && view.frame->frame_id != last_frame_id) {
     last_frame_id = view.frame->frame_id;
-    recorder.add_latency(*view.frame);
+    // Logged at the view's time, not the decode's: a frame decoded while this update ran is
+    // not the one the view drew, and replay at this time must not show it.
+    recorder.add_latency(*view.frame, monotonic_ns);
   }
 }
 

@@ -5,10 +5,10 @@
 // draws it (console/replay_app.hpp).
 //
 // "At time t" (seconds from the recording's start, its log times) means what the live view had
-// then: the newest frame decoded by t (the live view shows a frame once decoded: the newest
-// /telear/latency message, logged at its decode, names the pair by its capture stamp; a
-// recording without latency messages falls back to the newest frame received), the newest
-// ghost and robot state, the last AR/VR switch.
+// then: the frame the view drew (the newest /telear/latency message names the pair by its
+// capture stamp; an operator's view logs it when it first draws the frame, `telear record` at
+// its decode; a recording without latency messages falls back to the newest frame received),
+// the newest ghost and robot state, the last AR/VR switch.
 
 #include <cstdint>
 #include <memory>

@@ -40,7 +40,7 @@ struct JointSeries {
 
 struct LatencySample {
   double t = 0.0;
-  std::uint64_t log_ns = 0;   // when the frame was decoded (the message's log time)
+  std::uint64_t log_ns = 0;   // when the view first drew the frame, else when it was decoded
   std::int64_t stamp_ns = 0;  // the pair's capture time (the later eye's): its frames' stamps
   std::uint64_t frame_id = 0;
   std::array<double, net::kLatencyStageCount> stages{};  // seconds, kLatencyStages' order

@@ -69,7 +69,8 @@ class ServerRecorder {
   // With stream_video false: the caller's frames (VisionClientOptions::on_received) and their
   // latency once decoded. Thread-safe, never blocking.
   void add_frame(const net::ReceivedStereoFrame& frame);
-  void add_latency(const net::DecodedStereoFrame& frame);
+  void add_latency(const net::DecodedStereoFrame& frame,
+                   std::optional<std::int64_t> shown_ns = std::nullopt);
   // SessionRecorder's, for the operator's program (telear/session/session_recording.hpp).
   void add_plan_event(PlanEventKind kind, const std::string& text, const std::string& plan_id,
                       const std::string& plan_hash, std::int64_t client_ns);

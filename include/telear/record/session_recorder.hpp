@@ -85,7 +85,10 @@ class SessionRecorder {
   // Thread-safe, never blocking on the file.
   void add_frame(const net::ReceivedStereoFrame& frame);   // both eyes' JPEGs, as received
   void add_state(const net::RobotStateSample& sample);     // joints, ghost, link transforms
-  void add_latency(const net::DecodedStereoFrame& frame);  // the frame's latency by stage
+  // The frame's latency by stage, logged when it was decoded, or at `shown_ns` (client clock)
+  // when an operator's view drew it first: replay then shows at time t the frame the view had.
+  void add_latency(const net::DecodedStereoFrame& frame,
+                   std::optional<std::int64_t> shown_ns = std::nullopt);
   void add_log(LogLevel level, const std::string& text, std::int64_t client_ns);
   // A workflow event on /telear/plan_events, and as a Log on /events (level by kind).
   void add_plan_event(PlanEventKind kind, const std::string& text, const std::string& plan_id,
