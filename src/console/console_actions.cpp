@@ -182,6 +182,9 @@ Status dispatch(session::Session& s, UiState& ui, const UiAction& a) {
       return Status::Ok();
     case ActionKind::kViewPredicted:
       ui.show_predicted = a.value != 0.0;
+      break;
+    case ActionKind::kViewCapture:
+      ui.show_capture_arm = a.value != 0.0;
       return Status::Ok();
     case ActionKind::kViewPlots:
       ui.show_plots = a.value != 0.0;
@@ -321,6 +324,8 @@ const char* to_string(ActionKind kind) {
       return "view reported";
     case ActionKind::kViewPredicted:
       return "view predicted";
+    case ActionKind::kViewCapture:
+      return "view capture";
     case ActionKind::kViewPlots:
       return "view plots";
     case ActionKind::kCaptureOpen:

@@ -282,7 +282,7 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
     throw ParseError{"unknown registration action '" + sub + "' (open, add, solve, close)"};
   }
   if (verb == "view") {
-    need(w, 3, 3, "view layout|style|segments|opacity|video|mode|reported|predicted|plots VALUE");
+    need(w, 3, 3, "view layout|style|segments|opacity|video|mode|reported|predicted|capture|plots VALUE");
     a.text = w[2];
     if (sub == "layout") return action(ActionKind::kViewLayout);
     if (sub == "style") return action(ActionKind::kViewStyle);
@@ -296,16 +296,17 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
       a.value = parse_double(w[2], "opacity");
       return action(ActionKind::kViewOpacity);
     }
-    if (sub == "reported" || sub == "predicted" || sub == "plots") {
+    if (sub == "reported" || sub == "predicted" || sub == "capture" || sub == "plots") {
       if (w[2] != "on" && w[2] != "off") throw ParseError{"view " + sub + " on|off"};
       a.value = w[2] == "on" ? 1.0 : 0.0;
       return action(sub == "reported"    ? ActionKind::kViewReported
                     : sub == "predicted" ? ActionKind::kViewPredicted
+                    : sub == "capture"   ? ActionKind::kViewCapture
                                          : ActionKind::kViewPlots);
     }
     throw ParseError{
         "unknown view setting '" + sub +
-        "' (layout, style, segments, opacity, video, mode, reported, predicted, plots)"};
+        "' (layout, style, segments, opacity, video, mode, reported, predicted, capture, plots)"};
   }
   throw ParseError{
       "unknown command '" + verb +

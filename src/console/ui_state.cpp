@@ -16,6 +16,7 @@ render::ArViewOptions with_view_settings(render::ArViewOptions options, const Ui
   options.ghost_alpha = ui.ghost_opacity;
   options.show_reported_ghost = ui.show_reported;
   options.show_predicted = ui.show_predicted;
+  options.show_capture_arm = ui.show_capture_arm;
   options.overlay_mode =
       ui.undistorted ? render::OverlayMode::kUndistorted : render::OverlayMode::kRaw;
   return options;

@@ -72,6 +72,11 @@ bool draw_view_panel(PanelContext& ctx, const PanelLayout& layout, const ViewTex
     ctx.act({.kind = ActionKind::kViewPredicted, .value = predicted ? 1.0 : 0.0});
   }
   ImGui::SameLine();
+  bool at_capture = ui.show_capture_arm;
+  if (ImGui::Checkbox("at capture", &at_capture)) {
+    ctx.act({.kind = ActionKind::kViewCapture, .value = at_capture ? 1.0 : 0.0});
+  }
+  ImGui::SameLine();
   bool undistorted = ui.undistorted;
   if (ImGui::Checkbox("undistort", &undistorted)) {
     ctx.act({.kind = ActionKind::kViewVideo, .text = undistorted ? "undistorted" : "raw"});
@@ -108,6 +113,10 @@ bool draw_view_panel(PanelContext& ctx, const PanelLayout& layout, const ViewTex
   ImGui::SameLine();
   ImGui::TextColored(ImVec4(0.95f, 0.2f, 0.9f, 1), "magenta wire: predicted now");
   ImGui::SameLine();
+  if (ui.show_capture_arm) {
+    ImGui::TextColored(ImVec4(0.95f, 0.95f, 0.95f, 1), "white wire: at the frame's capture");
+    ImGui::SameLine();
+  }
   if (v.show_prediction && ui.show_predicted) {
     ImGui::Text("%s", v.prediction.summary().c_str());
   } else {

@@ -129,6 +129,7 @@ std::string demo_report_json(const DemoFacts& facts) {
   }
   report["display"] = {{"ar_to_vr", facts.ar_to_vr},
                        {"vr_to_ar", facts.vr_to_ar},
+                       {"predicted_late_s", facts.predicted_late_s},
                        {"injected_delay_ms", facts.injected_delay_ms},
                        {"switches", switches}};
   if (const auto& p = facts.prediction) {
@@ -237,7 +238,8 @@ std::string demo_report_markdown(const DemoFacts& facts) {
   }
   md += "\n- display: " + std::to_string(facts.ar_to_vr) + " AR -> VR and " +
         std::to_string(facts.vr_to_ar) + " VR -> AR switches (injected delay " +
-        std::to_string(facts.injected_delay_ms) + " ms)\n";
+        std::to_string(facts.injected_delay_ms) + " ms); " + fixed(facts.predicted_late_s, 1) +
+        " s of late video kept in AR by the predicted arm\n";
   if (const auto& p = facts.prediction) {
     md += "- predicted arm, while the states were late too (" + std::to_string(p->frames) +
           " frames, " + std::to_string(p->frames_predicted) + " predicted " +

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -248,14 +249,22 @@ Result<DemoTaskOutcome> run_demo_task(session::Session& session, SessionRecorder
   const double delay_s = inputs.delay_ms / 1000.0;
   bool execution_key = false, vr_key = false, predicted_key = false;
   PredictionErrorSeries prediction(session.model());
-  while (session.executing()) {
+  // The delay window (issue 23, predict first): from 40 % of the plan the whole link is late
+  // (video and states): the view stays in AR, the arm predicted over the late video. The plan
+  // over (as the late states tell), prediction is impossible: the video, still late, switches
+  // the view to VR for kLateAfterPlan_s; then the delay ends and the view returns to AR.
+  constexpr double kLateAfterPlan_s = 1.0;
+  std::optional<double> ended_at;  // t when the session saw the plan end
+  while (true) {
     const double t = core::seconds_since(exec_start);
     if (t > duration + 30) return phase_error("execution", "the execution did not finish in time");
-    const bool in_window = t > 0.4 * duration && t < 0.4 * duration + 3.0;
+    if (!session.executing() && !ended_at) ended_at = t;
+    if (ended_at && (delay_s == 0.0 || t >= *ended_at + kLateAfterPlan_s)) break;
+    const bool in_window = delay_s > 0.0 && t > 0.4 * duration;
     session.set_injected_video_delay(in_window ? delay_s : 0.0);
-    // The states late too once the switch to VR has been shown (its key frame replays as drawn:
-    // a recording holds the states as received, not as held back).
-    const bool states_late = in_window && vr_key && delay_s > 0.0;
+    // The states only while the plan runs: after it the arm rests, and the VR key frame is
+    // drawn from the states as received (a recording holds those, not the held-back ones).
+    const bool states_late = in_window && !ended_at;
     session.set_injected_state_delay(states_late ? delay_s : 0.0);
     // The truth just before the view's update: the prediction is for that moment.
     const Eigen::VectorXd truth =
@@ -276,7 +285,7 @@ Result<DemoTaskOutcome> run_demo_task(session::Session& session, SessionRecorder
         return phase_error("execution", k.error().message);
       execution_key = true;
     }
-    if (!vr_key && session.view().display.mode == session::DisplayMode::kVR) {
+    if (!vr_key && ended_at && session.view().display.mode == session::DisplayMode::kVR) {
       if (auto k = recorder.key_frame("keyframe_5_vr_while_video_late"); !k)
         return phase_error("execution", k.error().message);
       vr_key = true;

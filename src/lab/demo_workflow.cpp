@@ -455,6 +455,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   facts.final_plan_check = outcome->final_plan_check;
   facts.ar_to_vr = session.display().ar_to_vr_switches();
   facts.vr_to_ar = session.display().vr_to_ar_switches();
+  facts.predicted_late_s = session.display().predicted_late_s();
   facts.switches = session.display().switches();
   facts.injected_delay_ms = options.delay_ms;
   facts.prediction = outcome->prediction;

@@ -20,7 +20,8 @@ ArView::ArView(const core::RobotModel& model, const core::ArmBody& body)
       body_(body),
       ghost_pose_(std::make_unique<core::ArmBodyPose>(model, body_)),
       reported_pose_(std::make_unique<core::ArmBodyPose>(model, body_)),
-      predicted_pose_(std::make_unique<core::ArmBodyPose>(model, body_)) {}
+      predicted_pose_(std::make_unique<core::ArmBodyPose>(model, body_)),
+      capture_pose_(std::make_unique<core::ArmBodyPose>(model, body_)) {}
 
 Result<ArView> ArView::create(const core::RobotModel& model, const core::ArmBody& body,
                               const vision::StereoCameraModel& cameras,
@@ -35,9 +36,12 @@ Result<ArView> ArView::create(const core::RobotModel& model, const core::ArmBody
   if (!reported) return reported.error();
   auto predicted = ArmRenderer::create(view.body_);
   if (!predicted) return predicted.error();
+  auto capture = ArmRenderer::create(view.body_);
+  if (!capture) return capture.error();
   view.ghost_ = std::move(ghost.value());
   view.reported_ = std::move(reported.value());
   view.predicted_ = std::move(predicted.value());
+  view.capture_ = std::move(capture.value());
   if (!objects.empty()) {
     auto scene = create_scene_renderer(objects);
     if (!scene) return scene.error();
@@ -87,6 +91,11 @@ void ArView::render(const ArViewInput& input) {
     predicted_pose_->set_gripper_opening(body_.gripper_opening_m(input.predicted_gripper));
     predicted_.update(*predicted_pose_);
   }
+  if (draws_capture_arm(input)) {
+    capture_pose_->set_configuration(input.capture_q);
+    capture_pose_->set_gripper_opening(body_.gripper_opening_m(input.capture_gripper));
+    capture_.update(*capture_pose_);
+  }
   const bool video_ok = input.mode == ViewMode::kAr && frame_fits(input.left, cameras_.left) &&
                         frame_fits(input.right, cameras_.right);
   if (input.mode == ViewMode::kVr) {
@@ -129,6 +138,10 @@ void ArView::draw_eye(int index, const ArViewInput& input, bool video_ok) {
   predicted.style = DrawOptions::Style::kWireframe;
   predicted.colour = options_.predicted_colour;
   const bool draw_predicted = draws_predicted(input);
+  DrawOptions at_capture;
+  at_capture.style = DrawOptions::Style::kWireframe;
+  at_capture.colour = options_.capture_colour;
+  const bool draw_capture = video_ok && draws_capture_arm(input);
 
   overlay.render(eyes_[index],
                  [&](const Eigen::Matrix4f& projection, const Eigen::Matrix4f& T_view_base) {
@@ -141,6 +154,7 @@ void ArView::draw_eye(int index, const ArViewInput& input, bool video_ok) {
                    // Before the ghost, which writes depth: where the two coincide (the arm on
                    // its plan) the wire-frame stays visible through the translucent ghost.
                    if (draw_predicted) predicted_.draw(projection, T_view_base, predicted);
+                   if (draw_capture) capture_.draw(projection, T_view_base, at_capture);
                    ghost_.draw(projection, T_view_base, ghost);
                  });
   draw_status_border(eyes_[index]);

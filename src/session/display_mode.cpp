@@ -75,8 +75,10 @@ void DisplayModeSelector::switch_to(DisplayMode mode, double now, std::string re
   decision_.mode = mode;
 }
 
-const DisplayDecision& DisplayModeSelector::update(double now, std::optional<double> capture) {
+const DisplayDecision& DisplayModeSelector::update(double now, std::optional<double> capture,
+                                                   bool predicting) {
   if (now < last_now_) now = last_now_;
+  const double since_last = last_now_ > -1e299 ? now - last_now_ : 0.0;
   last_now_ = now;
   const double threshold = options_.late_threshold_s;
 
@@ -107,7 +109,16 @@ const DisplayDecision& DisplayModeSelector::update(double now, std::optional<dou
     why =
         "video late: frame age " + milliseconds(*d.frame_age) + " over " + milliseconds(threshold);
   }
-  if (!why.empty()) {
+  // Predict first: late but arriving video stays (or becomes) AR while the arm is predicted.
+  d.predicted = false;
+  if (!why.empty() && predicting && last_capture_ && !d.stream_stopped) {
+    fresh_count_ = 0;
+    last_bad_at_ = now;
+    if (automatic_mode_ == DisplayMode::kAR) predicted_late_s_ += since_last;
+    automatic_mode_ = DisplayMode::kAR;
+    d.predicted = true;
+    why += "; the arm predicted ahead of it";
+  } else if (!why.empty()) {
     fresh_count_ = 0;
     last_bad_at_ = now;
     automatic_mode_ = DisplayMode::kVR;
@@ -135,6 +146,7 @@ const DisplayDecision& DisplayModeSelector::update(double now, std::optional<dou
   }
 
   DisplayMode shown = automatic_mode_;
+  if (preference_ != DisplayPreference::kAutomatic) d.predicted = false;
   if (preference_ == DisplayPreference::kAR) {
     shown = DisplayMode::kAR;
     why = "AR forced by the operator" + std::string(d.frame_stale ? " (video stale)" : "");

@@ -15,6 +15,11 @@ namespace telear::session {
 
 namespace {
 
+// A frame captured after the newest report (the states late, or a slower state stream): the
+// newest report stands for the arm up to this long after it (2 periods at the stream's 100 Hz
+// plus slack); beyond, the arm at capture is not known and not drawn.
+constexpr double kCaptureArmTolerance_s = 0.05;
+
 cv::Mat as_mat(const core::Image& image) {
   return cv::Mat(image.height, image.width, image.channels == 4 ? CV_8UC4 : CV_8UC3,
                  const_cast<std::uint8_t*>(image.pixels.data()));
@@ -402,12 +407,7 @@ void Session::update(double dt) {
     const auto& real = *view_.real;
     capture_s = core::ns_to_s(real.capture_client_ns() - epoch_ns_);
     view_.real_state_age_s = std::max(0.0, t - capture_s);
-    if (state_history_.empty() || state_history_.back().first < capture_s) {
-      state_history_.emplace_back(capture_s, real.state.q);
-      while (state_history_.size() > 1 && state_history_.front().first < capture_s - 2.0) {
-        state_history_.pop_front();
-      }
-    }
+    state_history_.add(capture_s, real.state.q, real.state.gripper);
     if (!ghost_synced_ && real.state.q.size() == model_->dof()) {
       ghost_synced_ = ghost_.reset_to(real.state.q, real.state.gripper).ok();
     }
@@ -416,8 +416,6 @@ void Session::update(double dt) {
   update_monitor();
   if (!executing_) predictor_.stop();
   view_.prediction = predictor_.predict(t, {view_.real ? &view_.real->state : nullptr, capture_s});
-  view_.show_prediction =
-      view_.prediction.available && view_.prediction.horizon_s >= options_.prediction_min_delay_s;
   view_.executing = executing_;
   view_.previewing = preview_.has_value() && !executing_;
   if (executing_ && monitor_ && view_.real) {
@@ -444,6 +442,20 @@ void Session::update(double dt) {
   if (ghost_synced_ && robot_->lease_held()) robot_->set_ghost(ghost_.q(), ghost_.gripper());
 
   update_frame(t);
+  view_.capture_arm.reset();
+  if (view_.frame) {
+    // The simulated rig names the robot state it drew (up to a state period before its
+    // capture); a camera's picture is of the capture instant.
+    const std::int64_t shown_ns = view_.frame->scene_state_ns != 0 ? view_.frame->scene_state_ns
+                                                                   : view_.frame->capture_ns_left;
+    view_.capture_arm =
+        state_history_.at(core::ns_to_s(shown_ns - epoch_ns_), kCaptureArmTolerance_s);
+  }
+  // Drawn once the state is old enough for the prediction to differ from it to the eye, and
+  // always while it keeps a late video in AR (the arm now, over the video of then).
+  view_.show_prediction =
+      view_.prediction.available && (view_.prediction.horizon_s >= options_.prediction_min_delay_s ||
+                                     view_.display.predicted);
   update_registration(t);
   update_capture();
   live_series_.update(t, view_.real ? &*view_.real : nullptr, t - view_.real_state_age_s,
@@ -500,7 +512,7 @@ void Session::update_frame(double t) {
   std::optional<double> capture;
   if (view_.frame) capture = core::ns_to_s(view_.frame->capture_ns_left - epoch_ns_);
   const DisplayMode before = display_.mode();
-  view_.display = display_.update(t, capture);
+  view_.display = display_.update(t, capture, view_.prediction.available);
   if (display_.mode() != before) {
     // The message starts with the new mode: a recording's AR/VR timeline reads it.
     log(SessionEvent::Kind::kInfo,
@@ -550,26 +562,15 @@ void Session::update_registration(double t) {
   if (frame.scene_q.size() == model_->dof()) {
     q = frame.scene_q;
   } else {
-    const double capture_s = core::ns_to_s(frame.capture_ns_left - epoch_ns_);
-    double best = 1e300;
-    for (const auto& [time, q_at] : state_history_) {
-      if (std::abs(time - capture_s) < best) {
-        best = std::abs(time - capture_s);
-        q = q_at;
-      }
-    }
-    if (q.size() != model_->dof()) return;
+    const auto nearest = state_history_.nearest(core::ns_to_s(frame.capture_ns_left - epoch_ns_));
+    if (!nearest || nearest->q.size() != model_->dof()) return;
+    q = nearest->q;
   }
   if (!q.allFinite()) return;
   residual_ = registration_->check(as_mat(frame.left), as_mat(frame.right), q);
-  const double capture_s = core::ns_to_s(frame.capture_ns_left - epoch_ns_);
-  for (const auto& [time, q_at] : state_history_) {
-    if (std::abs(time - capture_s) <= StereoResidual::kMotionWindowS && q_at.size() == q.size() &&
-        (q_at - q).cwiseAbs().maxCoeff() > StereoResidual::kMotionToleranceRad) {
-      residual_.arm_moving = true;
-      break;
-    }
-  }
+  residual_.arm_moving = state_history_.moving_near(
+      core::ns_to_s(frame.capture_ns_left - epoch_ns_), q, StereoResidual::kMotionWindowS,
+      StereoResidual::kMotionToleranceRad);
   ++residual_checks_;
 }
 

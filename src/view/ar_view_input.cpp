@@ -18,6 +18,10 @@ render::ArViewInput ar_view_input(const session::SessionView& view) {
     input.reported_q = view.real->state.q;
     input.reported_gripper = view.real->state.gripper;
   }
+  if (view.capture_arm) {
+    input.capture_q = view.capture_arm->q;
+    input.capture_gripper = view.capture_arm->gripper;
+  }
   if (view.show_prediction) {
     input.predicted_q = view.prediction.q;
     input.predicted_gripper = view.prediction.gripper;

@@ -106,9 +106,19 @@ TEST(DemoCli, ThePickAndPlaceRunsEndToEndAndReportsItsFigures) {
   }
   EXPECT_NE(test::slurp(d + "/recording_report.md").find("| shoulder | deg | "), std::string::npos);
   EXPECT_FALSE(fs::exists(d + "/session.mcap"));  // --record named another file
-  // The injected delay: at least one switch to VR and back.
+  // The injected delay (issue 23, predict first): the late video stayed in AR while the plan
+  // ran, the arm predicted over it; once the plan was over the still late video switched to
+  // VR, and back after the delay.
+  EXPECT_GT(report["display"]["predicted_late_s"].get<double>(), 0.5) << report["display"];
   EXPECT_GE(report["display"]["ar_to_vr"].get<int>(), 1);
   EXPECT_GE(report["display"]["vr_to_ar"].get<int>(), 2);  // the start, and after the delay
+  bool vr_after_the_plan = false;
+  for (const auto& s : report["display"]["switches"]) {
+    if (s["to"] == "VR" && s["reason"].get<std::string>().rfind("video late", 0) == 0) {
+      vr_after_the_plan = true;
+    }
+  }
+  EXPECT_TRUE(vr_after_the_plan) << report["display"];
   // Issue 23: with the states late too, the view drew the predicted arm (its key frame), nearer
   // the simulator's truth than the delayed state (docs/demo.md has the figures).
   const auto& prediction = report["prediction"];

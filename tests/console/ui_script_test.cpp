@@ -105,6 +105,20 @@ TEST(UiScript, ViewPredictedTogglesThePredictedArm) {
   auto bad = parse_ui_script("view predicted maybe\n", 6);
   ASSERT_FALSE(bad);
   EXPECT_THAT(bad.error().message, HasSubstr("view predicted maybe: view predicted on|off"));
+
+  // ... and the arm at the frame's capture, off until asked for.
+  auto capture = parse_ui_script("view capture on\n", 6);
+  ASSERT_TRUE(capture) << capture.error().message;
+  EXPECT_EQ(std::get<UiAction>((*capture)[0].step).kind, ActionKind::kViewCapture);
+  EXPECT_EQ(std::get<UiAction>((*capture)[0].step).value, 1.0);
+  EXPECT_FALSE(with_view_settings({}, UiState{}).show_capture_arm);
+  ui.show_capture_arm = true;
+  EXPECT_TRUE(with_view_settings({}, ui).show_capture_arm);
+  bad = parse_ui_script("view capturing on\n", 6);
+  ASSERT_FALSE(bad);
+  EXPECT_THAT(bad.error().message,
+              HasSubstr("unknown view setting 'capturing' (layout, style, segments, opacity, "
+                        "video, mode, reported, predicted, capture, plots)"));
 }
 
 }  // namespace

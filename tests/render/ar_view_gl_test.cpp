@@ -203,5 +203,41 @@ TEST_F(ArViewTest, ThePredictedArmIsAMagentaWireFrameInBothModesAndCanBeHidden) 
   }
 }
 
+// Near-white pixels: the arm at the frame's capture (its default colour).
+long count_white(const core::Image& image) {
+  long n = 0;
+  for (std::size_t i = 0; i + 2 < image.pixels.size(); i += 3) {
+    if (image.pixels[i] > 225 && image.pixels[i + 1] > 225 && image.pixels[i + 2] > 225) ++n;
+  }
+  return n;
+}
+
+TEST_F(ArViewTest, TheArmAtCaptureIsAWhiteWireFrameOverTheVideoWhenAskedFor) {
+  auto view = ArView::create(*model, body, cameras, {},
+                             {.layout = StereoLayout::kSeparate, .status_border_px = 0});
+  ASSERT_TRUE(view) << view.error().message;
+  const Eigen::VectorXd qz = model->named_configuration("qz").value();
+  Eigen::VectorXd then = qz;
+  then[0] -= 1.0;  // away from the ghost
+  ArViewInput input = input_at(qz);
+  input.capture_q = then;
+  view->render(input);
+  const long before = count_white(view->eye(0).read_rgb());
+  ArViewOptions shown = view->options();
+  shown.show_capture_arm = true;  // off by default
+  view->set_options(shown);
+  view->render(input);
+  const long drawn = count_white(view->eye(0).read_rgb()) - before;
+  EXPECT_GT(drawn, 50);
+  EXPECT_LT(drawn, 160 * 120 / 10);  // a wire-frame's edges
+  // VR has no video for it to sit on: not drawn.
+  input.mode = ViewMode::kVr;
+  view->render(input);
+  const long vr = count_white(view->eye(0).read_rgb());
+  input.capture_q.resize(0);
+  view->render(input);
+  EXPECT_EQ(vr, count_white(view->eye(0).read_rgb()));
+}
+
 }  // namespace
 }  // namespace telear::render

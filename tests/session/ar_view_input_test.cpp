@@ -24,6 +24,16 @@ TEST(ArViewInput, ThePredictedArmIsDrawnOnlyWhenTheSessionShowsIt) {
   EXPECT_EQ(input.predicted_gripper, 0.25);
 }
 
+TEST(ArViewInput, TheArmAtCaptureIsPassedOnWhenTheSessionKnowsIt) {
+  session::SessionView v;
+  v.ghost_q = test::q6(0, 0.5, -0.5, 0, 0, 0);
+  EXPECT_EQ(ar_view_input(v).capture_q.size(), 0);
+  v.capture_arm = session::ArmAt{test::q6(0.2, 0.5, -0.5, 0, 0, 0), 0.5};
+  const render::ArViewInput input = ar_view_input(v);
+  EXPECT_EQ(input.capture_q, v.capture_arm->q);
+  EXPECT_EQ(input.capture_gripper, 0.5);
+}
+
 TEST(ArViewInput, ASessionWithoutARobotStateSaysWhyItPredictsNothing) {
   session::SessionOptions options;
   options.robot.address = "127.0.0.1:1";  // never connected

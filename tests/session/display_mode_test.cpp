@@ -77,6 +77,60 @@ TEST(DisplayMode, InjectedDelaySwitchesToVrAndBackWithHysteresis) {
   EXPECT_EQ(step().mode, DisplayMode::kAR);
 }
 
+// Issue 23, predict first: while the arm is predicted, late video stays in AR (marked stale,
+// the prediction drawn over it); once prediction is impossible the AR / VR rule applies again.
+TEST(DisplayMode, LateVideoStaysInArWhileTheArmIsPredicted) {
+  DisplayModeSelector selector(no_hold());
+  Stream s;
+  double delay = 0.05;
+  bool predicting = false;
+  auto step = [&] {
+    ++s.frame;
+    const double now = s.frame * s.period;
+    return selector.update(now, now - delay, predicting);
+  };
+  for (int i = 0; i < 10; ++i) step();
+  ASSERT_EQ(selector.mode(), DisplayMode::kAR);
+  EXPECT_FALSE(selector.decision().predicted);  // fresh video needs no prediction
+  // A plan executes, the link becomes 400 ms late: AR, stale, predicted.
+  predicting = true;
+  delay = 0.40;
+  for (int i = 0; i < 30; ++i) {
+    const DisplayDecision& d = step();
+    ASSERT_EQ(d.mode, DisplayMode::kAR) << d.reason;
+    EXPECT_TRUE(d.frame_stale);
+    EXPECT_TRUE(d.predicted);
+  }
+  EXPECT_EQ(selector.decision().reason,
+            "video late: frame age 400 ms over 250 ms; the arm predicted ahead of it");
+  EXPECT_EQ(selector.ar_to_vr_switches(), 0);
+  // 30 frames at 30 fps held in AR by prediction (the first one switched nothing either).
+  EXPECT_NEAR(selector.predicted_late_s(), 30 * s.period, 1e-9);
+  // The plan ends, the video still late: prediction is impossible, VR at once.
+  predicting = false;
+  const DisplayDecision& ended = step();
+  EXPECT_EQ(ended.mode, DisplayMode::kVR);
+  EXPECT_FALSE(ended.predicted);
+  EXPECT_EQ(ended.reason, "video late: frame age 400 ms over 250 ms");
+  EXPECT_EQ(selector.ar_to_vr_switches(), 1);
+  // A new plan under the same delay: back to AR at once, without waiting for fresh video.
+  predicting = true;
+  EXPECT_EQ(step().mode, DisplayMode::kAR);
+  EXPECT_EQ(selector.vr_to_ar_switches(), 2);  // the start and this one
+  // The video stops: VR even while predicting (the background is frozen).
+  const double last = s.frame * s.period - delay;
+  double now = s.frame * s.period;
+  DisplayDecision d;
+  for (int i = 0; i < 60; ++i) d = selector.update(now += 1.0 / 60, last, true);
+  EXPECT_EQ(d.mode, DisplayMode::kVR);
+  EXPECT_TRUE(d.stream_stopped);
+  EXPECT_FALSE(d.predicted);
+  // A forced mode is the operator's, not the prediction's.
+  selector.set_preference(DisplayPreference::kAR);
+  now += 0.02;
+  EXPECT_FALSE(selector.update(now, now - 0.4, true).predicted);
+}
+
 TEST(DisplayMode, StoppedStreamShowsTheLastFrameAsStale) {
   DisplayModeSelector selector;
   Stream s;

@@ -101,7 +101,30 @@ TEST_F(SessionIntegrationTest, APlanExecutesOnTheRobotAndTheMonitorTracksIt) {
   EXPECT_EQ(ack->plan_hash, previewed);
   EXPECT_EQ(session->executed_hash(), previewed);
   EXPECT_LT(session->stats().command_bytes_sent - bytes_before, 1000u);
-  ASSERT_TRUE(run_until([&] { return !session->executing(); }, ack->duration_s + 15.0));
+  // Issue 23: the arm as reported at each frame's capture is the arm the frame shows (the
+  // simulated rig sends the configuration it drew), while the arm moves.
+  int frames_compared = 0;
+  double worst_rad = 0.0;
+  std::uint64_t last_frame = 0;
+  auto compare_capture_arm = [&] {
+    const SessionView& v = session->view();
+    if (!v.frame || v.frame->frame_id == last_frame || !v.capture_arm) return;
+    last_frame = v.frame->frame_id;
+    if (v.frame->scene_q.size() != 6) return;
+    worst_rad = std::max(worst_rad, (v.capture_arm->q - v.frame->scene_q).cwiseAbs().maxCoeff());
+    ++frames_compared;
+  };
+  ASSERT_TRUE(run_until(
+      [&] {
+        compare_capture_arm();
+        return !session->executing();
+      },
+      ack->duration_s + 15.0));
+  EXPECT_GT(frames_compared, 5);
+  // The rig's frame shows its robot's state at scene_state_ns (up to a state period before the
+  // capture: up to 11 mrad at this fast plan's speed); the session's reports of the same robot
+  // at 100 Hz, interpolated, on two clock-offset estimates: ~1 mrad (~1 mm at the tool).
+  EXPECT_LT(worst_rad, 3e-3);
   EXPECT_EQ(session->last_execution_result(), "completed");
   ASSERT_NE(session->monitor(), nullptr);
   EXPECT_GT(session->monitor()->status().samples, 10);

@@ -58,6 +58,7 @@ enum class ActionKind {
   kViewMode,       // text = auto | ar | vr
   kViewReported,   // value != 0: show the reported ghost
   kViewPredicted,  // value != 0: show the predicted arm
+  kViewCapture,    // value != 0: show the arm at the frame's capture
   kViewPlots,      // value != 0: show the Plots panel
   // registration capture (the Registration panel)
   kCaptureOpen,   // text = folder, spec = the target (empty: the robot's marker)

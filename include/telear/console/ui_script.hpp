@@ -17,6 +17,7 @@
 //   view layout sbs|tb|anaglyph|left|right|separate|page-flip
 //   view style solid|wire   view segments N   view opacity F   view video raw|undistorted
 //   view mode auto|ar|vr    view reported on|off   view predicted on|off
+//   view capture on|off     (the arm at the frame's capture time, over the video)
 //   registration open FOLDER | add | solve | close   (the Registration panel's buttons)
 //   wait SECONDS                                  (display time passes, the session runs)
 //   wait-until idle|connected|disconnected|video|preview-end|in-control [TIMEOUT_S]

@@ -13,7 +13,7 @@
 // jog_100hz, jog_messages, ratio (jogs / plan message), ratio_vs_samples}, execution.{result,
 // max_error_rad, max_error_joint (1-based), rms_error_rad, samples, tolerance_rad,
 // max_command_deviation_rad, plan_duration_s, waypoints, previewed_hash, executed_hash,
-// executed_is_previewed}, display.{ar_to_vr, vr_to_ar,
+// executed_is_previewed}, display.{ar_to_vr, vr_to_ar, predicted_late_s,
 // injected_delay_ms, switches}, prediction.{delay_ms, frames, frames_predicted, horizon_ms_p50,
 // tool_error_mm_p50_predicted, tool_error_mm_p95_predicted, tool_error_mm_max_predicted, the
 // same _unpredicted} (the delay window's states late, against the simulator's truth; absent
@@ -73,6 +73,7 @@ struct DemoFacts {
   int waypoints = 0;
   int ar_to_vr = 0;
   int vr_to_ar = 0;
+  double predicted_late_s = 0.0;  // AR on late video, the arm predicted (display_mode.hpp)
   std::vector<session::ModeSwitch> switches;
   int injected_delay_ms = 0;
   // The predicted and the delayed arm's tool against the truth while the states were late.

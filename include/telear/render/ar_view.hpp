@@ -14,6 +14,9 @@
 // In both modes, when the video and the robot's state are late, the predicted arm: where the arm
 // is *now* (session::ArmPredictor's phantom robot), a wire-frame in its own colour (magenta),
 // so that it reads apart from the ghost (blue) and the reported arm (yellow).
+// Optionally (show_capture_arm), in AR over the video: the arm as it was reported at the frame's
+// capture time, a white wire-frame that must sit on the arm the video shows (where it does not,
+// the registration or the clocks are off; the predicted arm is ahead of it by the delay).
 //
 // A coloured frame around each eye says what the operator is looking at: green = live AR,
 // amber = VR, red = stale (the video shown, if any, is old: it is never passed off as live).
@@ -57,6 +60,8 @@ struct ArViewOptions {
   Eigen::Vector3f reported_colour{1.0f, 0.85f, 0.2f};
   bool show_predicted = true;
   Eigen::Vector3f predicted_colour{0.95f, 0.2f, 0.9f};
+  bool show_capture_arm = false;  // the arm at the frame's capture (AR only)
+  Eigen::Vector3f capture_colour{0.95f, 0.95f, 0.95f};
   int status_border_px = 4;  // 0: no frame around the eyes
   Eigen::Vector3f vr_background{0.16f, 0.18f, 0.22f};
 };
@@ -76,6 +81,8 @@ struct ArViewInput {
   double reported_gripper = 1.0;
   Eigen::VectorXd predicted_q;  // the arm predicted now; empty: not drawn
   double predicted_gripper = 1.0;
+  Eigen::VectorXd capture_q;  // the arm at the video frame's capture; empty: not drawn
+  double capture_gripper = 1.0;
 };
 
 class ArView {
@@ -107,12 +114,15 @@ class ArView {
   bool draws_predicted(const ArViewInput& input) const {
     return options_.show_predicted && input.predicted_q.size() == model_->dof();
   }
+  bool draws_capture_arm(const ArViewInput& input) const {
+    return options_.show_capture_arm && input.capture_q.size() == model_->dof();
+  }
   void draw_status_border(const OffscreenTarget& target) const;
 
   const core::RobotModel* model_ = nullptr;
   core::ArmBody body_;
-  std::unique_ptr<core::ArmBodyPose> ghost_pose_, reported_pose_, predicted_pose_;
-  ArmRenderer ghost_, reported_, predicted_;
+  std::unique_ptr<core::ArmBodyPose> ghost_pose_, reported_pose_, predicted_pose_, capture_pose_;
+  ArmRenderer ghost_, reported_, predicted_, capture_;
   std::optional<MeshSetRenderer> objects_;
   vision::StereoCameraModel cameras_;
   Overlay overlays_[2];

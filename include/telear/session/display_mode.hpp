@@ -17,6 +17,12 @@
 //             age below late_threshold_s * fresh_fraction (default 5 frames under 150 ms), and
 //             no sooner than `fresh_hold_s` (default 0.5 s) after the video was last late,
 //             stopped or absent; any late update in between starts both again.
+// Predict first (issue 23): while the arm can be predicted (`predicting`: a plan executes and
+// the predictor draws the arm where it is now, arm_predictor.hpp), a late video does not
+// switch to VR -- the view stays in AR, the frame marked stale, the predicted arm over it -- and
+// a view in VR returns to AR at once. A stopped stream is VR all the same (the background is
+// frozen). When prediction becomes impossible (the plan ends, a fault, a jog) the rule above
+// applies again: VR at once if the video is late.
 // The view starts in VR (no video yet); the first return to AR counts as a VR -> AR switch.
 // Forced AR or VR (DisplayPreference) overrides the choice but not the measurements: a stale
 // frame shown in forced AR is still reported as stale.
@@ -60,7 +66,8 @@ struct DisplayDecision {
   std::optional<double> frame_age;  // s; unset before the first frame
   bool frame_stale = true;          // the newest frame must be marked as stale (or there is none)
   bool stream_stopped = true;
-  std::string reason;  // why this mode (for the status line)
+  bool predicted = false;  // AR on late video because the arm is predicted ahead of it
+  std::string reason;      // why this mode (for the status line)
 };
 
 class DisplayModeSelector {
@@ -74,14 +81,18 @@ class DisplayModeSelector {
 
   // One display update at time `now` (s); `latest_capture` is the newest frame's capture
   // time, or nullopt when no frame has arrived yet. Times must not go backwards (a `now` before
-  // the previous one is treated as equal to it).
-  const DisplayDecision& update(double now, std::optional<double> latest_capture);
+  // the previous one is treated as equal to it). `predicting`: the arm is predicted now (see
+  // the header comment).
+  const DisplayDecision& update(double now, std::optional<double> latest_capture,
+                                bool predicting = false);
   const DisplayDecision& decision() const { return decision_; }
   DisplayMode mode() const { return decision_.mode; }
 
   int ar_to_vr_switches() const { return ar_to_vr_; }
   int vr_to_ar_switches() const { return vr_to_ar_; }
   const std::vector<ModeSwitch>& switches() const { return switches_; }
+  // Seconds of automatic AR on late video that prediction kept from VR (update to update).
+  double predicted_late_s() const { return predicted_late_s_; }
 
  private:
   void switch_to(DisplayMode mode, double now, std::string reason);
@@ -96,6 +107,7 @@ class DisplayModeSelector {
   double last_bad_at_ = -1e300;  // `now` when the video was last late, stopped or absent
   int fresh_count_ = 0;
   int ar_to_vr_ = 0, vr_to_ar_ = 0;
+  double predicted_late_s_ = 0.0;
   std::vector<ModeSwitch> switches_;
 };
 

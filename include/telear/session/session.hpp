@@ -34,7 +34,9 @@
 // switch); view().frame is then the newest frame old enough to be "delivered".
 // options.injected_state_delay_s does the same to the robot's states (the whole link late, as
 // over a WAN). While a plan executes, view().prediction is the arm predicted *now* across the
-// state's age (ArmPredictor, arm_predictor.hpp: the plan plus the Smith feedback), or why not.
+// state's age (ArmPredictor, arm_predictor.hpp: the plan plus the Smith feedback), or why not;
+// while it is available a late video stays in AR with the predicted arm over it ("predict
+// first", display_mode.hpp), and only when it is not does late video switch to VR.
 //
 // Registration check. Every options.registration_check_period_s, the newest frame's gripper
 // marker is detected in both eyes and compared with where FK + calibration put it (at the
@@ -64,6 +66,7 @@
 #include "telear/net/robot_client.hpp"
 #include "telear/net/vision_client.hpp"
 #include "telear/session/arm_predictor.hpp"
+#include "telear/session/state_history.hpp"
 #include "telear/session/display_mode.hpp"
 #include "telear/session/execution_monitor.hpp"
 #include "telear/session/ghost_arm.hpp"
@@ -99,7 +102,8 @@ struct SessionOptions {
   // whole link is late (telear demo's delay window, telear bench prediction).
   double injected_state_delay_s = 0.0;
   // The predicted arm (arm_predictor.hpp), drawn (SessionView::show_prediction) once the state
-  // is prediction_min_delay_s old: below, the reported arm is where the arm is, to the eye.
+  // is prediction_min_delay_s old (below, the reported arm is where the arm is, to the eye),
+  // and whenever it keeps a late video in AR (display_mode.hpp, "predict first").
   ArmPredictorOptions prediction;
   double prediction_min_delay_s = 0.1;
   double jog_validity_s = 0.5;  // a real jog's expiry from now
@@ -166,10 +170,15 @@ struct SessionView {
   // collision checker.
   std::vector<int> ghost_contact_frames;
   // The arm predicted now from the executing plan and the reported state (arm_predictor.hpp),
-  // or why not; show_prediction: available and at least options.prediction_min_delay_s ahead,
-  // the view draws prediction.q as a third arm.
+  // or why not; show_prediction: available and at least options.prediction_min_delay_s ahead
+  // or keeping a late video in AR (display.predicted), the view draws prediction.q as a third
+  // arm.
   ArmPrediction prediction;
   bool show_prediction = false;
+  // The arm as reported at the shown frame's capture time (StateHistory): where the video
+  // shows it (for the simulated rig, at the time of the state it drew: scene_state_ns).
+  // nullopt without a frame, or without reports within 50 ms of its capture.
+  std::optional<ArmAt> capture_arm;
 };
 
 using net::LatencySummary;
@@ -335,7 +344,7 @@ class Session {
   std::uint64_t frame_number_ = 0;
   std::deque<std::pair<std::uint64_t, std::shared_ptr<const net::DecodedStereoFrame>>> delayed_;
   std::deque<std::pair<double, std::shared_ptr<const net::DecodedStereoFrame>>> recent_frames_;
-  std::deque<std::pair<double, Eigen::VectorXd>> state_history_;  // capture time (s), q
+  StateHistory state_history_;  // the delivered states by capture time (s)
   // The last note_shown()'s frame; the session time of each and its capture -> shown (s;
   // nullopt: no code).
   std::uint64_t shown_frame_id_ = 0;
