@@ -159,6 +159,7 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
   client_options.address = (*server)->address();
   client_options.client_name = "bench-stream";
   client_options.decode_eyes_in_parallel = !options.sequential_decode;
+  client_options.decode_planes = options.decode_planes;
   net::VisionClient client(client_options);
   client.start();
 
@@ -281,7 +282,8 @@ std::string format(const char* pattern, double value) {
 void print_video(const VideoResult& v, const StreamBenchOptions& options, std::ostream& out) {
   out << "\nstereo " << core::to_string(core::ImageSize{v.size.width, v.size.height})
       << " (synthetic source at " << format("%.0f", options.source_fps) << " fps, JPEG quality "
-      << options.quality << ")\n";
+      << options.quality << (options.decode_planes ? ", decoded to Y'CbCr planes" : "")
+      << (options.sequential_decode ? ", eyes decoded in turn" : "") << ")\n";
   out << "| figure | p50 | p99 | target | met |\n|---|---|---|---|---|\n";
   const std::string fps_target = v.target ? ">= " + format("%.0f", v.target->fps) + " fps" : "-";
   out << "| sustained decoded fps | " << format("%.1f", v.fps) << " | | " << fps_target << " | "

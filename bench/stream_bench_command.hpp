@@ -32,6 +32,7 @@ struct StreamBenchOptions {
   int rtt_calls = 500;                           // per robot command kind
   std::string json;                              // also write the results as JSON to this file
   bool sequential_decode = false;  // the client decodes the eyes in turn (the comparison)
+  bool decode_planes = false;      // the client decodes to Y'CbCr planes (--planes)
 };
 
 int run_bench_stream(const StreamBenchOptions& options, std::ostream& out, std::ostream& err);

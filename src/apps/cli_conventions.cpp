@@ -80,6 +80,11 @@ void add_console_command(CLI::App& app, Commands& commands) {
   console_app->add_flag("--headless", console.headless, "EGL frame buffer, no window, no X");
   console_app->add_option("--fullscreen-eyes", console.fullscreen_eyes,
                           "two-windows or sbs: full-screen eye output (HMD, 3-D display)");
+  console_app
+      ->add_option("--video-planes", console.video_planes,
+                   "auto, on or off: the video's colour conversion on the GPU (auto: where the "
+                   "renderer is a hardware GPU)")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   console_app->add_option("--screenshot", console.screenshot, "write the console's image (PNG)");
   console_app->add_option("--frames", console.frames, "stop after N frames (screenshot: 60)");
   console_app->add_option("--script", console.script, "replay UI actions (docs/console.md)");
@@ -197,6 +202,9 @@ void add_bench_commands(CLI::App& app, Commands& commands) {
   bench_stream->add_flag(
       "--sequential-decode", bench_stream_options.sequential_decode,
       "the client decodes the two eyes in turn (the parallel decode's baseline)");
+  bench_stream->add_flag("--planes", bench_stream_options.decode_planes,
+                         "the client decodes to Y'CbCr planes (no colour conversion: the "
+                         "renderer's job, docs/benchmarks.md)");
   bench_stream->add_option("--json", bench_stream_options.json,
                            "also write the results as JSON to FILE");
   auto prediction_options = std::make_shared<PredictionBenchOptions>();

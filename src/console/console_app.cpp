@@ -184,6 +184,10 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
       options.fullscreen_eyes != "sbs") {
     return Error{"fullscreen_eyes '" + options.fullscreen_eyes + "': two-windows or sbs"};
   }
+  if (options.video_planes != "auto" && options.video_planes != "on" &&
+      options.video_planes != "off") {
+    return Error{"video_planes '" + options.video_planes + "': auto, on or off"};
+  }
   if (options.headless && !options.fullscreen_eyes.empty()) {
     return Error{"fullscreen_eyes needs a display; it cannot be combined with headless"};
   }
@@ -322,12 +326,6 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     log << "telear console: recording to " << options.record << "\n";
   }
 
-  auto session = session::Session::create(m.model, m.session_options);
-  if (!session) return session.error();
-  app->session_ = std::move(*session);
-  app->session_->connect();
-  if (m.recorder) m.state_follow = m.recorder->follow_states(app->session_->robot());
-
   // [SECTION] GL and ImGui
   GuiOptions gui_options;
   gui_options.headless = options.headless;
@@ -345,6 +343,22 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     app->ui_.page_flip_message = stereo.message;
     m.gamepad.emplace();
   }
+  // The video as decoded JPEG planes, converted by the GPU, where the renderer is one (on a
+  // software renderer the CPU's SIMD conversion is cheaper: docs/benchmarks.md, "Video planes").
+  const bool hardware = !render::is_software_renderer(render::GlContext::gl_renderer());
+  m.session_options.vision.decode_planes =
+      options.video_planes == "on" || (options.video_planes == "auto" && hardware);
+  log << "telear console: video "
+      << (m.session_options.vision.decode_planes ? "decoded to Y'CbCr planes, converted on the GPU"
+                                                 : "decoded to RGB")
+      << " (renderer " << render::GlContext::gl_renderer() << ")\n";
+
+  auto session = session::Session::create(m.model, m.session_options);
+  if (!session) return session.error();
+  app->session_ = std::move(*session);
+  app->session_->connect();
+  if (m.recorder) m.state_follow = m.recorder->follow_states(app->session_->robot());
+
   if (Status s = m.build_view(app->ui_); !s.ok()) return s.error();
 
   if (!options.fullscreen_eyes.empty()) {

@@ -282,7 +282,8 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
     throw ParseError{"unknown registration action '" + sub + "' (open, add, solve, close)"};
   }
   if (verb == "view") {
-    need(w, 3, 3, "view layout|style|segments|opacity|video|mode|reported|predicted|capture|plots VALUE");
+    need(w, 3, 3,
+         "view layout|style|segments|opacity|video|mode|reported|predicted|capture|plots VALUE");
     a.text = w[2];
     if (sub == "layout") return action(ActionKind::kViewLayout);
     if (sub == "style") return action(ActionKind::kViewStyle);

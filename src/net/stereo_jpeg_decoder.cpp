@@ -14,8 +14,10 @@ struct StereoJpegDecoder::Worker {
   JpegDecoder worker_decoder;  // the worker's (right eye)
   std::mutex mutex;
   std::condition_variable wake, done;
-  std::string_view job;                       // the JPEG to decode, valid while pending
-  std::optional<Result<core::Image>> result;  // set by the worker
+  std::string_view job;  // the JPEG to decode, valid while pending
+  bool job_planes = false;
+  std::optional<Result<core::Image>> result;       // set by the worker (RGB)
+  std::optional<Result<core::YCbCrImage>> planes;  // set by the worker (planes)
   bool pending = false, stopping = false;
   std::thread thread;
 
@@ -25,10 +27,17 @@ struct StereoJpegDecoder::Worker {
       wake.wait(lock, [&] { return pending || stopping; });
       if (stopping) return;
       const std::string_view jpeg = job;
+      const bool to_planes = job_planes;
       lock.unlock();
-      Result<core::Image> image = worker_decoder.decode(jpeg);
-      lock.lock();
-      result.emplace(std::move(image));
+      if (to_planes) {
+        Result<core::YCbCrImage> decoded = worker_decoder.decode_planes(jpeg);
+        lock.lock();
+        planes.emplace(std::move(decoded));
+      } else {
+        Result<core::Image> image = worker_decoder.decode(jpeg);
+        lock.lock();
+        result.emplace(std::move(image));
+      }
       pending = false;
       done.notify_one();
     }
@@ -50,23 +59,61 @@ StereoJpegDecoder::~StereoJpegDecoder() {
 
 Result<DecodedPair> StereoJpegDecoder::decode(std::string_view left_jpeg,
                                               std::string_view right_jpeg) {
+  return decode_pair(left_jpeg, right_jpeg, false);
+}
+
+Result<DecodedPair> StereoJpegDecoder::decode_planes(std::string_view left_jpeg,
+                                                     std::string_view right_jpeg) {
+  return decode_pair(left_jpeg, right_jpeg, true);
+}
+
+Result<DecodedPair> StereoJpegDecoder::decode_pair(std::string_view left_jpeg,
+                                                   std::string_view right_jpeg, bool planes) {
   Worker& w = *worker_;
   {
     std::lock_guard lock(w.mutex);
     w.job = right_jpeg;
+    w.job_planes = planes;
     w.result.reset();
+    w.planes.reset();
     w.pending = true;
   }
   w.wake.notify_one();
-  Result<core::Image> left = w.caller_decoder.decode(left_jpeg);
+  DecodedPair pair;
+  std::optional<Error> left_error;
+  if (planes) {
+    auto left = w.caller_decoder.decode_planes(left_jpeg);
+    if (left)
+      pair.left_planes = std::move(*left);
+    else
+      left_error = left.error();
+  } else {
+    auto left = w.caller_decoder.decode(left_jpeg);
+    if (left)
+      pair.left = std::move(*left);
+    else
+      left_error = left.error();
+  }
   std::unique_lock lock(w.mutex);
   w.done.wait(lock, [&] { return !w.pending; });
-  Result<core::Image> right = std::move(*w.result);
+  std::optional<Error> right_error;
+  if (planes) {
+    if (*w.planes)
+      pair.right_planes = std::move(**w.planes);
+    else
+      right_error = w.planes->error();
+  } else {
+    if (*w.result)
+      pair.right = std::move(**w.result);
+    else
+      right_error = w.result->error();
+  }
   w.result.reset();
+  w.planes.reset();
   lock.unlock();
-  if (!left) return Error{"left eye: " + left.error().message};
-  if (!right) return Error{"right eye: " + right.error().message};
-  return DecodedPair{std::move(*left), std::move(*right)};
+  if (left_error) return Error{"left eye: " + left_error->message};
+  if (right_error) return Error{"right eye: " + right_error->message};
+  return pair;
 }
 
 }  // namespace telear::net

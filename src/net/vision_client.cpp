@@ -138,6 +138,12 @@ void VisionClient::Impl::receive_loop() {
   });
 }
 
+core::Image rgb_of(const DecodedStereoFrame& frame, bool left) {
+  const core::Image& rgb = left ? frame.left : frame.right;
+  if (!rgb.empty()) return rgb;
+  return core::to_rgb(left ? frame.left_planes : frame.right_planes);
+}
+
 // [SECTION] decode: the newest received message, both eyes, latencies
 
 void VisionClient::Impl::decode_loop() {
@@ -145,12 +151,27 @@ void VisionClient::Impl::decode_loop() {
   if (options.decode_eyes_in_parallel) pair_decoder.emplace();
   JpegDecoder decoder;  // else one after the other
   const auto decode = [&](const telear::v1::StereoFrame& m) -> Result<DecodedPair> {
-    if (pair_decoder) return pair_decoder->decode(m.left().jpeg(), m.right().jpeg());
+    if (pair_decoder) {
+      return options.decode_planes ? pair_decoder->decode_planes(m.left().jpeg(), m.right().jpeg())
+                                   : pair_decoder->decode(m.left().jpeg(), m.right().jpeg());
+    }
+    DecodedPair pair;
+    if (options.decode_planes) {
+      auto left = decoder.decode_planes(m.left().jpeg());
+      if (!left) return Error{"left eye: " + left.error().message};
+      auto right = decoder.decode_planes(m.right().jpeg());
+      if (!right) return Error{"right eye: " + right.error().message};
+      pair.left_planes = std::move(*left);
+      pair.right_planes = std::move(*right);
+      return pair;
+    }
     auto left = decoder.decode(m.left().jpeg());
     if (!left) return Error{"left eye: " + left.error().message};
     auto right = decoder.decode(m.right().jpeg());
     if (!right) return Error{"right eye: " + right.error().message};
-    return DecodedPair{std::move(*left), std::move(*right)};
+    pair.left = std::move(*left);
+    pair.right = std::move(*right);
+    return pair;
   };
   std::uint64_t last = 0;
   while (true) {
@@ -170,6 +191,8 @@ void VisionClient::Impl::decode_loop() {
     out.frame_id = m.frame_id();
     out.left = std::move(pair->left);
     out.right = std::move(pair->right);
+    out.left_planes = std::move(pair->left_planes);
+    out.right_planes = std::move(pair->right_planes);
     out.capture_ns_left = to_client(m.left().capture_ns());
     out.capture_ns_right = to_client(m.right().capture_ns());
     out.frames_skipped_server = m.frames_skipped();

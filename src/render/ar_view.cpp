@@ -8,9 +8,17 @@ namespace telear::render {
 
 namespace {
 
-bool frame_fits(const core::Image* frame, const vision::CameraModel& camera) {
-  return frame != nullptr && frame->width == camera.width && frame->height == camera.height &&
-         frame->channels == 3;
+bool frame_fits(const core::Image* frame, const core::YCbCrImage* planes,
+                const vision::CameraModel& camera) {
+  if (frame != nullptr) {
+    return frame->width == camera.width && frame->height == camera.height && frame->channels == 3;
+  }
+  return planes != nullptr && planes->width == camera.width && planes->height == camera.height &&
+         planes->chroma_width > 0 && planes->chroma_height > 0 &&
+         planes->y.size() == static_cast<std::size_t>(planes->width) * planes->height &&
+         planes->cb.size() ==
+             static_cast<std::size_t>(planes->chroma_width) * planes->chroma_height &&
+         planes->cr.size() == planes->cb.size();
 }
 
 }  // namespace
@@ -96,8 +104,9 @@ void ArView::render(const ArViewInput& input) {
     capture_pose_->set_gripper_opening(body_.gripper_opening_m(input.capture_gripper));
     capture_.update(*capture_pose_);
   }
-  const bool video_ok = input.mode == ViewMode::kAr && frame_fits(input.left, cameras_.left) &&
-                        frame_fits(input.right, cameras_.right);
+  const bool video_ok = input.mode == ViewMode::kAr &&
+                        frame_fits(input.left, input.left_planes, cameras_.left) &&
+                        frame_fits(input.right, input.right_planes, cameras_.right);
   if (input.mode == ViewMode::kVr) {
     status_ = ViewStatus::kVirtual;
   } else {
@@ -114,7 +123,11 @@ void ArView::draw_eye(int index, const ArViewInput& input, bool video_ok) {
   Overlay& overlay = overlays_[index];
   if (video_ok) {
     const core::Image* frame = index == 0 ? input.left : input.right;
-    overlay.upload_frame(frame->pixels.data(), ChannelOrder::kRgb);
+    if (frame != nullptr) {
+      overlay.upload_frame(frame->pixels.data(), ChannelOrder::kRgb);
+    } else {
+      overlay.upload_planes(*(index == 0 ? input.left_planes : input.right_planes));
+    }
   } else {
     overlay.clear_frame();
   }

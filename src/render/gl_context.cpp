@@ -22,4 +22,12 @@ std::string GlContext::gl_version() {
   return gl_string(GL_VERSION);
 }
 
+bool is_software_renderer(const std::string& gl_renderer) {
+  for (const char* name :
+       {"llvmpipe", "softpipe", "SwiftShader", "Software Rasterizer", "GDI Generic"}) {
+    if (gl_renderer.find(name) != std::string::npos) return true;
+  }
+  return false;
+}
+
 }  // namespace telear::render

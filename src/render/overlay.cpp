@@ -156,6 +156,11 @@ void Overlay::upload_frame(const std::uint8_t* pixels, ChannelOrder order) {
   has_frame_ = true;
 }
 
+void Overlay::upload_planes(const core::YCbCrImage& planes) {
+  background_.upload_planes(planes);
+  has_frame_ = true;
+}
+
 void Overlay::draw_undistorted_background() const {
   remap_program_.use();
   background_.texture().bind(GL_TEXTURE0);

@@ -58,4 +58,26 @@ out vec4 frag_colour;
 void main() { frag_colour = texture(u_frame, v_uv); }
 )glsl";
 
+const char* const kYCbCrFragment = R"glsl(#version 330 core
+in vec2 v_uv;
+uniform sampler2D u_y;
+uniform sampler2D u_cb;
+uniform sampler2D u_cr;
+// The chroma planes' coordinate of a luma coordinate: 1 for even sizes; an odd size's last
+// chroma pixel also covers the padding, so the plane spans a little more than the image.
+uniform vec2 u_chroma_scale;
+out vec4 frag_colour;
+void main() {
+  vec2 uv = vec2(v_uv.x, 1.0 - v_uv.y);
+  vec2 chroma_uv = uv * u_chroma_scale;
+  // Luma at the pixel itself: a fetch, no filtering (the target is the luma's size).
+  ivec2 size = textureSize(u_y, 0);
+  float y = texelFetch(u_y, ivec2(gl_FragCoord.x, float(size.y) - gl_FragCoord.y), 0).r * 255.0;
+  float cb = texture(u_cb, chroma_uv).r * 255.0 - 128.0;
+  float cr = texture(u_cr, chroma_uv).r * 255.0 - 128.0;
+  vec3 rgb = vec3(y + 1.402 * cr, y - 0.344136 * cb - 0.714136 * cr, y + 1.772 * cb);
+  frag_colour = vec4(clamp(rgb / 255.0, 0.0, 1.0), 1.0);
+}
+)glsl";
+
 }  // namespace telear::render::shaders

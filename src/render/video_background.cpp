@@ -93,6 +93,64 @@ void VideoBackground::upload(const std::uint8_t* pixels, ChannelOrder order) {
   texture_.upload(GL_RGBA, GL_UNSIGNED_BYTE, staging_.data());
 }
 
+void VideoBackground::upload_planes(const core::YCbCrImage& planes) {
+  assert(texture_ && "VideoBackground::upload_planes(): not created");
+  assert(planes.width == width() && planes.height == height() &&
+         "VideoBackground::upload_planes(): the frame must have the background's size");
+  if (!ycbcr_program_) {
+    auto program =
+        Program::link(shaders::kBackgroundVertex, shaders::kYCbCrFragment, "ycbcr background");
+    assert(program && "VideoBackground: the Y'CbCr program does not link");
+    if (!program) return;
+    ycbcr_program_ = std::move(program.value());
+    ycbcr_program_.use();
+    glUniform1i(ycbcr_program_.uniform_location("u_y"), 0);
+    glUniform1i(ycbcr_program_.uniform_location("u_cb"), 1);
+    glUniform1i(ycbcr_program_.uniform_location("u_cr"), 2);
+  }
+  if (luma_.width() != planes.width || luma_.height() != planes.height) {
+    luma_ = Texture::create_2d(planes.width, planes.height, GL_R8);
+  }
+  if (cb_.width() != planes.chroma_width || cb_.height() != planes.chroma_height) {
+    cb_ = Texture::create_2d(planes.chroma_width, planes.chroma_height, GL_R8);
+    cr_ = Texture::create_2d(planes.chroma_width, planes.chroma_height, GL_R8);
+  }
+  luma_.upload(GL_RED, GL_UNSIGNED_BYTE, planes.y.data());
+  cb_.upload(GL_RED, GL_UNSIGNED_BYTE, planes.cb.data());
+  cr_.upload(GL_RED, GL_UNSIGNED_BYTE, planes.cr.data());
+
+  GLint previous_draw = 0, previous_program = 0, viewport[4] = {0, 0, 0, 0};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_draw);
+  glGetIntegerv(GL_CURRENT_PROGRAM, &previous_program);
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  framebuffer_.bind(GL_DRAW_FRAMEBUFFER);
+  glViewport(0, 0, width(), height());
+  ycbcr_program_.use();
+  glUniform2f(ycbcr_program_.uniform_location("u_chroma_scale"),
+              static_cast<float>(planes.width) /
+                  static_cast<float>(core::chroma_factor(planes.width, planes.chroma_width) *
+                                     planes.chroma_width),
+              static_cast<float>(planes.height) /
+                  static_cast<float>(core::chroma_factor(planes.height, planes.chroma_height) *
+                                     planes.chroma_height));
+  luma_.bind(GL_TEXTURE0);
+  cb_.bind(GL_TEXTURE1);
+  cr_.bind(GL_TEXTURE2);
+  glActiveTexture(GL_TEXTURE0);
+  const GLboolean depth = glIsEnabled(GL_DEPTH_TEST), blend = glIsEnabled(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  vao_.bind();
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  glBindVertexArray(0);
+  if (depth) glEnable(GL_DEPTH_TEST);
+  if (blend) glEnable(GL_BLEND);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_draw));
+  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  glUseProgram(static_cast<GLuint>(previous_program));
+}
+
 void VideoBackground::draw() const {
   GLint viewport[4] = {0, 0, 0, 0};
   glGetIntegerv(GL_VIEWPORT, viewport);

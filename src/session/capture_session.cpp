@@ -116,8 +116,9 @@ Result<std::vector<vision::CapturedFrame>> capture_pose_frames(net::VisionClient
     const int f = static_cast<int>(frames.size());
     captured.left_image = vision::captured_image_path(index, f, true);
     captured.right_image = vision::captured_image_path(index, f, false);
-    if (Status s = vision::write_captured_images(directory, captured, bgr_of(frame->left),
-                                                 bgr_of(frame->right));
+    if (Status s =
+            vision::write_captured_images(directory, captured, bgr_of(net::rgb_of(*frame, true)),
+                                          bgr_of(net::rgb_of(*frame, false)));
         !s) {
       return Error{"capture: " + s.error().message};
     }

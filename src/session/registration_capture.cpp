@@ -92,8 +92,9 @@ Result<vision::StereoCameraModel> rough_cameras(const core::RobotModel& model,
   core::forward_kinematics(model, data, state.state.q);
   const Eigen::Isometry3d T_base_target = data.T_base_link.back() * marker.T_flange_marker;
   const std::vector<Eigen::Vector3d> points = target.points();
-  for (auto [eye, camera, image] : {std::tuple{"left", &cameras.left, &frame.left},
-                                    std::tuple{"right", &cameras.right, &frame.right}}) {
+  const core::Image left = net::rgb_of(frame, true), right = net::rgb_of(frame, false);
+  for (auto [eye, camera, image] :
+       {std::tuple{"left", &cameras.left, &left}, std::tuple{"right", &cameras.right, &right}}) {
     const vision::TargetDetection seen =
         vision::detect_registration_target(rgb_view(*image), target);
     std::vector<vision::TargetPixel> pixels;

@@ -21,8 +21,15 @@ namespace {
 constexpr double kCaptureArmTolerance_s = 0.05;
 
 cv::Mat as_mat(const core::Image& image) {
-  return cv::Mat(image.height, image.width, image.channels == 4 ? CV_8UC4 : CV_8UC3,
+  return cv::Mat(image.height, image.width, CV_8UC(image.channels),
                  const_cast<std::uint8_t*>(image.pixels.data()));
+}
+
+// An eye for marker detection: the RGB image, or the luma plane of a frame decoded to planes
+// (the grey image detection converts RGB to anyway: no conversion at all).
+cv::Mat detection_view(const core::Image& rgb, const core::YCbCrImage& planes) {
+  if (!rgb.empty() || planes.empty()) return as_mat(rgb);
+  return cv::Mat(planes.height, planes.width, CV_8UC1, const_cast<std::uint8_t*>(planes.y.data()));
 }
 
 }  // namespace
@@ -454,8 +461,8 @@ void Session::update(double dt) {
   // Drawn once the state is old enough for the prediction to differ from it to the eye, and
   // always while it keeps a late video in AR (the arm now, over the video of then).
   view_.show_prediction =
-      view_.prediction.available && (view_.prediction.horizon_s >= options_.prediction_min_delay_s ||
-                                     view_.display.predicted);
+      view_.prediction.available &&
+      (view_.prediction.horizon_s >= options_.prediction_min_delay_s || view_.display.predicted);
   update_registration(t);
   update_capture();
   live_series_.update(t, view_.real ? &*view_.real : nullptr, t - view_.real_state_age_s,
@@ -567,7 +574,8 @@ void Session::update_registration(double t) {
     q = nearest->q;
   }
   if (!q.allFinite()) return;
-  residual_ = registration_->check(as_mat(frame.left), as_mat(frame.right), q);
+  residual_ = registration_->check(detection_view(frame.left, frame.left_planes),
+                                   detection_view(frame.right, frame.right_planes), q);
   residual_.arm_moving = state_history_.moving_near(
       core::ns_to_s(frame.capture_ns_left - epoch_ns_), q, StereoResidual::kMotionWindowS,
       StereoResidual::kMotionToleranceRad);

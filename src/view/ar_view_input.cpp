@@ -8,8 +8,13 @@ render::ArViewInput ar_view_input(const session::SessionView& view) {
                                                               : render::ViewMode::kVr;
   input.stale = view.display.frame_stale;
   if (view.frame) {
-    input.left = &view.frame->left;
-    input.right = &view.frame->right;
+    if (view.frame->left.empty() && !view.frame->left_planes.empty()) {
+      input.left_planes = &view.frame->left_planes;  // decoded to planes: the GPU converts
+      input.right_planes = &view.frame->right_planes;
+    } else {
+      input.left = &view.frame->left;
+      input.right = &view.frame->right;
+    }
   }
   input.ghost_q = view.ghost_q;
   input.ghost_gripper = view.ghost_gripper;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 
 #include "telear/net/stereo_jpeg_decoder.hpp"
 
@@ -141,6 +142,76 @@ TEST(StereoJpegDecoder, DecodesBothEyesAsOneDecoderWouldAndNamesACorruptEye) {
   ASSERT_FALSE(bad_right);
   EXPECT_THAT(bad_right.error().message, ::testing::StartsWith("right eye: "));
   EXPECT_TRUE(pair_decoder.decode(*good, *good));  // still working after the errors
+}
+
+// Issue 23: the planes without the colour conversion. Converted by to_rgb (the GPU shader's
+// arithmetic on the CPU) they are the RGB decode to within libjpeg's own rounding; a grey JPEG
+// has neutral chroma; bad data gets decode()'s errors.
+TEST(JpegCodec, DecodePlanesGivesTheImageBeforeItsColourConversion) {
+  const core::Image image = test_image(161, 121);  // odd: the chroma planes round up
+  JpegEncoder encoder;
+  JpegDecoder decoder;
+  auto jpeg = encoder.encode(image, 85);
+  ASSERT_TRUE(jpeg) << jpeg.error().message;
+  auto planes = decoder.decode_planes(*jpeg);
+  ASSERT_TRUE(planes) << planes.error().message;
+  EXPECT_EQ(planes->width, 161);
+  EXPECT_EQ(planes->height, 121);
+  EXPECT_EQ(planes->chroma_width, 81);  // 4:2:0
+  EXPECT_EQ(planes->chroma_height, 61);
+  ASSERT_EQ(planes->y.size(), 161u * 121u);
+  ASSERT_EQ(planes->cb.size(), 81u * 61u);
+  const core::Image rgb = core::to_rgb(*planes);
+  const core::Image reference = *decoder.decode(*jpeg);
+  ASSERT_EQ(rgb.pixels.size(), reference.pixels.size());
+  int worst = 0;
+  for (std::size_t i = 0; i < rgb.pixels.size(); ++i) {
+    worst = std::max(worst, std::abs(rgb.pixels[i] - reference.pixels[i]));
+  }
+  EXPECT_LT(mean_abs_diff(rgb, reference), 0.5);
+  EXPECT_LE(worst, 8);  // at the square's edges, where the upsampling filters differ most
+  // Luma is the grey image marker detection wants: BT.601 of the decoded RGB.
+  const std::size_t centre = 60 * 161 + 80;
+  const double luma = 0.299 * reference.pixels[3 * centre] +
+                      0.587 * reference.pixels[3 * centre + 1] +
+                      0.114 * reference.pixels[3 * centre + 2];
+  EXPECT_NEAR(planes->y[centre], luma, 2.0);
+
+  // A grey JPEG (one component, as a mono camera's): neutral chroma planes at half size.
+  cv::Mat grey(48, 64, CV_8UC1);
+  for (int r = 0; r < grey.rows; ++r) {
+    for (int c = 0; c < grey.cols; ++c)
+      grey.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(3 * c);
+  }
+  std::vector<std::uint8_t> grey_bytes;
+  ASSERT_TRUE(cv::imencode(".jpg", grey, grey_bytes));
+  auto grey_planes = decoder.decode_planes(
+      std::string_view(reinterpret_cast<const char*>(grey_bytes.data()), grey_bytes.size()));
+  ASSERT_TRUE(grey_planes) << grey_planes.error().message;
+  EXPECT_EQ(grey_planes->chroma_width, 32);
+  EXPECT_EQ(grey_planes->chroma_height, 24);
+  for (const std::uint8_t c : grey_planes->cr) ASSERT_EQ(c, 128);
+  EXPECT_NEAR(grey_planes->y[10 * 64 + 20], 60, 3);
+
+  auto garbage = decoder.decode_planes("this is not a JPEG at all, just text");
+  ASSERT_FALSE(garbage);
+  EXPECT_THAT(garbage.error().message, HasSubstr("JPEG decode: not a readable JPEG header"));
+  auto cut = decoder.decode_planes(jpeg->substr(0, jpeg->size() / 2));
+  ASSERT_FALSE(cut);
+  EXPECT_THAT(cut.error().message, HasSubstr("JPEG decode: corrupt 161x121 image"));
+  auto big = decoder.decode_planes(*jpeg, 100 * 100);
+  ASSERT_FALSE(big);
+  EXPECT_THAT(big.error().message, HasSubstr("beyond the limit of 10000 pixels"));
+  // Both eyes at once, as one decoder would.
+  StereoJpegDecoder pair_decoder;
+  auto pair = pair_decoder.decode_planes(*jpeg, *jpeg);
+  ASSERT_TRUE(pair) << pair.error().message;
+  EXPECT_TRUE(pair->left.empty());
+  EXPECT_EQ(pair->left_planes.y, planes->y);
+  EXPECT_EQ(pair->right_planes.cr, planes->cr);
+  auto bad_right = pair_decoder.decode_planes(*jpeg, "");
+  ASSERT_FALSE(bad_right);
+  EXPECT_THAT(bad_right.error().message, HasSubstr("right eye: JPEG decode: no data"));
 }
 
 }  // namespace

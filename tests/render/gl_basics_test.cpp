@@ -216,6 +216,53 @@ TEST_F(GlBasicsTest, VideoBackgroundIsUprightAndSwapsBgr) {
   ASSERT_EQ(gl_errors(), "");
 }
 
+// Issue 23: a decoded JPEG's Y'CbCr planes go up as they are and the GPU converts them: the
+// same image as the CPU's conversion (core::to_rgb), upright, at even and odd sizes (an odd
+// size's chroma plane rounds up).
+TEST_F(GlBasicsTest, VideoPlanesAreConvertedOnTheGpuAsOnTheCpu) {
+  for (const auto& [w, h] : {std::pair{160, 120}, std::pair{161, 121}}) {
+    core::YCbCrImage planes;
+    planes.width = w;
+    planes.height = h;
+    planes.chroma_width = (w + 1) / 2;
+    planes.chroma_height = (h + 1) / 2;
+    planes.y.resize(static_cast<std::size_t>(w) * h);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        planes.y[static_cast<std::size_t>(y) * w + x] = static_cast<std::uint8_t>(40 + x + y / 2);
+      }
+    }
+    planes.cb.resize(static_cast<std::size_t>(planes.chroma_width) * planes.chroma_height);
+    planes.cr.resize(planes.cb.size());
+    for (int y = 0; y < planes.chroma_height; ++y) {
+      for (int x = 0; x < planes.chroma_width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * planes.chroma_width + x;
+        planes.cb[i] = static_cast<std::uint8_t>(y < planes.chroma_height / 2 ? 90 : 170);
+        planes.cr[i] = static_cast<std::uint8_t>(100 + x);
+      }
+    }
+    auto bg = VideoBackground::create(w, h);
+    ASSERT_TRUE(bg) << bg.error().message;
+    auto t = OffscreenTarget::create(w, h);
+    ASSERT_TRUE(t) << t.error().message;
+    t->clear();
+    bg->upload_planes(planes);
+    t->bind();
+    bg->draw();
+    const core::Image gpu = t->read_rgb();
+    const core::Image cpu = core::to_rgb(planes);
+    ASSERT_EQ(gpu.pixels.size(), cpu.pixels.size());
+    int worst = 0;
+    for (std::size_t i = 0; i < gpu.pixels.size(); ++i) {
+      worst = std::max(worst, std::abs(gpu.pixels[i] - cpu.pixels[i]));
+    }
+    EXPECT_LE(worst, 2) << w << "x" << h;  // float shader against rounded double arithmetic
+    // Upright: Cb 90 on the top half is less blue than 170 on the bottom.
+    EXPECT_LT(gpu.at(w / 2, 2, 2) + 40, gpu.at(w / 2, h - 3, 2)) << w << "x" << h;
+    ASSERT_EQ(gl_errors(), "");
+  }
+}
+
 TEST_F(GlBasicsTest, ObjectsDrawnAfterTheBackgroundLandOnTop) {
   core::Image frame(32, 32, 3);
   std::fill(frame.pixels.begin(), frame.pixels.end(), 100);

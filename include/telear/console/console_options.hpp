@@ -35,10 +35,13 @@ struct ConsoleOptions {
   int width = 1600, height = 1000;  // window (or headless frame buffer) size
   bool headless = false;            // EGL frame buffer, no window, no X server
   std::string fullscreen_eyes;      // "", "two-windows" or "sbs" (head-mounted / 3-D display)
-  std::string screenshot;           // write the console's image here after `frames` frames
-  int frames = 0;                   // > 0: stop after this many frames (and the script)
-  std::string script;               // UI actions to replay (ui_script.hpp)
-  double max_fps = 60.0;            // frame pacing when there is no vsync (headless)
+  // The video decoded to Y'CbCr planes and converted on the GPU ("on"), to RGB on the CPU
+  // ("off"), or "auto": planes where the renderer is a hardware GPU.
+  std::string video_planes = "auto";
+  std::string screenshot;  // write the console's image here after `frames` frames
+  int frames = 0;          // > 0: stop after this many frames (and the script)
+  std::string script;      // UI actions to replay (ui_script.hpp)
+  double max_fps = 60.0;   // frame pacing when there is no vsync (headless)
   // Record the session to this MCAP file (record::ServerRecorder on the servers the console
   // starts with, the session's events; docs/recording.md); empty: no recording.
   std::string record;

@@ -41,7 +41,7 @@ struct UiState {
   int segments = 0;  // 0: the body file's own
   float ghost_opacity = 0.55f;
   bool show_reported = true;
-  bool show_predicted = true;  // the predicted arm when the link is late (session::ArmPredictor)
+  bool show_predicted = true;     // the predicted arm when the link is late (session::ArmPredictor)
   bool show_capture_arm = false;  // the arm at the frame's capture, over the video
   bool undistorted = false;
   bool body_dirty = false;  // segments changed: the view's arm body must be rebuilt

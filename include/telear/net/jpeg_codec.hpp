@@ -21,6 +21,7 @@
 
 #include "telear/core/image.hpp"
 #include "telear/core/result.hpp"
+#include "telear/core/ycbcr_image.hpp"
 
 namespace telear::net {
 
@@ -53,8 +54,18 @@ class JpegDecoder {
 
   // JPEG bytes -> RGB8 image.
   Result<core::Image> decode(std::string_view jpeg, std::size_t max_pixels = kDefaultMaxPixels);
+  // JPEG bytes -> its Y'CbCr planes, without the colour conversion and chroma upsampling (the
+  // renderer does them on the GPU: core/ycbcr_image.hpp). A grey JPEG gets neutral chroma
+  // planes (128) at half size. The same checks and errors as decode().
+  Result<core::YCbCrImage> decode_planes(std::string_view jpeg,
+                                         std::size_t max_pixels = kDefaultMaxPixels);
 
  private:
+  struct Header {
+    int width = 0, height = 0, subsampling = 0;
+  };
+  Result<Header> read_header(std::string_view jpeg, std::size_t max_pixels);
+
   void* handle_ = nullptr;  // tjhandle
 };
 

@@ -11,11 +11,14 @@
 
 #include "telear/core/image.hpp"
 #include "telear/core/result.hpp"
+#include "telear/core/ycbcr_image.hpp"
 
 namespace telear::net {
 
+// RGB8 images, or (decode_planes) the JPEGs' Y'CbCr planes with the RGB images empty.
 struct DecodedPair {
   core::Image left, right;
+  core::YCbCrImage left_planes, right_planes;
 };
 
 class StereoJpegDecoder {
@@ -28,8 +31,12 @@ class StereoJpegDecoder {
   // Decodes both; the first eye's error if both fail (named "left eye: ..."/"right eye: ...").
   // Not reentrant: one caller at a time (the vision client's decode thread).
   Result<DecodedPair> decode(std::string_view left_jpeg, std::string_view right_jpeg);
+  // The same to Y'CbCr planes (JpegDecoder::decode_planes): no colour conversion.
+  Result<DecodedPair> decode_planes(std::string_view left_jpeg, std::string_view right_jpeg);
 
  private:
+  Result<DecodedPair> decode_pair(std::string_view left_jpeg, std::string_view right_jpeg,
+                                  bool planes);
   struct Worker;
   std::unique_ptr<Worker> worker_;
 };

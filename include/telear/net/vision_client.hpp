@@ -24,6 +24,7 @@
 
 #include "telear/core/image.hpp"
 #include "telear/core/result.hpp"
+#include "telear/core/ycbcr_image.hpp"
 #include "telear/net/client_options.hpp"
 #include "telear/net/clock_offset.hpp"
 #include "telear/net/latency_stages.hpp"
@@ -53,6 +54,10 @@ struct VisionClientOptions : ClientOptions {
   // false: one after the other on the decode thread (a single-core machine; the benchmark's
   // comparison).
   bool decode_eyes_in_parallel = true;
+  // Decode to the JPEGs' Y'CbCr planes (DecodedStereoFrame::left_planes, right_planes; left and
+  // right then empty): no CPU colour conversion, for a renderer that converts on the GPU
+  // (render::VideoBackground::upload_planes). Consumers that need RGB call rgb_of().
+  bool decode_planes = false;
   // Called on the receive thread for every frame received, before it may be skipped by the
   // decoder: keep it short (copy what you need and return); it delays the next receive.
   std::function<void(const ReceivedStereoFrame&)> on_received;
@@ -60,8 +65,9 @@ struct VisionClientOptions : ClientOptions {
 
 struct DecodedStereoFrame {
   std::uint64_t frame_id = 0;
-  core::Image left, right;           // RGB8, top row first
-  std::int64_t capture_ns_left = 0;  // client clock (converted)
+  core::Image left, right;                     // RGB8, top row first (empty with decode_planes)
+  core::YCbCrImage left_planes, right_planes;  // with decode_planes only
+  std::int64_t capture_ns_left = 0;            // client clock (converted)
   std::int64_t capture_ns_right = 0;
   std::int64_t decoded_ns = 0;              // client clock
   std::uint64_t frames_skipped_server = 0;  // the server skipped for this client before sending
@@ -72,6 +78,11 @@ struct DecodedStereoFrame {
   Eigen::VectorXd scene_q;          // the simulated rig's configuration, when sent
   std::int64_t scene_state_ns = 0;  // client clock
 };
+
+// An eye of a decoded frame as RGB8: the decoded image, or its planes converted on the CPU
+// (core::to_rgb) when the client decoded to planes. For the few consumers that need RGB (a
+// registration capture); the view uploads the planes as they are.
+core::Image rgb_of(const DecodedStereoFrame& frame, bool left);
 
 struct CameraInfoReply {
   bool found = false;

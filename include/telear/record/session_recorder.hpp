@@ -83,8 +83,8 @@ class SessionRecorder {
   SessionRecorder& operator=(const SessionRecorder&) = delete;
 
   // Thread-safe, never blocking on the file.
-  void add_frame(const net::ReceivedStereoFrame& frame);   // both eyes' JPEGs, as received
-  void add_state(const net::RobotStateSample& sample);     // joints, ghost, link transforms
+  void add_frame(const net::ReceivedStereoFrame& frame);  // both eyes' JPEGs, as received
+  void add_state(const net::RobotStateSample& sample);    // joints, ghost, link transforms
   // The frame's latency by stage, logged when it was decoded, or at `shown_ns` (client clock)
   // when an operator's view drew it first: replay then shows at time t the frame the view had.
   void add_latency(const net::DecodedStereoFrame& frame,

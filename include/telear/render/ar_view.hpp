@@ -71,6 +71,10 @@ struct ArViewInput {
   bool stale = false;  // the frame is older than the display's threshold (or stopped)
   const core::Image* left = nullptr;  // RGB8 video frames at the cameras' sizes; null: none
   const core::Image* right = nullptr;
+  // Or the frames as decoded JPEG planes (net::VisionClientOptions::decode_planes), converted
+  // on the GPU; used where left / right are null.
+  const core::YCbCrImage* left_planes = nullptr;
+  const core::YCbCrImage* right_planes = nullptr;
   Eigen::VectorXd ghost_q;     // the ghost (commanded / rehearsed pose)
   double ghost_gripper = 1.0;  // 0 closed .. 1 open
   // Chain frames (0 = base .. n) whose ghost parts are drawn in the highlight colour

@@ -36,4 +36,8 @@ class GlContext {
   GlContext() = default;
 };
 
+// Whether a GL_RENDERER string names a software rasteriser (Mesa's llvmpipe or softpipe,
+// SwiftShader, Microsoft's GDI renderer): there the "GPU" is the CPU.
+bool is_software_renderer(const std::string& gl_renderer);
+
 }  // namespace telear::render

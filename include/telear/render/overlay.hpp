@@ -69,6 +69,8 @@ class Overlay {
 
   // Uploads one frame (camera().width x camera().height x 3 bytes, top row first).
   void upload_frame(const std::uint8_t* pixels, ChannelOrder order = ChannelOrder::kBgr);
+  // The same frame as a decoded JPEG's planes (VideoBackground::upload_planes).
+  void upload_planes(const core::YCbCrImage& planes);
   // Forgets the frame: render() shows the clear colour behind the scene.
   void clear_frame() { has_frame_ = false; }
 

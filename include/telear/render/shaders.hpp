@@ -12,6 +12,10 @@
 //   Per-vertex rather than per-fragment: on llvmpipe the fragment stage dominates, and the
 //   seed lit per vertex too.
 // background (VideoBackground, when it cannot blit): a textured quad over the viewport.
+// ycbcr (VideoBackground::upload_planes): a decoded JPEG's planes to RGB on the GPU, JFIF's
+//   full-range BT.601: R = Y + 1.402 Cr', G = Y - 0.344136 Cb' - 0.714136 Cr', B = Y + 1.772 Cb'
+//   (Cb' = Cb - 128 ...); the chroma planes sampled bilinearly at the pixel's centre; rows
+//   flipped (the planes are top row first, the target bottom-up).
 
 namespace telear::render::shaders {
 
@@ -21,5 +25,6 @@ extern const char* const kSurfaceVertex;
 extern const char* const kSurfaceFragment;
 extern const char* const kBackgroundVertex;
 extern const char* const kBackgroundFragment;
+extern const char* const kYCbCrFragment;
 
 }  // namespace telear::render::shaders

@@ -66,7 +66,6 @@
 #include "telear/net/robot_client.hpp"
 #include "telear/net/vision_client.hpp"
 #include "telear/session/arm_predictor.hpp"
-#include "telear/session/state_history.hpp"
 #include "telear/session/display_mode.hpp"
 #include "telear/session/execution_monitor.hpp"
 #include "telear/session/ghost_arm.hpp"
@@ -76,6 +75,7 @@
 #include "telear/session/plan_preview.hpp"
 #include "telear/session/plan_validation.hpp"
 #include "telear/session/registration_check.hpp"
+#include "telear/session/state_history.hpp"
 #include "telear/vision/frame_code.hpp"
 
 namespace telear::session {

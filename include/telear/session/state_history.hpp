@@ -37,8 +37,7 @@ class StateHistory {
   std::optional<ArmAt> nearest(double t) const;
   // Whether any report within `window_s` of `t` is more than `tolerance_rad` from `q` in a joint
   // (the arm moving around t).
-  bool moving_near(double t, const Eigen::VectorXd& q, double window_s,
-                   double tolerance_rad) const;
+  bool moving_near(double t, const Eigen::VectorXd& q, double window_s, double tolerance_rad) const;
 
  private:
   struct Entry {
