@@ -57,7 +57,9 @@ void decode_planes(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(decoder.decode_planes(jpeg));
 }
 
-void decode_rgb_and_upload(benchmark::State& state) {
+// One eye's JPEG decoded and uploaded each iteration by `decode_and_upload(decoder, background)`.
+template <typename DecodeAndUpload>
+void run_upload(benchmark::State& state, DecodeAndUpload decode_and_upload) {
   const int width = static_cast<int>(state.range(0)), height = static_cast<int>(state.range(1));
   const std::string jpeg = test_card_jpeg(width, height);
   telear::net::JpegDecoder decoder;
@@ -67,25 +69,24 @@ void decode_rgb_and_upload(benchmark::State& state) {
     return;
   }
   for (auto _ : state) {
-    const Image rgb = decoder.decode(jpeg).value();
-    background->upload(rgb.pixels.data(), telear::render::ChannelOrder::kRgb);
+    decode_and_upload(jpeg, decoder, *background);
     glFinish();
   }
 }
 
+void decode_rgb_and_upload(benchmark::State& state) {
+  run_upload(state, [](const std::string& jpeg, telear::net::JpegDecoder& decoder,
+                       telear::render::VideoBackground& background) {
+    const Image rgb = decoder.decode(jpeg).value();
+    background.upload(rgb.pixels.data(), telear::render::ChannelOrder::kRgb);
+  });
+}
+
 void decode_planes_and_upload(benchmark::State& state) {
-  const int width = static_cast<int>(state.range(0)), height = static_cast<int>(state.range(1));
-  const std::string jpeg = test_card_jpeg(width, height);
-  telear::net::JpegDecoder decoder;
-  auto background = telear::render::VideoBackground::create(width, height);
-  if (!background) {
-    state.SkipWithError(background.error().message.c_str());
-    return;
-  }
-  for (auto _ : state) {
-    background->upload_planes(decoder.decode_planes(jpeg).value());
-    glFinish();
-  }
+  run_upload(state, [](const std::string& jpeg, telear::net::JpegDecoder& decoder,
+                       telear::render::VideoBackground& background) {
+    background.upload_planes(decoder.decode_planes(jpeg).value());
+  });
 }
 
 void sizes(benchmark::internal::Benchmark* b) {
