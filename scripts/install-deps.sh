@@ -9,7 +9,7 @@ packages=(
   # the linker: mold links telear and the test executables much faster than ld.bfd
   mold
   # core: math, robot descriptions, file formats
-  libeigen3-dev liburdfdom-dev libyaml-cpp-dev nlohmann-json3-dev
+  libeigen3-dev liburdfdom-dev libtinyxml-dev libyaml-cpp-dev nlohmann-json3-dev
   # core: SHA-256 of plans (libcrypto)
   libssl-dev
   # geometry: mesh files (STL, COLLADA, OBJ); collision checking and distances (FCL 0.7)

@@ -11,6 +11,7 @@
 // lower > upper, mimic joints (of missing joints, in loops, on the chain) and the tip.
 
 #include <console_bridge/console.h>
+#include <tinyxml.h>
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
@@ -98,6 +99,75 @@ class UrdfdomErrors : public console_bridge::OutputHandler {
   std::vector<std::string> errors;
 };
 
+// The joints' parent -> child graph read from the XML before urdfdom builds it: urdfdom links
+// its links by shared_ptr, and a graph with a cycle that it then refuses (a joint whose child
+// is its parent, a -> b -> a without a root) is never freed (issue 25: found by the fuzzer,
+// fuzz/crashes/urdf/). An error for a cycle, else nothing (urdfdom reports the rest).
+std::optional<std::string> joint_graph_cycle(const std::string& text) {
+  // TinyXML 1, the parser urdfdom itself reads the text with (it accepts what urdfdom does).
+  TiXmlDocument doc;
+  doc.Parse(text.c_str());
+  if (doc.Error()) return std::nullopt;
+  const TiXmlElement* robot = doc.FirstChildElement("robot");
+  if (robot == nullptr) return std::nullopt;
+  const auto link_of = [](const TiXmlElement* joint, const char* which) {
+    const TiXmlElement* e = joint->FirstChildElement(which);
+    const char* name = e != nullptr ? e->Attribute("link") : nullptr;
+    return std::string(name != nullptr ? name : "");
+  };
+  std::map<std::string, std::vector<std::string>> joints_of_child;
+  std::map<std::string, std::string> parent_of;  // child link -> parent link
+  for (const TiXmlElement* j = robot->FirstChildElement("joint"); j != nullptr;
+       j = j->NextSiblingElement("joint")) {
+    const char* name_attribute = j->Attribute("name");
+    const std::string name = name_attribute != nullptr ? name_attribute : "";
+    const std::string parent = link_of(j, "parent"), child = link_of(j, "child");
+    if (parent.empty() || child.empty()) continue;
+    if (parent == child) {
+      return "joint '" + name + "' has link '" + child +
+             "' as both its parent and its child; a URDF must be a tree";
+    }
+    joints_of_child[child].push_back(name);
+    parent_of[child] = parent;
+  }
+  for (auto& [link, joints] : joints_of_child) {
+    if (joints.size() > 1) {
+      std::sort(joints.begin(), joints.end());
+      return "link '" + link + "' is the child of several joints (" + join(joints) +
+             "); a URDF must be a tree (is there a cycle?)";
+    }
+  }
+  // Each link has one parent at most: going up from any link either ends or comes back.
+  for (const auto& [start, first_parent] : parent_of) {
+    std::string link = first_parent;
+    for (std::size_t steps = 0; steps <= parent_of.size(); ++steps) {
+      if (link == start) {
+        return "the joints form a cycle through link '" + start + "'; a URDF must be a tree";
+      }
+      const auto up = parent_of.find(link);
+      if (up == parent_of.end()) break;
+      link = up->second;
+    }
+  }
+  return std::nullopt;
+}
+
+// urdfdom links hold their children by shared_ptr: a URDF with a cycle (link a the child of
+// two joints, a -> b -> a) gives a model whose links own each other, which would never be
+// freed (issue 25: the fuzzer's first finding, fuzz/crashes/urdf/). The model is read here
+// only; on leaving, the links' child lists are cleared, so that any graph is freed.
+struct UrdfModelRelease {
+  const urdf::ModelInterfaceSharedPtr& model;
+  ~UrdfModelRelease() {
+    if (!model) return;
+    for (auto& [name, link] : model->links_) {
+      if (!link) continue;
+      link->child_links.clear();
+      link->child_joints.clear();
+    }
+  }
+};
+
 urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& text, std::string& why) {
   static std::mutex mutex;
   const std::lock_guard lock(mutex);
@@ -179,8 +249,10 @@ Result<UrdfDescription> describe_urdf(const std::string& text, const std::string
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
     return Error{where + ": the file is empty"};
   }
+  if (const auto cycle = joint_graph_cycle(text)) return Error{where + ": " + *cycle};
   std::string why;
   const urdf::ModelInterfaceSharedPtr urdf = parse_with_urdfdom(text, why);
+  const UrdfModelRelease release{urdf};
   if (!urdf) {
     return Error{where + ": not a valid URDF (urdfdom could not parse it" +
                  (why.empty() ? std::string() : ": " + why) + ")"};

@@ -226,7 +226,8 @@ double CameraModel::max_monotonic_radius() const {
   // bisection. plumb_bob: d/dr [r (1 + k1 r^2 + k2 r^4 + k3 r^6)] = 1 + 3 k1 r^2 + 5 k2 r^4 +
   // 7 k3 r^6. rational_polynomial: the derivative of r * radial(r) by central differences.
   // equidistant: d theta_d / d theta on theta in (0, pi/2), returned as r = tan(theta).
-  constexpr double kInf = std::numeric_limits<double>::infinity();
+  // static: a generic lambda may use it without capturing it (clang requires it, GCC does not).
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
   auto first_non_increasing = [](auto slope, double limit) {
     constexpr int kSteps = 10000;
     double previous = 0.0;

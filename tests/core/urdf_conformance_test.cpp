@@ -300,5 +300,40 @@ TEST(UrdfConformance, MalformedTextNeverCrashes) {
   EXPECT_EQ(self.error().message, "URDF 't.urdf': mimic loop j -> j");
 }
 
+// Issue 25, the fuzzer's first findings (fuzz/crashes/urdf/): URDFs whose joints form a cycle
+// made urdfdom build links that own each other and never free them. The graph is now checked
+// before urdfdom builds it; these name the cycle (the fuzz replay under ASan would name a leak).
+TEST(UrdfConformance, JointCyclesAreRefusedBeforeUrdfdomBuildsThem) {
+  const std::string links = "<link name=\"base\"/><link name=\"a\"/><link name=\"b\"/>";
+  const auto joint = [](const std::string& name, const std::string& parent,
+                        const std::string& child) {
+    return "<joint name=\"" + name + "\" type=\"revolute\"><parent link=\"" + parent +
+           "\"/><child link=\"" + child +
+           "\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" "
+           "velocity=\"1\"/></joint>";
+  };
+  const auto robot = [&](const std::string& joints) {
+    return "<robot name=\"r\">" + links + joints + "</robot>";
+  };
+  auto self = parse_urdf(robot(joint("j0", "base", "a") + joint("j1", "b", "b")), "self.urdf");
+  ASSERT_FALSE(self);
+  EXPECT_EQ(self.error().message,
+            "URDF 'self.urdf': joint 'j1' has link 'b' as both its parent and its child; a URDF "
+            "must be a tree");
+  // a -> b -> a, hanging from nothing: no link is the child of two joints.
+  auto loop = parse_urdf(robot(joint("j1", "a", "b") + joint("j2", "b", "a")), "loop.urdf");
+  ASSERT_FALSE(loop);
+  EXPECT_EQ(loop.error().message,
+            "URDF 'loop.urdf': the joints form a cycle through link 'a'; a URDF must be a tree");
+  auto twice = parse_urdf_description(
+      robot(joint("j0", "base", "a") + joint("j1", "a", "b") + joint("j2", "b", "a")), "two.urdf");
+  ASSERT_FALSE(twice);
+  EXPECT_EQ(twice.error().message,
+            "URDF 'two.urdf': link 'a' is the child of several joints (j0, j2); a URDF must be a "
+            "tree (is there a cycle?)");
+  // A tree is untouched by the check.
+  EXPECT_TRUE(parse_urdf(robot(joint("j0", "base", "a") + joint("j1", "a", "b")), "tree.urdf"));
+}
+
 }  // namespace
 }  // namespace telear::core
