@@ -25,4 +25,14 @@ inline std::size_t pick(const std::uint8_t*& data, std::size_t& size, std::size_
   return choice;
 }
 
+// Which of `n` doors (the first byte) and the text for it (the rest).
+struct DoorInput {
+  std::size_t door = 0;
+  std::string text;
+};
+inline DoorInput door_input(const std::uint8_t* data, std::size_t size, std::size_t n) {
+  const std::size_t door = pick(data, size, n);
+  return {door, fuzz::text(data, size)};
+}
+
 }  // namespace telear::fuzz

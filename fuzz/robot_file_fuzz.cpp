@@ -8,8 +8,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace telear;
   static const core::RobotModelPtr puma = core::load_robot("puma560").value();
-  const std::size_t door = fuzz::pick(data, size, 2);
-  const std::string text = fuzz::text(data, size);
+  const auto [door, text] = fuzz::door_input(data, size, 2);
   if (door == 0) {
     (void)core::parse_dh_yaml(text, "fuzz.yaml");
   } else {

@@ -10,8 +10,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace telear;
-  const std::size_t door = fuzz::pick(data, size, 3);
-  const std::string text = fuzz::text(data, size);
+  const auto [door, text] = fuzz::door_input(data, size, 3);
   switch (door) {
     case 0:
       (void)console::parse_ui_script(text, 6, "fuzz_script.txt");
