@@ -46,10 +46,17 @@ if [ "${TELEAR_SKIP_ASAN:-0}" = "1" ]; then
   echo "test.sh: AddressSanitizer step skipped (TELEAR_SKIP_ASAN=1)"
 fi
 
+# The fuzz harnesses whose layers this tree has (fuzz/CMakeLists.txt): their corpora and saved
+# findings replayed under ASan, so that a fixed leak stays fixed (the GCC replays above catch
+# crashes only; docs/fuzzing.md).
+asan_fuzz=(robot_file urdf workspace camera_file jpeg_frame)
+asan_fuzz_targets=()
+for h in "${asan_fuzz[@]}"; do asan_fuzz_targets+=(--target "${h}_fuzz_replay"); done
+
 # The AddressSanitizer tree: -O1 -g1, ASan's recommended optimisation with line tables only.
 # Unity batches and precompiled headers as in the main tree (the Eigen allocator mismatch with
 # Debian's uninstrumented Ceres is settled in CMakeLists.txt). Only the net test executable
-# (tests/net/CMakeLists.txt): the network layer, the simulated robot driver and the net tests
+# (tests/net/CMakeLists.txt) and the fuzz replays above: the network layer, the simulated robot driver and the net tests
 # are compiled instrumented; core, geometry and vision are linked from the main tree's build,
 # uninstrumented (TELEAR_PREBUILT_LAYERS; two thirds of this tree's compile time). Their
 # code's own memory errors are therefore not looked for here; leaks anywhere still are (ASan
@@ -60,7 +67,7 @@ asan_build() {
       -DTELEAR_SANITIZE=address -DTELEAR_BUILD_BENCH=OFF \
       -DTELEAR_PREBUILT_DIR="$(cd "$build_dir" && pwd)" -DTELEAR_PREBUILT_LAYERS="core;geometry;vision"
   fi
-  cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target net_test
+  cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target net_test "${asan_fuzz_targets[@]}"
 }
 
 # Tests wait on servers, heartbeats and the simulated robot's real-time motion as much as they
@@ -104,4 +111,6 @@ export LSAN_OPTIONS="suppressions=$(pwd)/scripts/sanitizers/lsan.supp:print_supp
 begin_stage "asan tests"
 ctest --test-dir "$asan_dir" --output-on-failure -j 2 -L '^net$' \
   -E '^(robot_python_example|server_log_level)$'
+ctest --test-dir "$asan_dir" --output-on-failure -j 2 \
+  -R "^fuzz_replay\.($(IFS='|'; echo "${asan_fuzz[*]}"))\$"
 end_stage "asan tests"

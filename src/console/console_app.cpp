@@ -100,8 +100,6 @@ struct ConsoleApp::Impl {
   int fps_frames = 0;
   bool auto_take_control = false;
   std::unique_ptr<record::ServerRecorder> recorder;  // --record
-  record::StateFollow state_follow;                  // the recorder records the session's states
-  std::string recorded_robot;                        // the robot server --record records
   std::uint64_t recorded_frame = 0;                  // the last frame whose latency it has
   std::ostream* log = nullptr;
 
@@ -164,7 +162,6 @@ struct ConsoleApp::Impl {
 ConsoleApp::ConsoleApp(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 ConsoleApp::~ConsoleApp() {
-  if (impl_) impl_->state_follow = {};  // before the session's robot client goes
   if (session_) session_->disconnect();
   session_.reset();
   if (impl_ && impl_->recorder) (void)impl_->recorder->stop();
@@ -321,7 +318,6 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
     auto recorder = record::ServerRecorder::start(recording);
     if (!recorder) return recorder.error();
     m.recorder = std::move(*recorder);
-    m.recorded_robot = robot.address;
     session::record_session_streams(m.session_options, *m.recorder);
     log << "telear console: recording to " << options.record << "\n";
   }
@@ -357,7 +353,6 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   if (!session) return session.error();
   app->session_ = std::move(*session);
   app->session_->connect();
-  if (m.recorder) m.state_follow = m.recorder->follow_states(app->session_->robot());
 
   if (Status s = m.build_view(app->ui_); !s.ok()) return s.error();
 
@@ -382,6 +377,7 @@ void ConsoleApp::rebuild_session() {
   options.vision.token = ui_.token;
   // --record records the servers the console started with, not others connected to later.
   if (options.vision.address != m.session_options.vision.address) options.vision.on_received = {};
+  if (options.robot.address != m.session_options.robot.address) options.robot.on_state = {};
   auto session = session::Session::create(m.model, options);
   if (!session) {
     ui_.last_message = "connect: " + session.error().message;
@@ -389,13 +385,9 @@ void ConsoleApp::rebuild_session() {
     session_->connect();
     return;
   }
-  m.state_follow = {};  // the old session's client goes
   session_ = std::move(*session);
   m.session_options = options;
   session_->connect();
-  if (m.recorder && options.robot.address == m.recorded_robot) {
-    m.state_follow = m.recorder->follow_states(session_->robot());
-  }
   m.auto_take_control = ui_.embedded;
   ui_.last_message = "connecting to " + options.robot.address + " and " + options.vision.address;
 }
@@ -464,7 +456,7 @@ bool ConsoleApp::frame() {
   session_->update(dt);
   if (m.recorder) {
     session::record_session_view(*m.recorder, session_->view(), m.recorded_frame,
-                                 core::monotonic_ns());
+                                 session_->state_taken_ns());
   }
   if (m.auto_take_control && session_->view().real && session_->robot_connected()) {
     m.auto_take_control = false;

@@ -22,6 +22,8 @@ bool ScriptRunner::condition_met(session::Session& session, Condition condition)
     }
     case Condition::kInControl:
       return session.in_control();
+    case Condition::kAr:
+      return session.view().display.mode == session::DisplayMode::kAR;
   }
   return false;
 }

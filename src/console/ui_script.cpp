@@ -143,7 +143,7 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
   }
   if (verb == "wait-until") {
     need(w, 2, 3,
-         "wait-until idle|connected|disconnected|video|preview-end|in-control [TIMEOUT_S]");
+         "wait-until idle|connected|disconnected|video|preview-end|in-control|ar [TIMEOUT_S]");
     WaitUntil u;
     static const std::pair<const char*, Condition> conditions[] = {
         {"idle", Condition::kIdle},
@@ -151,7 +151,8 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
         {"disconnected", Condition::kDisconnected},
         {"video", Condition::kVideo},
         {"preview-end", Condition::kPreviewEnd},
-        {"in-control", Condition::kInControl}};
+        {"in-control", Condition::kInControl},
+        {"ar", Condition::kAr}};
     bool found = false;
     for (const auto& [name, c] : conditions) {
       if (sub == name) {
@@ -161,7 +162,7 @@ ScriptLine parse_line(const std::vector<std::string>& w, int dof) {
     }
     if (!found) {
       throw ParseError{"condition '" + sub +
-                       "': idle, connected, disconnected, video, preview-end or in-control"};
+                       "': idle, connected, disconnected, video, preview-end, in-control or ar"};
     }
     if (w.size() == 3) {
       u.timeout_s = parse_double(w[2], "timeout");
@@ -363,6 +364,8 @@ const char* to_string(Condition condition) {
       return "preview-end";
     case Condition::kInControl:
       return "in-control";
+    case Condition::kAr:
+      return "ar";
   }
   return "?";
 }

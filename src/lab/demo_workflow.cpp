@@ -343,10 +343,6 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   if (!session_or) return session_or.error();
   session::Session& session = **session_or;
   session.connect();
-  // The recording holds the states the session's view drew the arm at (released before the
-  // session: declared after it).
-  record::StateFollow followed_states;
-  if (mcap) followed_states = mcap->follow_states(session.robot());
 
   auto context = render::create_headless_context();
   if (!context) return Error{"no OpenGL context: " + context.error().message};

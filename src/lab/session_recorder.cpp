@@ -58,7 +58,7 @@ void SessionRecorder::tick() {
   last_ = now;
   session_.update(dt);
   const session::SessionView& v = session_.view();
-  last_view_ns_ = core::monotonic_ns();
+  last_view_ns_ = session_.state_taken_ns();  // the view's time (session_recording.hpp)
   if (options_.on_view) options_.on_view(v, last_view_ns_);
   last_view_predicted_ = v.show_prediction && view_.options().show_predicted;
   last_view_states_held_ = session_.options().injected_state_delay_s > 0.0;

@@ -145,6 +145,7 @@ void RobotClient::Impl::stream_loop() {
         std::lock_guard lock(mutex);
         sample.clock_offset_ns = estimator.to_server_ns(0);
       }
+      if (options.on_state) options.on_state(sample);
       states.put(std::move(sample));
     }
     return reader->Finish();

@@ -130,6 +130,10 @@ void ServerRecorder::add_frame(const net::ReceivedStereoFrame& frame) {
   if (SessionRecorder* r = impl_->sink.load()) r->add_frame(frame);
 }
 
+void ServerRecorder::add_state(const net::RobotStateSample& sample) {
+  if (SessionRecorder* r = impl_->sink.load()) r->add_state(sample);
+}
+
 void ServerRecorder::add_latency(const net::DecodedStereoFrame& frame,
                                  std::optional<std::int64_t> shown_ns) {
   if (SessionRecorder* r = impl_->sink.load()) r->add_latency(frame, shown_ns);

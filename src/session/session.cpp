@@ -471,7 +471,9 @@ void Session::update(double dt) {
 }
 
 void Session::deliver_states(double t) {
-  if (auto latest = robot_->latest_state(); latest && latest->sequence != state_sequence_) {
+  auto latest = robot_->latest_state();
+  state_taken_ns_ = core::monotonic_ns();
+  if (latest && latest->sequence != state_sequence_) {
     state_sequence_ = latest->sequence;
     held_states_.push_back(std::move(*latest));
   }

@@ -35,6 +35,11 @@ void record_session_streams(SessionOptions& options, record::ServerRecorder& rec
   options.vision.on_received = [raw = &recorder](const net::ReceivedStereoFrame& frame) {
     raw->add_frame(frame);
   };
+  // Every state the session's client receives, logged at its receipt: the view drew the newest
+  // one received before its update took it (Session::state_taken_ns, the view's time).
+  options.robot.on_state = [raw = &recorder](const net::RobotStateSample& sample) {
+    raw->add_state(sample);
+  };
   options.on_event = [raw = &recorder](const SessionEvent& e, std::int64_t monotonic_ns) {
     if (const auto kind = plan_event_kind(e.step)) {
       raw->add_plan_event(*kind, e.message, e.plan_id, e.plan_hash, monotonic_ns);

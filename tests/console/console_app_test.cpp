@@ -103,6 +103,7 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
   const std::string script = (dir / "plan.txt").string();
   std::ofstream(script) << "wait-until connected 30\n"
                            "wait-until in-control 10\n"
+                           "wait-until ar 30   # a loaded machine may take seconds\n"
                            "ghost reset\n"
                            "plan add 0 start\n"
                            "ghost joint 2 +12deg\n"
@@ -120,6 +121,7 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
                            "validate\n"
                            "execute\n"
                            "wait-until idle 30\n"
+                           "wait-until ar 30\n"
                            "screenshot " +
                                shot + "\n";
   // Kept running after the script (connection loss below).
@@ -133,7 +135,7 @@ TEST(ConsoleApp, ScriptedPlanExecutesScreenshotAndConnectionLoss) {
 
   ASSERT_TRUE(run_until(app, 45, [&] { return app.script().finished(); })) << log.str();
   EXPECT_EQ(app.script().failures(), 1) << log.str();  // the deliberate `preview speed` line
-  EXPECT_THAT(log.str(), HasSubstr("line 11: preview speed 4"));
+  EXPECT_THAT(log.str(), HasSubstr("line 12: preview speed 4"));
 
   // The real robot reached the plan's end.
   ASSERT_EQ(session.plan().size(), 3u);

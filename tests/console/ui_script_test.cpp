@@ -74,7 +74,12 @@ TEST(UiScript, ErrorsNameTheLine) {
 
   auto condition = parse_ui_script("wait-until forever\n", 6);
   ASSERT_FALSE(condition);
-  EXPECT_THAT(condition.error().message, HasSubstr("condition 'forever'"));
+  EXPECT_THAT(condition.error().message,
+              HasSubstr("condition 'forever': idle, connected, disconnected, video, preview-end, "
+                        "in-control or ar"));
+  auto ar = parse_ui_script("wait-until ar 5\n", 6);
+  ASSERT_TRUE(ar) << ar.error().message;
+  EXPECT_EQ(std::get<WaitUntil>((*ar)[0].step).condition, Condition::kAr);
 
   auto q = parse_ui_script("real initialize 1,2,3\n", 6);
   ASSERT_FALSE(q);

@@ -20,7 +20,8 @@
 //   view capture on|off     (the arm at the frame's capture time, over the video)
 //   registration open FOLDER | add | solve | close   (the Registration panel's buttons)
 //   wait SECONDS                                  (display time passes, the session runs)
-//   wait-until idle|connected|disconnected|video|preview-end|in-control [TIMEOUT_S]
+//   wait-until idle|connected|disconnected|video|preview-end|in-control|ar [TIMEOUT_S]
+//                                  (ar: the view shows the live video in AR)
 //   screenshot FILE.png     quit
 //
 // Parsing is all-or-nothing: an error names the file and line ("script 's.txt', line 4:
@@ -40,7 +41,7 @@ struct WaitFor {
   double seconds = 0.0;
 };
 
-enum class Condition { kIdle, kConnected, kDisconnected, kVideo, kPreviewEnd, kInControl };
+enum class Condition { kIdle, kConnected, kDisconnected, kVideo, kPreviewEnd, kInControl, kAr };
 
 struct WaitUntil {
   Condition condition = Condition::kIdle;

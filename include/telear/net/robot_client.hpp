@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,9 +41,14 @@
 
 namespace telear::net {
 
+struct RobotStateSample;
+
 struct RobotClientOptions : ClientOptions {
   double state_rate_hz = 100.0;  // 1..250
   double ping_period_s = 1.0;
+  // Called on the receive thread for every state, before latest_state() can return it (a
+  // recorder's: every state, none skipped). Keep it short; it delays the next receive.
+  std::function<void(const RobotStateSample&)> on_state;
 };
 
 struct JointInfo {

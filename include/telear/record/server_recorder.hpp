@@ -69,6 +69,8 @@ class ServerRecorder {
   // With stream_video false: the caller's frames (VisionClientOptions::on_received) and their
   // latency once decoded. Thread-safe, never blocking.
   void add_frame(const net::ReceivedStereoFrame& frame);
+  // With stream_state false: the caller's states (RobotClientOptions::on_state), every one.
+  void add_state(const net::RobotStateSample& sample);
   void add_latency(const net::DecodedStereoFrame& frame,
                    std::optional<std::int64_t> shown_ns = std::nullopt);
   // SessionRecorder's, for the operator's program (telear/session/session_recording.hpp).

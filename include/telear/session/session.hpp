@@ -303,6 +303,9 @@ class Session {
   // The live plots' series (telear/session/live_series.hpp), fed by update().
   const LiveSeries& live_series() const { return live_series_; }
   double now() const;  // session clock, s (monotonic)
+  // When the last update() took the newest robot state from the client (core::monotonic_ns):
+  // the view's time for a recording (session_recording.hpp).
+  std::int64_t state_taken_ns() const { return state_taken_ns_; }
 
  private:
   Session(core::RobotModelPtr model, SessionOptions options);
@@ -352,6 +355,7 @@ class Session {
   std::deque<net::RobotStateSample> held_states_;  // received, not yet delivered (state delay)
   std::optional<net::RobotStateSample> delivered_state_;
   std::uint64_t state_sequence_ = 0;  // the newest state taken from the client
+  std::int64_t state_taken_ns_ = 0;
   ArmPredictor predictor_;
   SessionView view_;
   std::deque<SessionEvent> events_;

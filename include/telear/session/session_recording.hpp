@@ -7,13 +7,16 @@
 //                                               session's vision client receives (its JPEGs
 //                                               as received) and every session event -- with a
 //                                               workflow step as a PlanEvent (and its Log),
-//                                               the others as a Log
+//                                               the others as a Log -- and every robot state
+//                                               its robot client receives
 //   record_session_view(recorder, view, ...)    after each Session::update(): the ghost the
 //                                               view draws, and the shown frame's latency
 //
 // The recorder must be started with recorder.ghost_from_state_stream = false (the ghost then
-// comes from the view, once per displayed frame) and stream_video = false (the session's own
-// stream feeds it), and must outlive the session.
+// comes from the view, once per displayed frame), stream_video = false and stream_state = false
+// (the session's own streams feed it), and must outlive the session. Replay is exact when the
+// view's time given to record_session_view is Session::state_taken_ns(): the states are
+// logged at their receipt, and the view drew the newest received when its update took it.
 
 #include <cstdint>
 #include <optional>
@@ -26,7 +29,8 @@ namespace telear::session {
 // The PlanEvent kind of a workflow step; nullopt for kNone.
 std::optional<record::PlanEventKind> plan_event_kind(WorkflowStep step);
 
-// Sets options.vision.on_received and options.on_event (replacing what they held).
+// Sets options.vision.on_received, options.robot.on_state and options.on_event (replacing
+// what they held).
 void record_session_streams(SessionOptions& options, record::ServerRecorder& recorder);
 
 // `last_frame_id`: the caller's memory of the last frame whose latency was recorded (0 at the
