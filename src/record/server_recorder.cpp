@@ -2,9 +2,9 @@
 
 #include <atomic>
 #include <chrono>
-#include <mutex>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include "telear/net/robot_client.hpp"
 #include "telear/net/vision_client.hpp"
@@ -22,28 +22,19 @@ struct ServerRecorder::Impl {
   std::atomic<bool> stopping{false};
   std::thread thread;
   std::optional<Result<RecordingCounts>> result;
-  // The client whose states are recorded: the own one (stream_state), or the followed one
-  // (null while none). The mutex is held while a state is awaited, so that unfollowing
-  // returns only once the client is no longer used.
-  std::mutex source_mutex;
-  const net::RobotClient* source = nullptr;
-  std::uint64_t state_after = 0;
+  bool own_states = false;  // stream_state: the own client's states are recorded here
 
   void run() {
-    std::uint64_t frame_after = 0;
+    std::uint64_t frame_after = 0, state_after = 0;
     while (!stopping) {
-      bool waited = false;
-      {
-        std::lock_guard lock(source_mutex);
-        if (source != nullptr) {
-          waited = true;
-          if (auto state = source->wait_state(state_after, 0.02)) {
-            state_after = state->sequence;
-            recorder->add_state(*state);
-          }
+      if (own_states) {
+        if (auto state = robot->wait_state(state_after, 0.02)) {
+          state_after = state->sequence;
+          recorder->add_state(*state);
         }
+      } else {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
       }
-      if (!waited) std::this_thread::sleep_for(std::chrono::milliseconds(10));
       if (vision) {
         if (auto frame = vision->wait_frame(frame_after, 0.0)) {
           frame_after = frame->second;
@@ -77,7 +68,7 @@ Result<std::unique_ptr<ServerRecorder>> ServerRecorder::start(
   // Its state stream only when it records its own (else its info call is all it makes).
   if (options.stream_state) {
     impl->robot->start();
-    impl->source = impl->robot.get();
+    impl->own_states = true;
   }
   auto info = impl->robot->get_info();
   if (!info) {
@@ -153,39 +144,11 @@ std::int64_t ServerRecorder::wall_ns(std::int64_t client_ns) const {
   return impl_->recorder->wall_ns(client_ns);
 }
 
-StateFollow ServerRecorder::follow_states(const net::RobotClient& client) {
-  std::lock_guard lock(impl_->source_mutex);
-  impl_->source = &client;
-  impl_->state_after = 0;
-  return StateFollow(this);
-}
-
-void ServerRecorder::unfollow_states() {
-  std::lock_guard lock(impl_->source_mutex);
-  if (impl_->source != impl_->robot.get()) impl_->source = nullptr;
-}
-
-StateFollow& StateFollow::operator=(StateFollow&& other) noexcept {
-  if (this != &other) {
-    if (recorder_ != nullptr) recorder_->unfollow_states();
-    recorder_ = std::exchange(other.recorder_, nullptr);
-  }
-  return *this;
-}
-
-StateFollow::~StateFollow() {
-  if (recorder_ != nullptr) recorder_->unfollow_states();
-}
-
 Result<RecordingCounts> ServerRecorder::stop() {
   Impl& impl = *impl_;
   if (!impl.result) {
     impl.stopping = true;
     if (impl.thread.joinable()) impl.thread.join();
-    {
-      std::lock_guard lock(impl.source_mutex);
-      impl.source = nullptr;
-    }
     if (impl.vision) impl.vision->stop();
     impl.sink = nullptr;
     impl.robot->stop();

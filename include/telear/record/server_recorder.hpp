@@ -10,7 +10,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <utility>
 
 #include "telear/core/result.hpp"
 #include "telear/record/session_recorder.hpp"
@@ -28,32 +27,15 @@ struct ServerRecorderOptions {
   // the vision client it already has (the console, the demo: a second stream would decode
   // every frame twice on the operator's machine). The calibration is still asked for.
   bool stream_video = true;
-  // false: no state stream of its own -- it records the states of a robot client the caller
-  // names with follow_states() (the session's: the console, the demo), so that the recording
-  // holds the very states the view drew the real arm at. The robot's info is still asked for.
+  // false: no state stream of its own -- the caller feeds add_state() every state its robot
+  // client receives (RobotClientOptions::on_state: the console's, the demo's session), so that
+  // the recording holds the very states the view drew the real arm at. The robot's info is
+  // still asked for.
   bool stream_state = true;
   // The calibration the operator's view draws through (the console's or the demo's registered
   // cameras), recorded instead of the vision server's: replay draws through what was seen.
   std::optional<vision::StereoCameraModel> cameras;
   SessionRecorderOptions recorder;  // path, queue, metadata
-};
-
-class ServerRecorder;
-
-// While it lives, the recorder records the followed client's states (ServerRecorder::
-// follow_states); destroyed -- before the client is -- it stops following.
-class StateFollow {
- public:
-  StateFollow() = default;
-  explicit StateFollow(ServerRecorder* recorder) : recorder_(recorder) {}
-  StateFollow(StateFollow&& other) noexcept : recorder_(std::exchange(other.recorder_, nullptr)) {}
-  StateFollow& operator=(StateFollow&& other) noexcept;
-  StateFollow(const StateFollow&) = delete;
-  StateFollow& operator=(const StateFollow&) = delete;
-  ~StateFollow();
-
- private:
-  ServerRecorder* recorder_ = nullptr;
 };
 
 class ServerRecorder {
@@ -78,10 +60,6 @@ class ServerRecorder {
                       const std::string& plan_hash, std::int64_t client_ns);
   void add_ghost(const Eigen::VectorXd& q, double gripper, std::int64_t client_ns);
   std::int64_t wall_ns(std::int64_t client_ns) const;  // SessionRecorder::wall_ns
-  // With stream_state false: records every state `client` receives until the returned object
-  // is destroyed (keep it no longer than the client). Following another client replaces it.
-  [[nodiscard]] StateFollow follow_states(const net::RobotClient& client);
-  void unfollow_states();
   // Stops the clients, then closes the file (SessionRecorder::close). A second call returns
   // the same counts.
   Result<RecordingCounts> stop();
