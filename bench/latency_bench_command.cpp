@@ -13,6 +13,8 @@
 #include <ostream>
 #include <vector>
 
+#include "bench/json_file.hpp"
+#include "bench/loopback_vision_server.hpp"
 #include "bench/quiet_log.hpp"
 #include "telear/core/arm_body.hpp"
 #include "telear/core/clock.hpp"
@@ -20,12 +22,10 @@
 #include "telear/core/robot_loader.hpp"
 #include "telear/net/latency_summary.hpp"
 #include "telear/net/vision_client.hpp"
-#include "telear/net/vision_server.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/render/egl_context.hpp"
 #include "telear/render/frame_code_readback.hpp"
 #include "telear/vision/frame_code.hpp"
-#include "telear/vision/synthetic_source.hpp"
 
 namespace telear::cli {
 
@@ -102,18 +102,7 @@ Result<Measured> measure(const core::ImageSize& size, const LatencyBenchOptions&
   auto view = make_view(**model, size.width, size.height);
   if (!view) return view.error();
 
-  vision::SyntheticSourceOptions source_options;
-  source_options.width = size.width;
-  source_options.height = size.height;
-  source_options.fps = options.fps;
-  source_options.frame_code = true;
-  auto source = vision::SyntheticSource::create(source_options);
-  if (!source) return source.error();
-  net::VisionServerOptions server_options;
-  server_options.listen_address = "127.0.0.1:0";
-  server_options.source = std::move(*source);
-  server_options.jpeg_quality = options.quality;
-  auto server = net::VisionServer::create(std::move(server_options));
+  auto server = start_loopback_vision_server(size, options.fps, options.quality, true);
   if (!server) return server.error();
   net::VisionClientOptions client_options;
   client_options.address = (*server)->address();
@@ -205,10 +194,7 @@ int run_bench_latency(const LatencyBenchOptions& options, std::ostream& out, std
     return fail("--quality must be in 1..100, got " + std::to_string(options.quality), 2);
   }
   std::ofstream json_file;
-  if (!options.json.empty()) {
-    json_file.open(options.json);
-    if (!json_file) return fail("--json: cannot write '" + options.json + "'", 2);
-  }
+  if (const auto error = open_json_file(options.json, json_file)) return fail(*error, 2);
 
   const QuietLog quiet;
   const auto wall_start = std::chrono::steady_clock::now();

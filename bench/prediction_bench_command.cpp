@@ -10,6 +10,7 @@
 #include <ostream>
 #include <thread>
 
+#include "bench/json_file.hpp"
 #include "bench/quiet_log.hpp"
 #include "telear/core/angles.hpp"
 #include "telear/core/clock.hpp"
@@ -156,10 +157,7 @@ int run_bench_prediction(const PredictionBenchOptions& options, std::ostream& ou
     return fail("--camera-fps must be in (0, 60], got " + format("%g", options.camera_fps), 2);
   }
   std::ofstream json_file;
-  if (!options.json.empty()) {
-    json_file.open(options.json);
-    if (!json_file) return fail("--json: cannot write '" + options.json + "'", 2);
-  }
+  if (const auto error = open_json_file(options.json, json_file)) return fail(*error, 2);
 
   const QuietLog quiet;
   const auto wall_start = std::chrono::steady_clock::now();

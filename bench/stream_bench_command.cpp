@@ -14,6 +14,8 @@
 #include <sstream>
 #include <vector>
 
+#include "bench/json_file.hpp"
+#include "bench/loopback_vision_server.hpp"
 #include "bench/quiet_log.hpp"
 #include "telear/core/clock.hpp"
 #include "telear/core/image_size.hpp"
@@ -142,17 +144,8 @@ Result<VideoResult> measure_video(const Resolution& size, const StreamBenchOptio
   if (!baseline) return baseline.error();
   result.codec_ms = *baseline;
 
-  vision::SyntheticSourceOptions source_options;
-  source_options.width = size.width;
-  source_options.height = size.height;
-  source_options.fps = options.source_fps;
-  auto source = vision::SyntheticSource::create(source_options);
-  if (!source) return source.error();
-  net::VisionServerOptions server_options;
-  server_options.listen_address = "127.0.0.1:0";
-  server_options.source = std::move(*source);
-  server_options.jpeg_quality = options.quality;
-  auto server = net::VisionServer::create(std::move(server_options));
+  auto server =
+      start_loopback_vision_server({size.width, size.height}, options.source_fps, options.quality);
   if (!server) return server.error();
 
   net::VisionClientOptions client_options;
@@ -395,10 +388,7 @@ int run_bench_stream(const StreamBenchOptions& options, std::ostream& out, std::
   auto sizes = parse_resolutions(options.resolutions);
   if (!sizes) return fail(sizes.error().message, 2);
   std::ofstream json_file;
-  if (!options.json.empty()) {
-    json_file.open(options.json);
-    if (!json_file) return fail("--json: cannot write '" + options.json + "'", 2);
-  }
+  if (const auto error = open_json_file(options.json, json_file)) return fail(*error, 2);
 
   const QuietLog quiet;
   const auto wall_start = std::chrono::steady_clock::now();
