@@ -21,7 +21,7 @@ packages=(
   # vision: camera models, distortion maps, calibration; hand-eye bundle adjustment (Ceres)
   libopencv-dev libceres-dev
   # render: GL headers and loader, headless EGL with Mesa's llvmpipe, GLFW windows, stb images
-  libgl-dev libegl-dev libepoxy-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libstb-dev
+  libgl-dev libegl-dev libepoxy-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libstb-dev libpng-dev
   # net: gRPC services and clients, TurboJPEG for the video stream; the Python example client
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc libturbojpeg0-dev
   libjpeg62-turbo-dev python3-grpcio python3-grpc-tools python3-protobuf

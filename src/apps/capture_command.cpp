@@ -3,7 +3,6 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -19,6 +18,7 @@
 #include "telear/session/capture_session.hpp"
 #include "telear/session/registration_capture.hpp"
 #include "telear/vision/capture_observations.hpp"
+#include "telear/vision/image_file.hpp"
 #include "telear/vision/registration_target.hpp"
 
 namespace telear::cli {
@@ -223,7 +223,7 @@ int run_manual_capture(const CaptureOptions& options, std::istream& in, std::ost
     return fail("no pose was added: nothing to register (" + options.output + ")", 1);
   }
   const std::string coverage = options.output + "/coverage.png";
-  if (cv::imwrite(coverage, capture.coverage())) {
+  if (vision::write_png_file(coverage, capture.coverage())) {
     out << "coverage: the " << noun << " found at " << capture.detected().left_found
         << " (left) and " << capture.detected().right_found << " (right) of "
         << capture.poses().size() << " poses; " << coverage << "\n";
@@ -283,7 +283,8 @@ int run_capture(const CaptureOptions& options, std::ostream& out, std::ostream& 
   if (detected) {
     const std::string coverage = options.output + "/coverage.png";
     const auto& camera = result->cameras.left;
-    if (cv::imwrite(coverage, vision::coverage_image(*detected, camera.width, camera.height))) {
+    if (vision::write_png_file(coverage,
+                               vision::coverage_image(*detected, camera.width, camera.height))) {
       out << "coverage: the " << (target.is_board() ? "board" : "marker") << " found at "
           << detected->left_found << " (left) and " << detected->right_found << " (right) of "
           << result->capture.poses.size() << " poses; " << coverage << "\n";

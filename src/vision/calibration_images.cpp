@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 
 #include "telear/core/image_size.hpp"
+#include "telear/vision/image_file.hpp"
 
 namespace telear::vision {
 namespace {
@@ -28,12 +28,8 @@ struct SizeCheck {
 
 ImageResult process_image(const std::string& path, const CalibrationPattern& pattern,
                           cv::Size& image_size, SizeCheck& size_check) {
-  cv::Mat image;
-  try {
-    image = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  } catch (const cv::Exception&) {
-    image.release();
-  }
+  auto read = read_image_file(path, ImageFileMode::kGrey);
+  const cv::Mat image = read ? *read : cv::Mat();
   if (image.empty()) {
     return {{}, {}, "cannot decode image (corrupt or not an image file); replace or delete it", {}};
   }

@@ -8,11 +8,10 @@
 #include <fstream>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "telear/core/number_format.hpp"
 #include "telear/core/yaml_reader.hpp"
 #include "telear/vision/calibration_file.hpp"
+#include "telear/vision/image_file.hpp"
 
 namespace telear::vision {
 namespace {
@@ -235,13 +234,7 @@ Status write_captured_images(const std::string& directory, const CapturedFrame& 
     if (ec) return Error{"cannot create '" + path.parent_path().string() + "': " + ec.message()};
     const cv::Mat& image = is_left ? left : right;
     if (image.empty()) return Error{"cannot write '" + path.string() + "': empty image"};
-    bool written = false;
-    try {
-      written = cv::imwrite(path.string(), image);
-    } catch (const cv::Exception& e) {
-      return Error{"cannot write '" + path.string() + "': " + e.what()};
-    }
-    if (!written) return Error{"cannot write '" + path.string() + "'"};
+    if (Status written = write_png_file(path.string(), image); !written) return written;
   }
   return Status::Ok();
 }
@@ -251,12 +244,12 @@ Result<StereoImages> read_captured_images(const std::string& directory,
   StereoImages images;
   for (const bool is_left : {true, false}) {
     const fs::path path = fs::path(directory) / (is_left ? frame.left_image : frame.right_image);
-    cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
-    if (image.empty()) {
+    auto image = read_image_file(path.string(), ImageFileMode::kUnchanged);
+    if (!image) {
       return Error{"capture image '" + path.string() +
                    "' cannot be read (missing or not an image)"};
     }
-    (is_left ? images.left : images.right) = std::move(image);
+    (is_left ? images.left : images.right) = std::move(*image);
   }
   return images;
 }

@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "cli_runner.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "telear/vision/image_file.hpp"
 #include "test_util/temp_dir.hpp"
 
 namespace telear {
@@ -87,7 +87,8 @@ TEST_F(CalibrateCli, ImagesWithoutThePatternOrCorruptAreSkippedAndSaidSo) {
   for (const char* name : {"left01.jpg", "left03.jpg", "left04.jpg", "left05.jpg"}) {
     fs::copy_file(kSamples + "/" + name, images + "/" + name);
   }
-  cv::imwrite(images + "/left06.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(200)));
+  ASSERT_TRUE(
+      vision::write_png_file(images + "/left06.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(200))));
   std::ofstream(images + "/left07.png") << "not an image";
   const auto r =
       run_telear("calibrate --left '" + images + "/left*' --pattern chessboard:9x6:1 -o " + dir +

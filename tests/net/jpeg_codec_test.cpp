@@ -2,9 +2,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <turbojpeg.h>
 
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 
 #include "telear/net/stereo_jpeg_decoder.hpp"
 
@@ -183,8 +183,21 @@ TEST(JpegCodec, DecodePlanesGivesTheImageBeforeItsColourConversion) {
     for (int c = 0; c < grey.cols; ++c)
       grey.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(3 * c);
   }
+  // TurboJPEG's own grey encoder (the stream's encoder sends colour).
   std::vector<std::uint8_t> grey_bytes;
-  ASSERT_TRUE(cv::imencode(".jpg", grey, grey_bytes));
+  {
+    tjhandle compressor = tjInitCompress();
+    ASSERT_NE(compressor, nullptr);
+    unsigned char* jpeg = nullptr;
+    unsigned long jpeg_size = 0;
+    ASSERT_EQ(tjCompress2(compressor, grey.data, grey.cols, 0, grey.rows, TJPF_GRAY, &jpeg,
+                          &jpeg_size, TJSAMP_GRAY, 90, 0),
+              0)
+        << tjGetErrorStr2(compressor);
+    grey_bytes.assign(jpeg, jpeg + jpeg_size);
+    tjFree(jpeg);
+    tjDestroy(compressor);
+  }
   auto grey_planes = decoder.decode_planes(
       std::string_view(reinterpret_cast<const char*>(grey_bytes.data()), grey_bytes.size()));
   ASSERT_TRUE(grey_planes) << grey_planes.error().message;

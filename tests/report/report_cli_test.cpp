@@ -11,12 +11,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <sstream>
 
 #include "record/synthetic_recording.hpp"
 #include "telear/report/recording_plots.hpp"
+#include "telear/vision/image_file.hpp"
 #include "test_util/temp_dir.hpp"
 
 namespace telear::report {
@@ -102,8 +102,9 @@ TEST(ReportCli, PlotsAndSummarizesARecordingWithAKnownTrackingError) {
     char magic[8] = {};
     in.read(magic, 8);
     EXPECT_EQ(std::string(magic, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << p.name;
-    const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-    ASSERT_FALSE(image.empty()) << p.name;
+    auto read = vision::read_image_file(path, vision::ImageFileMode::kColour);
+    ASSERT_TRUE(read) << read.error().message;
+    const cv::Mat image = *read;
     EXPECT_EQ(image.cols, kPlotWidthPx) << p.name;
     EXPECT_EQ(image.rows, p.height) << p.name;
     EXPECT_GT(pixels_of(image, p.colour), 50) << p.name;

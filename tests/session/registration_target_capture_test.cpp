@@ -8,7 +8,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <sstream>
@@ -22,6 +21,7 @@
 #include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/calibration_file.hpp"
 #include "telear/vision/capture_registration.hpp"
+#include "telear/vision/image_file.hpp"
 #include "telear/vision/overlay_accuracy.hpp"
 #include "telear/vision/registered_camera_file.hpp"
 #include "telear/vision/registration_target.hpp"
@@ -165,7 +165,7 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
   // The coverage image is green under a board's seen corners.
   const cv::Mat coverage = vision::coverage_image(board_registration->detected,
                                                   rig.cameras.left.width, rig.cameras.left.height);
-  cv::imwrite((dir / "board_coverage.png").string(), coverage);
+  ASSERT_TRUE(vision::write_png_file((dir / "board_coverage.png").string(), coverage));
   for (const vision::HandEyeView& view : board_registration->detected.observations.views) {
     if (view.left.size() < 4) continue;
     if (view.left.size() == 4) {  // a marker (TELEAR_CAPTURE_TEST_TARGET): its quad's centre
@@ -243,9 +243,9 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
     one_eye.poses = {one_eye.poses[both]};
     one_eye.poses[0].frames.resize(1);
     const std::string blank = "blank.png";
-    cv::imwrite((dir / "board" / blank).string(),
-                cv::Mat(rig.cameras.left.height, rig.cameras.left.width, CV_8UC3,
-                        cv::Scalar(128, 128, 128)));
+    ASSERT_TRUE(vision::write_png_file((dir / "board" / blank).string(),
+                                       cv::Mat(rig.cameras.left.height, rig.cameras.left.width,
+                                               CV_8UC3, cv::Scalar(128, 128, 128))));
     one_eye.poses[0].frames[0].right_image = blank;
     auto detected =
         vision::detect_capture_targets((dir / "board").string(), one_eye, *board_target);

@@ -9,12 +9,12 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <opencv2/imgcodecs.hpp>
 
 #include "telear/sim/calibration_targets.hpp"
 #include "telear/sim/stereo_rig.hpp"
 #include "telear/vision/calibration_images.hpp"
 #include "telear/vision/calibration_pattern.hpp"
+#include "telear/vision/image_file.hpp"
 #include "telear/vision/mono_calibration.hpp"
 #include "telear/vision/stereo_calibration.hpp"
 #include "test_util/temp_dir.hpp"
@@ -92,9 +92,10 @@ class CharucoCalibrationTest : public ::testing::Test {
       std::snprintf(name, sizeof name, "%02zu.png", k);
       left_paths_.push_back(dir_->file(std::string("left_") + name));
       right_paths_.push_back(dir_->file(std::string("right_") + name));
-      cv::imwrite(left_paths_.back(), left_renderer.render(target, (*poses)[k], 4, 1.0, 2 * k));
-      cv::imwrite(right_paths_.back(),
-                  right_renderer.render(target, (*poses)[k], 4, 1.0, 2 * k + 1));
+      ASSERT_TRUE(vision::write_png_file(left_paths_.back(),
+                                         left_renderer.render(target, (*poses)[k], 4, 1.0, 2 * k)));
+      ASSERT_TRUE(vision::write_png_file(
+          right_paths_.back(), right_renderer.render(target, (*poses)[k], 4, 1.0, 2 * k + 1)));
     }
   }
   static void TearDownTestSuite() {
@@ -184,8 +185,9 @@ TEST_F(CharucoCalibrationTest, StereoUsesTheCornersBothImagesShow) {
 // The CPU renderer draws the board where the camera model projects it: the ChArUco corners
 // found in a whole view lie on the true projections of the target's corners.
 TEST_F(CharucoCalibrationTest, RenderedCornersLieOnTheTrueProjection) {
-  const cv::Mat image = cv::imread(left_paths_[0], cv::IMREAD_GRAYSCALE);
-  ASSERT_FALSE(image.empty());
+  auto read = vision::read_image_file(left_paths_[0], vision::ImageFileMode::kGrey);
+  ASSERT_TRUE(read) << read.error().message;
+  const cv::Mat image = *read;
   auto found = vision::detect_pattern(image, pattern_);
   ASSERT_TRUE(found.ok()) << found.error().message;
   const CalibrationTarget target = make_calibration_target(pattern_, 0.5);

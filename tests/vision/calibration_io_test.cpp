@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <random>
 
 #include "rendered_pattern.hpp"
@@ -18,6 +17,7 @@
 #include "telear/vision/calibration_images.hpp"
 #include "telear/vision/calibration_report.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "telear/vision/image_file.hpp"
 #include "test_util/temp_dir.hpp"
 
 namespace telear::vision {
@@ -31,7 +31,7 @@ using test::chessboard_9x6;
 void write_board(const std::string& path, double width, double tilt, double roll,
                  cv::Size size = {640, 480}) {
   const cv::Matx33d H = test::view_homography(chessboard_9x6(), size, width, tilt, roll);
-  ASSERT_TRUE(cv::imwrite(path, test::render_pattern(chessboard_9x6(), H, size)));
+  ASSERT_TRUE(write_png_file(path, test::render_pattern(chessboard_9x6(), H, size)));
 }
 
 std::vector<std::string> files_in(const std::string& dir) {
@@ -60,7 +60,7 @@ TEST(CalibrationImages, SkipsImagesWithoutThePatternCorruptOrOfAnotherSizeAndSay
   test_files::TempDir tmp("calib_mono");
   const std::string dir = tmp.string();
   write_board(dir + "/01.png", 380.0, 25.0, 5.0);
-  cv::imwrite(dir + "/02.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(128)));     // no pattern
+  ASSERT_TRUE(write_png_file(dir + "/02.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(128))));
   std::ofstream(dir + "/03.png") << "\x89PNG\r\n\x1a\n this is not a PNG file";  // corrupt
   write_board(dir + "/04.png", 300.0, -30.0, -8.0, {800, 600});                  // other size
   write_board(dir + "/05.png", 300.0, 40.0, 12.0);
@@ -107,7 +107,7 @@ TEST(CalibrationImages, PairsNeedEqualCountsAndBothImages) {
   write_board(dir + "/left1.png", 380.0, 25.0, 5.0);
   write_board(dir + "/right1.png", 370.0, 28.0, 5.0);
   write_board(dir + "/left2.png", 300.0, -30.0, -8.0);
-  cv::imwrite(dir + "/right2.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(128)));
+  ASSERT_TRUE(write_png_file(dir + "/right2.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(128))));
   write_board(dir + "/left3.png", 300.0, 40.0, 12.0);
 
   const auto left = *expand_image_glob(dir + "/left*.png", "--left");

@@ -10,10 +10,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "telear/vision/calibration_images.hpp"
+#include "telear/vision/image_file.hpp"
 #include "telear/vision/stereo_calibration.hpp"
 
 namespace telear::vision {
@@ -62,7 +62,9 @@ Reference opencv_reference(const std::vector<std::size_t>& pairs) {
     std::vector<cv::Point2f> corners[2];
     bool both = true;
     for (int k = 0; k < 2 && both; ++k) {
-      const cv::Mat image = cv::imread(k == 0 ? left[i] : right[i], cv::IMREAD_GRAYSCALE);
+      auto read = read_image_file(k == 0 ? left[i] : right[i], ImageFileMode::kGrey);
+      EXPECT_TRUE(read) << read.error().message;
+      const cv::Mat image = read ? *read : cv::Mat();
       size = image.size();
       bool found = false;
       for (int scale = 1; scale <= 2 && !found; ++scale) {

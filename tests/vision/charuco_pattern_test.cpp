@@ -6,12 +6,12 @@
 
 #include <filesystem>
 #include <opencv2/aruco/charuco.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "telear/vision/calibration_images.hpp"
 #include "telear/vision/calibration_pattern.hpp"
 #include "telear/vision/charuco_board.hpp"
+#include "telear/vision/image_file.hpp"
 #include "test_util/temp_dir.hpp"
 
 namespace telear::vision {
@@ -230,10 +230,10 @@ TEST(CharucoPattern, StereoPairsKeepTheCornersBothImagesShow) {
   // columns 2 and 3 in common. Pair 1: left squares 0..3 (columns 0..2): column 2 alone.
   const std::vector<std::string> left = {dir + "/left0.png", dir + "/left1.png"};
   const std::vector<std::string> right = {dir + "/right0.png", dir + "/right1.png"};
-  ASSERT_TRUE(cv::imwrite(left[0], board_part(board, 0, x(5))));
-  ASSERT_TRUE(cv::imwrite(right[0], board_part(board, x(2), board.cols)));
-  ASSERT_TRUE(cv::imwrite(left[1], board_part(board, 0, x(4))));
-  ASSERT_TRUE(cv::imwrite(right[1], board_part(board, x(2), board.cols)));
+  ASSERT_TRUE(write_png_file(left[0], board_part(board, 0, x(5))));
+  ASSERT_TRUE(write_png_file(right[0], board_part(board, x(2), board.cols)));
+  ASSERT_TRUE(write_png_file(left[1], board_part(board, 0, x(4))));
+  ASSERT_TRUE(write_png_file(right[1], board_part(board, x(2), board.cols)));
 
   const auto pairs = detect_in_image_pairs(left, right, pattern);
   ASSERT_TRUE(pairs.ok()) << pairs.error().message;

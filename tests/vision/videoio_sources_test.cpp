@@ -1,50 +1,24 @@
+// The stereo sources that read through OpenCV's videoio (video files, V4L2 cameras): their own
+// executable, like their own library (telear::vision_videoio), so the other test programs do not
+// load videoio's shared libraries at each start.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "telear/vision/camera_source.hpp"
-#include "telear/vision/synthetic_source.hpp"
 #include "telear/vision/video_file_source.hpp"
-#include "test_util/test_util.hpp"
 
-namespace telear::net {
+namespace telear::vision {
 namespace {
 
-using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
 const char* const kVtest = "/usr/share/doc/opencv-doc/examples/data/vtest.avi";
 
-TEST(SyntheticSource, MakesPairsOfTheAskedSizeNumberedFromOne) {
-  vision::SyntheticSourceOptions options;
-  options.width = 64;
-  options.height = 48;
-  options.fps = 1000;
-  auto source = vision::SyntheticSource::create(options);
-  ASSERT_TRUE(source) << source.error().message;
-  for (std::uint64_t k = 1; k <= 3; ++k) {
-    auto pair = (*source)->capture();
-    ASSERT_TRUE(pair);
-    EXPECT_EQ(pair->frame_number, k);
-    EXPECT_EQ(pair->left.width, 64);
-    EXPECT_EQ(pair->right.height, 48);
-    EXPECT_GT(pair->capture_ns_left, 0);
-    EXPECT_GE(pair->capture_ns_right, pair->capture_ns_left);
-  }
-}
-
-TEST(SyntheticSource, RejectsBadOptions) {
-  vision::SyntheticSourceOptions options;
-  options.width = 8;
-  auto source = vision::SyntheticSource::create(options);
-  ASSERT_FALSE(source);
-  EXPECT_THAT(source.error().message, HasSubstr("outside 16x16 .. 8192x8192"));
-}
-
 TEST(VideoFileSource, DecodesOpenCvsSampleVideo) {
   if (!std::filesystem::exists(kVtest)) GTEST_SKIP() << kVtest << " missing (apt opencv-doc)";
-  auto source = vision::VideoFileSource::open({kVtest, kVtest, 1000.0, 0, 0});
+  auto source = VideoFileSource::open({kVtest, kVtest, 1000.0, 0, 0});
   ASSERT_TRUE(source) << source.error().message;
   EXPECT_EQ((*source)->name(), "files");
   EXPECT_EQ((*source)->width(), 768);
@@ -64,7 +38,7 @@ TEST(VideoFileSource, DecodesOpenCvsSampleVideo) {
 
 TEST(VideoFileSource, ScalesToAGivenSize) {
   if (!std::filesystem::exists(kVtest)) GTEST_SKIP() << kVtest << " missing";
-  auto source = vision::VideoFileSource::open({kVtest, kVtest, 1000.0, 320, 240});
+  auto source = VideoFileSource::open({kVtest, kVtest, 1000.0, 320, 240});
   ASSERT_TRUE(source);
   auto pair = (*source)->capture();
   ASSERT_TRUE(pair);
@@ -73,19 +47,19 @@ TEST(VideoFileSource, ScalesToAGivenSize) {
 }
 
 TEST(VideoFileSource, MissingFileSaysSo) {
-  auto source = vision::VideoFileSource::open({"/nonexistent/left.avi", kVtest, 0, 0, 0});
+  auto source = VideoFileSource::open({"/nonexistent/left.avi", kVtest, 0, 0, 0});
   ASSERT_FALSE(source);
   EXPECT_EQ(source.error().message, "video file '/nonexistent/left.avi': no such file");
 }
 
 TEST(CameraSource, MissingCameraHasAClearMessage) {
-  vision::CameraSourceOptions options;
+  CameraSourceOptions options;
   options.left_index = 63;  // /dev/video63: not a camera on any test machine
   options.right_index = 62;
-  auto source = vision::CameraSource::open(options);
+  auto source = CameraSource::open(options);
   ASSERT_FALSE(source);
   EXPECT_THAT(source.error().message, StartsWith("no camera at /dev/video63: "));
 }
 
 }  // namespace
-}  // namespace telear::net
+}  // namespace telear::vision
