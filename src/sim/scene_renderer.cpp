@@ -225,7 +225,27 @@ double SceneRenderer::gripper_opening_m(double opening) const {
   return body_.gripper_opening_m(opening);
 }
 
+void SceneRenderer::set_configuration(const Eigen::VectorXd& q) {
+  if (q_.size() == q.size() && q_ == q) return;
+  q_ = q;
+  pose_->set_configuration(q);
+  ++scene_version_;
+}
+
+void SceneRenderer::set_gripper_opening(float opening_m) {
+  if (opening_m == opening_m_) return;
+  opening_m_ = opening_m;
+  pose_->set_gripper_opening(opening_m);
+  ++scene_version_;
+}
+
+void SceneRenderer::clear_target() {
+  has_target_ = false;
+  ++scene_version_;
+}
+
 void SceneRenderer::set_object_pose(const Eigen::Isometry3d& T_base_object) {
+  if (T_base_object.matrix() != T_base_object_.matrix()) ++scene_version_;
   T_base_object_ = T_base_object;
   if (object_part_ >= 0)
     environment_.set_matrix(object_part_, T_base_object.matrix().cast<float>());
@@ -239,11 +259,13 @@ Status SceneRenderer::set_target(const CalibrationTarget& target,
   target_.set_matrix(0, T_base_target.matrix().cast<float>());
   T_base_target_ = T_base_target;
   has_target_ = true;
+  ++scene_version_;
   return Status::Ok();
 }
 
 core::Image SceneRenderer::render_clean(Eye eye) {
   const int index = eye == Eye::kLeft ? 0 : 1;
+  if (drawn_version_[index] == scene_version_) return drawn_[index];
   arm_.update(*pose_);
   if (marker_ || flange_target_) {
     marker_parts_.set_matrix(0, T_base_flange().matrix().cast<float>());
@@ -262,7 +284,10 @@ core::Image SceneRenderer::render_clean(Eye eye) {
         if (has_target_) target_.draw(projection, T_view_base, flat);
       });
   const core::Image high = high_res_[index].read_rgba();
-  return downsample_box(high, options_.supersample);
+  drawn_[index] = downsample_box(high, options_.supersample);
+  drawn_version_[index] = scene_version_;
+  ++draw_count_;
+  return drawn_[index];
 }
 
 core::Image SceneRenderer::render(Eye eye, std::uint64_t frame) {

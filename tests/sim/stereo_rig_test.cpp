@@ -322,6 +322,62 @@ TEST_F(StereoRigSceneTest, DeterministicForASeedAndBothEyesSeeTheBoard) {
   }
 }
 
+// A camera watching an arm at rest: the scene is drawn once per eye and its clean image reused
+// (only the noise is new); every change of what is drawn draws again, and a reused image is
+// the one a new draw gives.
+TEST_F(StereoRigSceneTest, AnUnchangedSceneIsDrawnOnceAndEveryChangeDrawsAgain) {
+  SceneOptions options;
+  options.supersample = 1;
+  SceneRenderer scene = make_scene(options);
+  const Eigen::VectorXd q0 = Eigen::VectorXd::Zero(6);
+  Eigen::VectorXd q1 = q0;
+  q1(0) = 0.3;
+  scene.set_configuration(q0);
+  scene.set_gripper_opening(0.02f);
+  const core::Image first = scene.render_clean(Eye::kLeft);
+  const core::Image noisy_a = scene.render(Eye::kLeft, 1);
+  const core::Image noisy_b = scene.render(Eye::kLeft, 2);
+  EXPECT_EQ(scene.draw_count(), 1u);
+  EXPECT_NE(noisy_a.pixels, noisy_b.pixels);  // the noise is each frame's own
+  (void)scene.render(Eye::kRight, 1);
+  EXPECT_EQ(scene.draw_count(), 2u);  // each eye has its own image
+  scene.set_configuration(q0);        // the same joints again: nothing changed
+  scene.set_gripper_opening(0.02f);
+  scene.set_object_pose(scene.object_pose());
+  (void)scene.render_clean(Eye::kLeft);
+  EXPECT_EQ(scene.draw_count(), 2u);
+
+  scene.set_configuration(q1);
+  const core::Image turned = scene.render_clean(Eye::kLeft);
+  EXPECT_EQ(scene.draw_count(), 3u);
+  EXPECT_NE(turned.pixels, first.pixels);
+  scene.set_configuration(q0);
+  const core::Image back = scene.render_clean(Eye::kLeft);
+  EXPECT_EQ(scene.draw_count(), 4u);
+  EXPECT_EQ(back.pixels, first.pixels);  // a reused image is what a new draw gives
+
+  scene.set_gripper_opening(0.05f);
+  (void)scene.render_clean(Eye::kLeft);
+  EXPECT_EQ(scene.draw_count(), 5u);
+  Eigen::Isometry3d moved = scene.object_pose();
+  moved.translation().x() += 0.05;
+  scene.set_object_pose(moved);
+  (void)scene.render_clean(Eye::kLeft);
+  EXPECT_EQ(scene.draw_count(), 6u);
+  auto pattern = vision::parse_calibration_pattern("chessboard:9x6:0.03");
+  ASSERT_TRUE(pattern.ok());
+  const CalibrationTarget target = make_calibration_target(*pattern);
+  auto poses = calibration_target_poses(rig_->cameras, rig_->T_base_rig, target, 1, 3);
+  ASSERT_TRUE(poses.ok()) << poses.error().message;
+  ASSERT_TRUE(scene.set_target(target, poses->front()).ok());
+  const core::Image with_board = scene.render_clean(Eye::kLeft);
+  EXPECT_EQ(scene.draw_count(), 7u);
+  scene.clear_target();
+  const core::Image without_board = scene.render_clean(Eye::kLeft);
+  EXPECT_EQ(scene.draw_count(), 8u);
+  EXPECT_NE(with_board.pixels, without_board.pixels);
+}
+
 // Video noise from the table: the same per-pixel spread as the exact draw, deterministic per
 // (seed, frame, eye), different from frame to frame.
 TEST_F(StereoRigSceneTest, FastNoiseHasTheExactSpreadAndChangesPerFrame) {

@@ -81,8 +81,8 @@ class SceneRenderer {
   const StereoRig& rig() const { return rig_; }
   const SceneOptions& options() const { return options_; }
 
-  void set_configuration(const Eigen::VectorXd& q) { pose_->set_configuration(q); }
-  void set_gripper_opening(float opening_m) { pose_->set_gripper_opening(opening_m); }
+  void set_configuration(const Eigen::VectorXd& q);
+  void set_gripper_opening(float opening_m);
   // Pose of the last link (flange / tool frame) in the base frame, at the current joints.
   Eigen::Isometry3d T_base_flange() const;
   // The gripper's centre frame (between the fingers, the gripper link's axes) in the base
@@ -103,12 +103,17 @@ class SceneRenderer {
 
   // Places a calibration target (its mesh uploaded once per call) or removes it.
   Status set_target(const CalibrationTarget& target, const Eigen::Isometry3d& T_base_target);
-  void clear_target() { has_target_ = false; }
+  void clear_target();
 
   // The eye's image without noise (RGB, camera size, top row first) and with the noise of
-  // (options.seed, frame, eye).
+  // (options.seed, frame, eye). A scene that has not changed since the eye's last image (the
+  // arm at rest, a camera watching it) is not drawn again: its last clean image is reused,
+  // and only the noise is new. (GL draws the same scene to the same pixels, so this is the
+  // image a new draw would give; on a CPU renderer the draw is ~95 % of a frame's cost.)
   core::Image render_clean(Eye eye);
   core::Image render(Eye eye, std::uint64_t frame);
+  // How many times an eye was drawn by GL (not reused).
+  std::uint64_t draw_count() const { return draw_count_; }
 
  private:
   StereoRig rig_;
@@ -129,6 +134,14 @@ class SceneRenderer {
   render::Overlay overlay_[2];
   render::OffscreenTarget high_res_[2];
   std::vector<std::int8_t> noise_table_;  // fast_noise: 2^20 values
+  // What the last draw showed: the scene's version (bumped by every setter that changes what
+  // is drawn), the joints and opening it compares against, and each eye's clean image.
+  std::uint64_t scene_version_ = 1;
+  Eigen::VectorXd q_;
+  float opening_m_ = -1.0f;
+  std::uint64_t drawn_version_[2] = {0, 0};
+  core::Image drawn_[2];
+  std::uint64_t draw_count_ = 0;
 };
 
 // The camera with its pixel grid refined `factor` times (see the header comment).
