@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -34,5 +35,35 @@ inline DoorInput door_input(const std::uint8_t* data, std::size_t size, std::siz
   const std::size_t door = pick(data, size, n);
   return {door, fuzz::text(data, size)};
 }
+
+// Structure from bytes, for a door whose input is fields rather than text (a ROS message):
+// numbers are taken as their bytes (zero once the input runs out), strings as a length byte
+// and that many bytes. Seeds are written in the same layout (fuzz/seeds/*.py).
+class ByteReader {
+ public:
+  ByteReader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+
+  template <typename T>
+  T take() {
+    T value{};
+    const std::size_t n = sizeof(T) < size_ ? sizeof(T) : size_;
+    std::memcpy(&value, data_, n);
+    data_ += n;
+    size_ -= n;
+    return value;
+  }
+  std::string string() {
+    const std::size_t length = take<std::uint8_t>();
+    const std::size_t n = length < size_ ? length : size_;
+    std::string s(reinterpret_cast<const char*>(data_), n);
+    data_ += n;
+    size_ -= n;
+    return s;
+  }
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t size_;
+};
 
 }  // namespace telear::fuzz

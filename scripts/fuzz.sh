@@ -23,7 +23,7 @@ while [ $# -gt 0 ]; do
     *) harnesses+=("$1"); shift ;;
   esac
 done
-all=$(sed -n 's/^telear_fuzz_harness(\([a-z_]*\) .*/\1/p' fuzz/CMakeLists.txt)
+all=$(sed -n 's/^ *telear_fuzz_harness(\([a-z_]*\) .*/\1/p' fuzz/CMakeLists.txt)
 [ ${#harnesses[@]} -gt 0 ] || read -r -a harnesses <<< "$(echo $all)"
 for h in "${harnesses[@]}"; do
   if ! grep -qx "$h" <<< "$all"; then
@@ -69,7 +69,8 @@ for h in "${harnesses[@]}"; do
   case "$h" in
     urdf) dict=(-dict=fuzz/dicts/urdf.dict) ;;
     spec) dict=(-dict=fuzz/dicts/spec.dict) ;;
-    jpeg_frame) ;;
+    mesh) dict=(-dict=fuzz/dicts/mesh.dict) ;;
+    jpeg_frame | robot_rpc | vision_messages | ros_camera_info) ;;  # bytes, not words
     *) dict=(-dict=fuzz/dicts/yaml.dict) ;;
   esac
   echo "fuzz.sh: == $h (${limit[*]})"

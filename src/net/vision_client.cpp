@@ -15,42 +15,11 @@
 #include "telear/net/jpeg_codec.hpp"
 #include "telear/net/latest_slot.hpp"
 #include "telear/net/stereo_jpeg_decoder.hpp"
+#include "telear/net/vision_messages.hpp"
 #include "telear/v1/vision.grpc.pb.h"
-#include "telear/vision/camera_file.hpp"
 
 namespace telear::net {
 namespace {
-
-// The intrinsics fields of a CameraInfo; a model name or coefficient count that does not fit
-// is an error (a camera with the wrong lens model would overlay the arm in the wrong place).
-Result<vision::CameraModel> model_from_intrinsics(const telear::v1::CameraIntrinsics& in,
-                                                  const char* eye) {
-  vision::CameraModel camera;
-  camera.width = in.width();
-  camera.height = in.height();
-  if (in.fc_size() == 2) {
-    camera.fx = in.fc(0);
-    camera.fy = in.fc(1);
-  }
-  if (in.cc_size() == 2) {
-    camera.cx = in.cc(0);
-    camera.cy = in.cc(1);
-  }
-  camera.alpha_c = in.alpha_c();
-  auto distortion = [&in]() -> Result<vision::Distortion> {
-    auto model = vision::parse_distortion_model(
-        in.distortion_model().empty() ? "plumb_bob" : in.distortion_model());
-    if (!model) return model.error();
-    return vision::Distortion::from_coefficients(
-        *model, std::vector<double>(in.kc().begin(), in.kc().end()));
-  }();
-  if (!distortion) {
-    return Error{std::string("vision server camera info, ") + eye + ": " +
-                 distortion.error().message};
-  }
-  camera.kc = *distortion;
-  return camera;
-}
 
 double seconds_between(std::int64_t from_ns, std::int64_t to_ns) {
   return core::ns_to_s(to_ns - from_ns);
@@ -150,29 +119,7 @@ void VisionClient::Impl::decode_loop() {
   std::optional<StereoJpegDecoder> pair_decoder;  // both eyes at once
   if (options.decode_eyes_in_parallel) pair_decoder.emplace();
   JpegDecoder decoder;  // else one after the other
-  const auto decode = [&](const telear::v1::StereoFrame& m) -> Result<DecodedPair> {
-    if (pair_decoder) {
-      return options.decode_planes ? pair_decoder->decode_planes(m.left().jpeg(), m.right().jpeg())
-                                   : pair_decoder->decode(m.left().jpeg(), m.right().jpeg());
-    }
-    DecodedPair pair;
-    if (options.decode_planes) {
-      auto left = decoder.decode_planes(m.left().jpeg());
-      if (!left) return Error{"left eye: " + left.error().message};
-      auto right = decoder.decode_planes(m.right().jpeg());
-      if (!right) return Error{"right eye: " + right.error().message};
-      pair.left_planes = std::move(*left);
-      pair.right_planes = std::move(*right);
-      return pair;
-    }
-    auto left = decoder.decode(m.left().jpeg());
-    if (!left) return Error{"left eye: " + left.error().message};
-    auto right = decoder.decode(m.right().jpeg());
-    if (!right) return Error{"right eye: " + right.error().message};
-    pair.left = std::move(*left);
-    pair.right = std::move(*right);
-    return pair;
-  };
+  const FrameDecoders decoders{pair_decoder ? &*pair_decoder : nullptr, &decoder};
   std::uint64_t last = 0;
   while (true) {
     auto taken = received.wait_take(last, std::chrono::milliseconds(100));
@@ -183,7 +130,7 @@ void VisionClient::Impl::decode_loop() {
     last = taken->number;
     const Received& in = *taken->item;
     const telear::v1::StereoFrame& m = in.message;
-    auto pair = decode(m);
+    auto pair = decode_stereo_frame(m, decoders, options.decode_planes);
     if (!pair) continue;  // a corrupt frame is dropped; the next one replaces it
 
     DecodedStereoFrame out;
@@ -210,8 +157,8 @@ void VisionClient::Impl::decode_loop() {
     out.latency.network_s = seconds_between(send, in.receive_ns);
     out.latency.decode_s = seconds_between(in.receive_ns, out.decoded_ns);
     out.latency.total_s = seconds_between(capture, out.decoded_ns);
-    if (m.scene_q_size() > 0) {
-      out.scene_q = Eigen::Map<const Eigen::VectorXd>(m.scene_q().data(), m.scene_q_size());
+    out.scene_q = scene_configuration(m);
+    if (out.scene_q.size() > 0) {
       out.scene_state_ns = m.scene_state_ns() != 0 ? to_client(m.scene_state_ns()) : 0;
     }
     decoded.put(std::move(out));
@@ -282,28 +229,7 @@ Result<CameraInfoReply> VisionClient::get_camera_info() {
   const grpc::Status status =
       impl_->stub->GetCameraInfo(&context, telear::v1::GetCameraInfoRequest(), &info);
   if (!status.ok()) return impl_->base.error("GetCameraInfo", status);
-  CameraInfoReply reply;
-  reply.found = info.found();
-  reply.source = info.source();
-  reply.source_width = info.source_width();
-  reply.source_height = info.source_height();
-  reply.source_fps = info.source_fps();
-  if (!reply.found) return reply;
-  reply.calibration_yaml = info.calibration_yaml();
-  // The file itself carries everything (poses included); the fields are the fallback.
-  auto file = vision::parse_camera_yaml(info.calibration_yaml(), "vision server calibration");
-  if (file && file->is_stereo()) {
-    reply.cameras.left = file->left;
-    reply.cameras.right = *file->right;
-  } else {
-    auto left = model_from_intrinsics(info.left(), "left");
-    if (!left) return left.error();
-    auto right = model_from_intrinsics(info.right(), "right");
-    if (!right) return right.error();
-    reply.cameras.left = *left;
-    reply.cameras.right = *right;
-  }
-  return reply;
+  return camera_info_reply(info);
 }
 
 std::optional<std::shared_ptr<const DecodedStereoFrame>> VisionClient::latest_frame() const {
