@@ -5,8 +5,17 @@
 // carries) or a CameraInfo (net::camera_info_reply: the calibration file, else the intrinsics
 // fields, checked).
 
+#include <google/protobuf/stubs/logging.h>
+
 #include "fuzz_input.hpp"
 #include "telear/net/vision_messages.hpp"
+
+// protobuf logs every string field that is not UTF-8 as it refuses the message: no finding,
+// and at thousands of inputs a second most of the output.
+const bool kProtobufQuiet = [] {
+  google::protobuf::SetLogHandler(nullptr);
+  return true;
+}();
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace telear;

@@ -10,9 +10,12 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <system_error>
 
 #include "telear/core/number_format.hpp"
+#include "telear/geometry/collada_check.hpp"
 #include "telear/geometry/feature_edges.hpp"
 
 namespace telear::geometry {
@@ -206,6 +209,12 @@ Result<core::Mesh> load_mesh_file(const std::string& path, const MeshLoadOptions
     return Error{"mesh file " + path + " is " + std::to_string(bytes) +
                  " bytes, over the limit of " + std::to_string(options.limits.max_file_bytes) +
                  " bytes"};
+  }
+
+  if (lower_extension(path) == ".dae") {
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (Status s = check_collada_structure(text, path); !s) return s.error();
   }
 
   Assimp::Importer importer;

@@ -198,6 +198,52 @@ TEST(MeshFileTest, MissingUnsupportedAndCorruptFilesAreErrors) {
   }
 }
 
+// Issue 25: assimp 5.2.5 dereferences a null pointer on a COLLADA primitive without inputs (the
+// fuzzer's input, fuzz/crashes/mesh/collada_triangles_without_inputs.dae, crashed the program);
+// telear checks the structure first and refuses the file with what is missing.
+TEST(MeshFileTest, MalformedColladaIsRefusedBeforeAssimpReadsIt) {
+  TempDir dir;
+  const std::string mesh_open = "<COLLADA><library_geometries><geometry id=\"g\"><mesh>";
+  const std::string mesh_close = "</mesh></geometry></library_geometries></COLLADA>";
+  const std::string positions =
+      "<source id=\"pos\"><float_array id=\"pa\" count=\"3\">0 0 0</float_array>"
+      "<technique_common><accessor source=\"#pa\" count=\"1\" stride=\"3\"/>"
+      "</technique_common></source><vertices id=\"v\"><input semantic=\"POSITION\" "
+      "source=\"#pos\"/></vertices>";
+  struct Case {
+    std::string body, problem;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"<triangles count=\"1\"></triangles>", "<triangles> on line 1 has no VERTEX input"},
+           {positions + "<triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#v\"/>"
+                        "</triangles>",
+            "<triangles> on line 1 has no index list <p>"},
+           {positions + "<polylist count=\"1\"><input semantic=\"VERTEX\" source=\"#v\"/>"
+                        "<p>0 0 0</p></polylist>",
+            "<polylist> on line 1 has no <vcount>"},
+           {positions + "<triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#nowhere\"/>"
+                        "<p>0 0 0</p></triangles>",
+            "<input> on line 1: source '#nowhere' names no element of the file"},
+           {"<vertices id=\"v\"/>", "<vertices> on line 1 has no POSITION input"},
+       }) {
+    const std::string path = dir.write("bad.dae", mesh_open + c.body + mesh_close);
+    auto mesh = load_mesh_file(path);
+    ASSERT_FALSE(mesh) << c.problem;
+    EXPECT_EQ(mesh.error().message,
+              "mesh file " + path + " is not a readable mesh (COLLADA: " + c.problem + ")");
+  }
+  const std::string not_collada = dir.write("scene.dae", "<scene/>");
+  auto mesh = load_mesh_file(not_collada);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message,
+            "mesh file " + not_collada +
+                " is not a readable mesh (COLLADA: the root element is not <COLLADA>)");
+  const std::string cut = dir.write("cut.dae", "<COLLADA><library_geometries>");
+  mesh = load_mesh_file(cut);
+  ASSERT_FALSE(mesh);
+  EXPECT_THAT(mesh.error().message, HasSubstr("(COLLADA: not well-formed XML: "));
+}
+
 TEST(MeshFileTest, InvalidOptionsNameTheField) {
   TempDir dir;
   MeshLoadOptions options;

@@ -1,0 +1,122 @@
+#include "telear/geometry/collada_check.hpp"
+
+#include <tinyxml.h>
+
+#include <set>
+#include <string_view>
+
+namespace telear::geometry {
+namespace {
+
+constexpr std::string_view kPrimitives[] = {"triangles",  "polylist",  "polygons", "lines",
+                                            "linestrips", "tristrips", "trifans"};
+
+bool is_primitive(std::string_view name) {
+  for (std::string_view p : kPrimitives) {
+    if (name == p) return true;
+  }
+  return false;
+}
+
+void collect_ids(const TiXmlElement* e, std::set<std::string>& ids) {
+  for (; e != nullptr; e = e->NextSiblingElement()) {
+    if (const char* id = e->Attribute("id")) ids.insert(id);
+    collect_ids(e->FirstChildElement(), ids);
+  }
+}
+
+bool has_input(const TiXmlElement* e, std::string_view semantic) {
+  for (const TiXmlElement* i = e->FirstChildElement("input"); i != nullptr;
+       i = i->NextSiblingElement("input")) {
+    const char* s = i->Attribute("semantic");
+    if (s != nullptr && semantic == s) return true;
+  }
+  return false;
+}
+
+class Checker {
+ public:
+  explicit Checker(std::set<std::string> ids) : ids_(std::move(ids)) {}
+
+  // The first problem found in `e` and below, or empty.
+  std::string check(const TiXmlElement* e, bool in_mesh) const {
+    for (; e != nullptr; e = e->NextSiblingElement()) {
+      const std::string_view name = e->Value();
+      if (std::string problem = check_one(*e, name, in_mesh); !problem.empty()) return problem;
+      if (std::string problem = check(e->FirstChildElement(), in_mesh || name == "mesh");
+          !problem.empty()) {
+        return problem;
+      }
+    }
+    return {};
+  }
+
+ private:
+  std::string check_one(const TiXmlElement& e, std::string_view name, bool in_mesh) const {
+    const std::string where = "<" + std::string(name) + "> on line " + std::to_string(e.Row());
+    if (name == "input") {
+      if (e.Attribute("semantic") == nullptr) return where + " has no semantic";
+      if (std::string problem = reference(e, "source", where); !problem.empty()) return problem;
+    } else if (name == "vertices") {
+      if (!has_input(&e, "POSITION")) return where + " has no POSITION input";
+    } else if (name == "accessor") {
+      if (std::string problem = reference(e, "source", where); !problem.empty()) return problem;
+    } else if (name.rfind("instance_", 0) == 0) {
+      const char* attribute = name == "instance_material" ? "target" : "url";
+      if (e.Attribute(attribute) != nullptr) {
+        if (std::string problem = reference(e, attribute, where); !problem.empty()) {
+          return problem;
+        }
+      }
+    } else if (in_mesh && is_primitive(name)) {
+      if (!has_input(&e, "VERTEX")) return where + " has no VERTEX input";
+      if (e.FirstChildElement("p") == nullptr) return where + " has no index list <p>";
+      if (name == "polylist" && e.FirstChildElement("vcount") == nullptr) {
+        return where + " has no <vcount>";
+      }
+    }
+    return {};
+  }
+
+  // An attribute "#id" that names an element of the file.
+  std::string reference(const TiXmlElement& e, const char* attribute,
+                        const std::string& where) const {
+    const char* value = e.Attribute(attribute);
+    if (value == nullptr) return where + " has no " + attribute;
+    const std::string_view v(value);
+    if (v.size() < 2 || v.front() != '#') {
+      return where + ": " + attribute + " '" + std::string(v) + "' is not a '#id' of this file";
+    }
+    if (ids_.count(std::string(v.substr(1))) == 0) {
+      return where + ": " + attribute + " '" + std::string(v) + "' names no element of the file";
+    }
+    return {};
+  }
+
+  std::set<std::string> ids_;
+};
+
+}  // namespace
+
+Status check_collada_structure(const std::string& text, const std::string& path) {
+  TiXmlDocument doc;
+  doc.Parse(text.c_str());
+  if (doc.Error()) {
+    return Error{"mesh file " + path + " is not a readable mesh (COLLADA: not well-formed XML: " +
+                 doc.ErrorDesc() + " on line " + std::to_string(doc.ErrorRow()) + ")"};
+  }
+  const TiXmlElement* root = doc.RootElement();
+  if (root == nullptr || std::string_view(root->Value()) != "COLLADA") {
+    return Error{"mesh file " + path +
+                 " is not a readable mesh (COLLADA: the root element is not <COLLADA>)"};
+  }
+  std::set<std::string> ids;
+  collect_ids(root, ids);
+  if (std::string problem = Checker(std::move(ids)).check(root->FirstChildElement(), false);
+      !problem.empty()) {
+    return Error{"mesh file " + path + " is not a readable mesh (COLLADA: " + problem + ")"};
+  }
+  return Status::Ok();
+}
+
+}  // namespace telear::geometry
