@@ -15,8 +15,8 @@
 #include <system_error>
 
 #include "telear/core/number_format.hpp"
-#include "telear/geometry/collada_check.hpp"
 #include "telear/geometry/feature_edges.hpp"
+#include "telear/geometry/mesh_file_check.hpp"
 
 namespace telear::geometry {
 namespace {
@@ -211,10 +211,17 @@ Result<core::Mesh> load_mesh_file(const std::string& path, const MeshLoadOptions
                  " bytes"};
   }
 
-  if (lower_extension(path) == ".dae") {
+  // The formats whose importers assimp 5.2.5 crashes or leaks on when malformed
+  // (mesh_file_check.hpp): checked first.
+  if (const std::string extension = lower_extension(path);
+      extension == ".dae" || extension == ".stl") {
     std::ifstream in(path, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (Status s = check_collada_structure(text, path); !s) return s.error();
+    if (extension == ".dae") {
+      if (Status s = check_collada_structure(text, path); !s) return s.error();
+    } else if (is_ascii_stl(text)) {
+      if (Status s = check_ascii_stl_structure(text, path); !s) return s.error();
+    }
   }
 
   Assimp::Importer importer;

@@ -244,6 +244,38 @@ TEST(MeshFileTest, MalformedColladaIsRefusedBeforeAssimpReadsIt) {
   EXPECT_THAT(mesh.error().message, HasSubstr("(COLLADA: not well-formed XML: "));
 }
 
+// Issue 25: assimp 5.2.5 leaks the mesh of an ASCII STL cut inside a facet (the fuzzer's input,
+// fuzz/crashes/mesh/stl_cut_inside_a_facet.stl); telear checks the grammar first.
+TEST(MeshFileTest, MalformedAsciiStlIsRefusedBeforeAssimpReadsIt) {
+  TempDir dir;
+  const std::string facet =
+      "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n"
+      " endloop\nendfacet\n";
+  struct Case {
+    std::string text, problem;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"solid\nfacet normal", "line 2: expected 'facet normal X Y Z' or 'endsolid'"},
+           {"solid cut\n" + facet.substr(0, 40), "line 4: expected 'vertex X Y Z'"},
+           {"solid s\n" + facet, "line 9: expected 'endsolid' (the file ends inside a solid)"},
+           {"solid s\nfacet normal 0 0 1\n outer loop\n  vertex 0 zero 0\n",
+            "line 4: expected 'vertex X Y Z'"},
+           {"solid s\n" + facet + "endsolid s\nextra\n", "line 10: expected 'solid'"},
+       }) {
+    const std::string path = dir.write("bad.stl", c.text);
+    auto mesh = load_mesh_file(path);
+    ASSERT_FALSE(mesh) << c.problem;
+    EXPECT_EQ(mesh.error().message,
+              "mesh file " + path + " is not a readable mesh (ASCII STL, " + c.problem + ")");
+  }
+  // Two solids in one file are ASCII STL as some exporters write it.
+  const std::string two =
+      dir.write("two.stl", "solid a\n" + facet + "endsolid a\nsolid b\n" + facet + "endsolid b\n");
+  auto mesh = load_mesh_file(two);
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  EXPECT_EQ(mesh->triangle_count(), 2u);
+}
+
 TEST(MeshFileTest, InvalidOptionsNameTheField) {
   TempDir dir;
   MeshLoadOptions options;

@@ -1,8 +1,13 @@
-#include "telear/geometry/collada_check.hpp"
+#include "telear/geometry/mesh_file_check.hpp"
 
 #include <tinyxml.h>
 
+#include <cctype>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <set>
+#include <sstream>
 #include <string_view>
 
 namespace telear::geometry {
@@ -115,6 +120,98 @@ Status check_collada_structure(const std::string& text, const std::string& path)
   if (std::string problem = Checker(std::move(ids)).check(root->FirstChildElement(), false);
       !problem.empty()) {
     return Error{"mesh file " + path + " is not a readable mesh (COLLADA: " + problem + ")"};
+  }
+  return Status::Ok();
+}
+
+bool is_ascii_stl(const std::string& text) {
+  std::size_t start = 0;
+  while (start < text.size() && std::isspace(static_cast<unsigned char>(text[start]))) ++start;
+  if (text.compare(start, 5, "solid") != 0) return false;
+  // A binary STL may begin with "solid" too: assimp reads it as binary when its size is the
+  // 84-byte header plus 50 bytes per facet it declares.
+  if (text.size() >= 84) {
+    std::uint32_t facets = 0;
+    std::memcpy(&facets, text.data() + 80, sizeof facets);
+    if (84 + 50 * static_cast<std::uint64_t>(facets) == text.size()) return false;
+  }
+  return true;
+}
+
+Status check_ascii_stl_structure(const std::string& text, const std::string& path) {
+  std::istringstream lines(text);
+  std::string line;
+  int number = 0;
+  // The grammar as states: what the next line must start with.
+  enum class Want { kSolid, kFacetOrEnd, kOuterLoop, kVertex, kEndLoop, kEndFacet, kAfterSolid };
+  Want want = Want::kSolid;
+  int vertices = 0;
+  const auto fail = [&](const std::string& expected) {
+    return Error{"mesh file " + path + " is not a readable mesh (ASCII STL, line " +
+                 std::to_string(number) + ": expected " + expected + ")"};
+  };
+  const auto numbers = [](std::istringstream& words, int count) {
+    for (int i = 0; i < count; ++i) {
+      std::string word;
+      if (!(words >> word)) return false;
+      char* end = nullptr;
+      (void)std::strtod(word.c_str(), &end);
+      if (end == word.c_str() || *end != '\0') return false;
+    }
+    return true;
+  };
+  while (std::getline(lines, line)) {
+    ++number;
+    std::istringstream words(line);
+    std::string first;
+    if (!(words >> first)) continue;  // blank line
+    for (char& c : first) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    switch (want) {
+      case Want::kSolid:
+      case Want::kAfterSolid:
+        if (first != "solid") return fail("'solid'");
+        want = Want::kFacetOrEnd;
+        break;
+      case Want::kFacetOrEnd: {
+        if (first == "endsolid") {
+          want = Want::kAfterSolid;
+          break;
+        }
+        std::string normal;
+        words >> normal;
+        for (char& c : normal) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (first != "facet" || normal != "normal" || !numbers(words, 3)) {
+          return fail("'facet normal X Y Z' or 'endsolid'");
+        }
+        want = Want::kOuterLoop;
+        break;
+      }
+      case Want::kOuterLoop: {
+        std::string loop;
+        words >> loop;
+        for (char& c : loop) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (first != "outer" || loop != "loop") return fail("'outer loop'");
+        want = Want::kVertex;
+        vertices = 0;
+        break;
+      }
+      case Want::kVertex:
+        if (first != "vertex" || !numbers(words, 3)) return fail("'vertex X Y Z'");
+        if (++vertices == 3) want = Want::kEndLoop;
+        break;
+      case Want::kEndLoop:
+        if (first != "endloop") return fail("'endloop'");
+        want = Want::kEndFacet;
+        break;
+      case Want::kEndFacet:
+        if (first != "endfacet") return fail("'endfacet'");
+        want = Want::kFacetOrEnd;
+        break;
+    }
+  }
+  if (want != Want::kAfterSolid) {
+    ++number;
+    return fail(want == Want::kSolid ? "'solid'" : "'endsolid' (the file ends inside a solid)");
   }
   return Status::Ok();
 }
