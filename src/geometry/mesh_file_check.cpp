@@ -2,6 +2,7 @@
 
 #include <tinyxml.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
@@ -139,6 +140,13 @@ bool is_ascii_stl(const std::string& text) {
 }
 
 Status check_ascii_stl_structure(const std::string& text, const std::string& path) {
+  // assimp's reader stops at a NUL byte as at the file's end: a file cut short inside.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    const auto line =
+        std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n');
+    return Error{"mesh file " + path + " is not a readable mesh (ASCII STL, line " +
+                 std::to_string(line + 1) + ": a NUL byte in the text)"};
+  }
   std::istringstream lines(text);
   std::string line;
   int number = 0;

@@ -261,6 +261,9 @@ TEST(MeshFileTest, MalformedAsciiStlIsRefusedBeforeAssimpReadsIt) {
            {"solid s\nfacet normal 0 0 1\n outer loop\n  vertex 0 zero 0\n",
             "line 4: expected 'vertex X Y Z'"},
            {"solid s\n" + facet + "endsolid s\nextra\n", "line 10: expected 'solid'"},
+           {"solid s\nfacet normal 0 0 1\n outer loop\n  vertex 0" + std::string(1, '\0') +
+                " 0 0\n",
+            "line 4: a NUL byte in the text"},
        }) {
     const std::string path = dir.write("bad.stl", c.text);
     auto mesh = load_mesh_file(path);
