@@ -262,6 +262,15 @@ Result<core::Mesh> load_mesh_file(const std::string& path, const MeshLoadOptions
   builder.add_node(*scene->mRootNode, Eigen::Matrix4f::Identity());
   if (builder.error) return *builder.error;
   if (builder.mesh.triangles.empty()) return Error{"mesh file " + path + " holds no triangles"};
+  // A NaN or infinite coordinate (a binary STL's float can be any bit pattern) has no place in
+  // a body: every later step (welding, hulls, collisions) assumes finite positions.
+  for (std::size_t i = 0; i < builder.mesh.vertices.size(); ++i) {
+    const float* p = builder.mesh.vertices[i].position;
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      return Error{"mesh file " + path + ": vertex " + std::to_string(i) +
+                   " is not finite (NaN or infinite coordinates)"};
+    }
+  }
   repair_normals(builder.mesh);
   set_feature_edges(builder.mesh, options.feature_angle_deg);
   return std::move(builder.mesh);

@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "telear/geometry/feature_edges.hpp"
 #include "test_util/mesh_test_files.hpp"
 
@@ -277,6 +279,25 @@ TEST(MeshFileTest, MalformedAsciiStlIsRefusedBeforeAssimpReadsIt) {
   auto mesh = load_mesh_file(two);
   ASSERT_TRUE(mesh) << mesh.error().message;
   EXPECT_EQ(mesh->triangle_count(), 2u);
+}
+
+// Issue 25: a binary STL whose vertex is NaN (fuzz/crashes/mesh/stl_binary_nan_vertex.stl)
+// reached the feature edges' welding grid, where converting NaN to an integer is undefined
+// behaviour; such a mesh is refused.
+TEST(MeshFileTest, ANonFiniteVertexIsRefused) {
+  TempDir dir;
+  std::string stl(80, ' ');
+  const std::uint32_t facets = 1;
+  stl.append(reinterpret_cast<const char*>(&facets), 4);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, nan, 0};
+  stl.append(reinterpret_cast<const char*>(facet), sizeof facet);
+  stl.append(2, '\0');
+  const std::string path = dir.write("nan.stl", stl);
+  auto mesh = load_mesh_file(path);
+  ASSERT_FALSE(mesh);
+  EXPECT_THAT(mesh.error().message, HasSubstr("mesh file " + path + ": vertex "));
+  EXPECT_THAT(mesh.error().message, HasSubstr(" is not finite (NaN or infinite coordinates)"));
 }
 
 TEST(MeshFileTest, InvalidOptionsNameTheField) {
