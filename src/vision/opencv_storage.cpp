@@ -103,6 +103,13 @@ bool is_xml_text(const std::string& text) {
 
 Result<std::string> convert_opencv_storage(const std::string& text, OpenCvStorageFormat format) {
   const char* from = is_xml_text(text) ? "XML" : "YAML";
+  // OpenCV 4.6's in-memory reader takes the text up to its first NUL byte and then crashes
+  // (a null dereference in its XML parser, found by fuzz/camera_file_fuzz.cpp): no text file
+  // holds one, so it is refused first.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    return Error{std::string("not valid OpenCV FileStorage ") + from + ": a NUL byte at offset " +
+                 std::to_string(nul)};
+  }
   try {
     cv::FileStorage in(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     if (!in.isOpened()) {

@@ -419,6 +419,16 @@ projection_matrix:
   data: [510.2, 0.0, 330.0, 0.0, 0.0, 510.2, 240.1, 0.0, 0.0, 0.0, 1.0, 0.0]
 )";
 
+// Issue 25: OpenCV 4.6's in-memory FileStorage reader crashed on an XML camera file with a NUL
+// byte in it (fuzz/crashes/camera_file/xml_nul_in_declaration.xml); it is refused first.
+TEST(CameraFile, ANulByteInAnXmlFileIsRefusedBeforeOpenCvReadsIt) {
+  const std::string text = std::string("<?xml version=") + '\0' + "\"1.0\"?>\n<opencv_storage/>\n";
+  auto file = parse_camera_yaml(text, "nul.xml");
+  ASSERT_FALSE(file);
+  EXPECT_EQ(file.error().message,
+            "camera file 'nul.xml': not valid OpenCV FileStorage XML: a NUL byte at offset 14");
+}
+
 TEST(CameraFile, RosCameraInfoKeepsTheRectificationAndChecksIt) {
   Result<CameraFile> read = parse_camera_yaml(kRos, "left.yaml");
   ASSERT_TRUE(read.ok()) << read.error().message;
