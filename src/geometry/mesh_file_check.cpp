@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 namespace telear::geometry {
 namespace {
@@ -74,12 +76,90 @@ class Checker {
           return problem;
         }
       }
+    } else if (name == "float_array") {
+      return check_float_array(e, where);
     } else if (in_mesh && is_primitive(name)) {
       if (!has_input(&e, "VERTEX")) return where + " has no VERTEX input";
       if (e.FirstChildElement("p") == nullptr) return where + " has no index list <p>";
       if (name == "polylist" && e.FirstChildElement("vcount") == nullptr) {
         return where + " has no <vcount>";
       }
+      return check_indices(e, name, where);
+    }
+    return {};
+  }
+
+  // The numbers in an element's text, or nullopt when a word is not one (integers: digits).
+  static std::optional<std::vector<double>> numbers(const TiXmlElement* e, bool integers) {
+    std::vector<double> values;
+    std::istringstream words(e->GetText() != nullptr ? e->GetText() : "");
+    std::string word;
+    while (words >> word) {
+      if (integers && word.find_first_not_of("0123456789") != std::string::npos) {
+        return std::nullopt;
+      }
+      char* end = nullptr;
+      const double v = std::strtod(word.c_str(), &end);
+      if (end == word.c_str() || *end != '\0') return std::nullopt;
+      values.push_back(v);
+    }
+    return values;
+  }
+
+  static std::string check_float_array(const TiXmlElement& e, const std::string& where) {
+    const auto values = numbers(&e, false);
+    if (!values) return where + " holds a word that is not a number";
+    int count = -1;
+    if (e.QueryIntAttribute("count", &count) != TIXML_SUCCESS || count < 0 ||
+        static_cast<std::size_t>(count) != values->size()) {
+      return where + ": count " + (e.Attribute("count") ? e.Attribute("count") : "(none)") +
+             " but " + std::to_string(values->size()) + " values";
+    }
+    return {};
+  }
+
+  // The index list's length against the primitive's count (assimp reads `count` primitives and
+  // spends minutes and gigabytes on a list shorter than it says: another fuzzer finding).
+  static std::string check_indices(const TiXmlElement& e, std::string_view name,
+                                   const std::string& where) {
+    int max_offset = 0;
+    for (const TiXmlElement* i = e.FirstChildElement("input"); i != nullptr;
+         i = i->NextSiblingElement("input")) {
+      int offset = 0;
+      if (i->QueryIntAttribute("offset", &offset) == TIXML_SUCCESS) {
+        if (offset < 0 || offset > 64) return where + ": an input offset outside 0..64";
+        max_offset = std::max(max_offset, offset);
+      }
+    }
+    const std::size_t stride = static_cast<std::size_t>(max_offset) + 1;
+    std::size_t indices = 0;
+    for (const TiXmlElement* p = e.FirstChildElement("p"); p != nullptr;
+         p = p->NextSiblingElement("p")) {
+      const auto list = numbers(p, true);
+      if (!list) return where + " has a <p> that is not a list of indices";
+      indices += list->size();
+    }
+    int count = -1;
+    if (e.QueryIntAttribute("count", &count) != TIXML_SUCCESS || count < 0) {
+      return where + " has no count";
+    }
+    std::size_t corners = 0;  // vertices the primitives need
+    if (name == "triangles") {
+      corners = 3 * static_cast<std::size_t>(count);
+    } else if (name == "lines") {
+      corners = 2 * static_cast<std::size_t>(count);
+    } else if (name == "polylist") {
+      const auto vcount = numbers(e.FirstChildElement("vcount"), true);
+      if (!vcount || vcount->size() != static_cast<std::size_t>(count)) {
+        return where + ": <vcount> does not hold count = " + std::to_string(count) + " sizes";
+      }
+      for (double v : *vcount) corners += static_cast<std::size_t>(v);
+    } else {
+      return {};  // strips, fans, polygons: one <p> per primitive, any length
+    }
+    if (indices != corners * stride) {
+      return where + ": count " + std::to_string(count) + " needs " +
+             std::to_string(corners * stride) + " indices, <p> holds " + std::to_string(indices);
     }
     return {};
   }

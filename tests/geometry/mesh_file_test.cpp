@@ -227,6 +227,13 @@ TEST(MeshFileTest, MalformedColladaIsRefusedBeforeAssimpReadsIt) {
                         "<p>0 0 0</p></triangles>",
             "<input> on line 1: source '#nowhere' names no element of the file"},
            {"<vertices id=\"v\"/>", "<vertices> on line 1 has no POSITION input"},
+           // fuzz/crashes/mesh/collada_count_beyond_its_indices.dae: assimp spent 40 s on it.
+           {positions + "<triangles count=\"2\"><input semantic=\"VERTEX\" source=\"#v\" "
+                        "offset=\"0\"/><p>0 0 0</p></triangles>",
+            "<triangles> on line 1: count 2 needs 6 indices, <p> holds 3"},
+           {positions + "<triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#v\"/>"
+                        "<p>0c0 0</p></triangles>",
+            "<triangles> on line 1 has a <p> that is not a list of indices"},
        }) {
     const std::string path = dir.write("bad.dae", mesh_open + c.body + mesh_close);
     auto mesh = load_mesh_file(path);
