@@ -49,7 +49,7 @@ fi
 # The fuzz harnesses whose layers this tree has (fuzz/CMakeLists.txt): their corpora and saved
 # findings replayed under ASan, so that a fixed leak stays fixed (the GCC replays above catch
 # crashes only; docs/fuzzing.md).
-asan_fuzz=(robot_file urdf workspace camera_file jpeg_frame robot_rpc vision_messages)
+asan_fuzz=(robot_file urdf workspace camera_file jpeg_frame robot_rpc vision_messages mesh)
 asan_fuzz_targets=()
 for h in "${asan_fuzz[@]}"; do asan_fuzz_targets+=(--target "${h}_fuzz_replay"); done
 

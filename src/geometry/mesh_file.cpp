@@ -4,6 +4,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/DefaultIOSystem.h>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <assimp/Importer.hpp>
@@ -22,6 +23,18 @@ namespace telear::geometry {
 namespace {
 
 namespace fs = std::filesystem;
+
+// assimp opens whatever a file names beside it (an OBJ's mtllib, a COLLADA image): a folder
+// (fopen succeeds on one; the read then fails, and assimp 5.2.5 leaks the stream: a fuzzer
+// finding) or a device such as /dev/zero (an endless read). It opens regular files only.
+class RegularFilesOnly : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    std::error_code ec;
+    if (file == nullptr || !fs::is_regular_file(file, ec)) return nullptr;
+    return DefaultIOSystem::Open(file, mode);
+  }
+};
 
 // Bounds on the magnitude of each axis of a <mesh scale> (validate()).
 constexpr double kMinMeshScale = 1e-6;
@@ -225,6 +238,7 @@ Result<core::Mesh> load_mesh_file(const std::string& path, const MeshLoadOptions
   }
 
   Assimp::Importer importer;
+  importer.SetIOHandler(new RegularFilesOnly);  // the importer owns it
   // URDF meshes are in the link frame: keep COLLADA's coordinates as written (header).
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE,

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <limits>
 
 #include "telear/geometry/feature_edges.hpp"
@@ -305,6 +306,21 @@ TEST(MeshFileTest, ANonFiniteVertexIsRefused) {
   ASSERT_FALSE(mesh);
   EXPECT_THAT(mesh.error().message, HasSubstr("mesh file " + path + ": vertex "));
   EXPECT_THAT(mesh.error().message, HasSubstr(" is not finite (NaN or infinite coordinates)"));
+}
+
+// Issue 25: assimp opened whatever an OBJ's mtllib names -- a folder (it leaked the stream:
+// fuzz/crashes/mesh/obj_mtllib_names_a_folder.obj) or /dev/zero (an endless read). Only
+// regular files are opened; the mesh loads with its default colour.
+TEST(MeshFileTest, AnObjReadsOnlyRegularFilesBesideIt) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "folder");
+  for (const std::string mtllib : {"folder/", "/dev/zero"}) {
+    const std::string path =
+        dir.write("part.obj", "mtllib " + mtllib + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    auto mesh = load_mesh_file(path);
+    ASSERT_TRUE(mesh) << mtllib << ": " << mesh.error().message;
+    EXPECT_EQ(mesh->triangle_count(), 1u) << mtllib;
+  }
 }
 
 TEST(MeshFileTest, InvalidOptionsNameTheField) {
