@@ -227,11 +227,13 @@ Result<core::Mesh> load_mesh_file(const std::string& path, const MeshLoadOptions
   // The formats whose importers assimp 5.2.5 crashes or leaks on when malformed
   // (mesh_file_check.hpp): checked first.
   if (const std::string extension = lower_extension(path);
-      extension == ".dae" || extension == ".stl") {
+      extension == ".dae" || extension == ".stl" || extension == ".obj") {
     std::ifstream in(path, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (extension == ".dae") {
       if (Status s = check_collada_structure(text, path); !s) return s.error();
+    } else if (extension == ".obj") {
+      if (Status s = check_obj_structure(text, path); !s) return s.error();
     } else if (is_ascii_stl(text)) {
       if (Status s = check_ascii_stl_structure(text, path); !s) return s.error();
     }

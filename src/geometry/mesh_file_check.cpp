@@ -205,6 +205,67 @@ Status check_collada_structure(const std::string& text, const std::string& path)
   return Status::Ok();
 }
 
+Status check_obj_structure(const std::string& text, const std::string& path) {
+  // Counts first: an index may name an element defined later in the file.
+  std::size_t counts[3] = {0, 0, 0};  // v, vt, vn
+  {
+    std::istringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+      std::istringstream words(line);
+      std::string first;
+      words >> first;
+      if (first == "v") ++counts[0];
+      if (first == "vt") ++counts[1];
+      if (first == "vn") ++counts[2];
+    }
+  }
+  const auto fail = [&](int number, const std::string& what) {
+    return Error{"mesh file " + path + " is not a readable mesh (OBJ, line " +
+                 std::to_string(number) + ": " + what + ")"};
+  };
+  std::istringstream lines(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(lines, line)) {
+    ++number;
+    std::istringstream words(line);
+    std::string first;
+    words >> first;
+    if (first != "f" && first != "l" && first != "p") continue;
+    std::string corner;
+    int corners = 0;
+    while (words >> corner) {
+      ++corners;
+      std::size_t part = 0, begin = 0;
+      while (part < 3) {
+        const std::size_t end = std::min(corner.find('/', begin), corner.size());
+        const std::string index = corner.substr(begin, end - begin);
+        if (!index.empty()) {
+          char* stop = nullptr;
+          const long long i = std::strtoll(index.c_str(), &stop, 10);
+          const std::size_t magnitude =
+              static_cast<std::size_t>(i < 0 ? -(i + 1) + 1 : i);  // |i| without overflow
+          if (*stop != '\0' || i == 0 || magnitude > counts[part]) {
+            static const char* const kNames[] = {"vertex", "texture coordinate", "normal"};
+            return fail(number, "'" + corner + "' names no " + kNames[part] + " of the file (" +
+                                    std::to_string(counts[part]) + " defined)");
+          }
+        } else if (part == 0) {
+          return fail(number, "'" + corner + "' has no vertex index");
+        }
+        if (end == corner.size()) break;
+        begin = end + 1;
+        ++part;
+      }
+      if (part >= 3) return fail(number, "'" + corner + "' has more than three indices");
+    }
+    if (first == "f" && corners < 3) return fail(number, "a face needs three vertices");
+    if (first == "l" && corners < 2) return fail(number, "a line needs two vertices");
+  }
+  return Status::Ok();
+}
+
 bool is_ascii_stl(const std::string& text) {
   std::size_t start = 0;
   while (start < text.size() && std::isspace(static_cast<unsigned char>(text[start]))) ++start;

@@ -323,6 +323,35 @@ TEST(MeshFileTest, AnObjReadsOnlyRegularFilesBesideIt) {
   }
 }
 
+// Issue 25: assimp leaks the mesh of an OBJ whose face names a vertex the file lacks
+// (fuzz/crashes/mesh/obj_face_beyond_its_vertices.obj); telear checks every index first.
+TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
+  TempDir dir;
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n";
+  struct Case {
+    std::string text, problem;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"v 0 0 0\nf 1\no f3\nf 21\n", "line 2: a face needs three vertices"},
+           {tri + "f 1 2 4\n", "line 5: '4' names no vertex of the file (3 defined)"},
+           {tri + "f 1//1 2//2 3//1\n", "line 5: '2//2' names no normal of the file (1 defined)"},
+           {tri + "f 1/1 2/1 3/1\n",
+            "line 5: '1/1' names no texture coordinate of the file (0 defined)"},
+           {tri + "f -1 -2 -4\n", "line 5: '-4' names no vertex of the file (3 defined)"},
+           {tri + "f 1 2 x\n", "line 5: 'x' names no vertex of the file (3 defined)"},
+       }) {
+    const std::string path = dir.write("bad.obj", c.text);
+    auto mesh = load_mesh_file(path);
+    ASSERT_FALSE(mesh) << c.problem;
+    EXPECT_EQ(mesh.error().message,
+              "mesh file " + path + " is not a readable mesh (OBJ, " + c.problem + ")");
+  }
+  // Relative (negative) indices and v//vn corners within the lists load.
+  auto mesh = load_mesh_file(dir.write("good.obj", tri + "f -3//1 -2//1 -1//1\n"));
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  EXPECT_EQ(mesh->triangle_count(), 1u);
+}
+
 TEST(MeshFileTest, InvalidOptionsNameTheField) {
   TempDir dir;
   MeshLoadOptions options;

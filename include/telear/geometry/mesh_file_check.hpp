@@ -1,7 +1,8 @@
 #pragma once
 // Mesh files checked before assimp reads them. assimp 5.2.5 (Debian 12's) crashes or leaks on
 // some malformed files -- found by fuzz/mesh_fuzz.cpp: a COLLADA <triangles> with no <input>
-// dereferences a null pointer, an ASCII STL cut inside a facet leaks the mesh -- so a hostile
+// dereferences a null pointer, an ASCII STL cut inside a facet or an OBJ face naming a vertex
+// the file lacks leaks the mesh -- so a hostile
 // mesh named by a URDF could crash the program that loads it. The structure assimp's importers
 // rely on is checked first, and a file that breaks it is refused with what is wrong.
 //
@@ -29,6 +30,11 @@ Status check_collada_structure(const std::string& text, const std::string& path)
 // numbers as numbers; a file cut short or with another word is refused
 // with the line and what was expected.
 Status check_ascii_stl_structure(const std::string& text, const std::string& path);
+
+// Wavefront OBJ: every index of a face, line or point ('f', 'l', 'p'; v, v/vt, v//vn, v/vt/vn,
+// negative ones counting back) names a vertex, texture coordinate or normal the file has, and
+// is a number; a face has at least three vertices.
+Status check_obj_structure(const std::string& text, const std::string& path);
 
 // Whether assimp reads `text` (`size` bytes) as an ASCII STL: it starts with "solid" and its
 // size is not that of the binary STL its header would describe.
