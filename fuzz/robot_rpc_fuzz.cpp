@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include <google/protobuf/stubs/logging.h>
@@ -107,14 +108,22 @@ void settle(Rig& r) {
   if (!r.stub->RenewLease(context().get(), renew, &lease).ok()) acquire_lease(r);
 }
 
-template <typename Request>
-bool parse(Request& request, const std::uint8_t* data, std::size_t size) {
-  return request.ParseFromArray(data, static_cast<int>(size));
-}
+using Stub = v1::RobotService::Stub;
 
-template <typename Request>
-void set_lease(Request& request, bool keep_own, const Rig& r) {
-  if (!keep_own) request.set_lease_id(r.lease_id);
+// One request from the input's bytes, sent with the held lease's id put in (unless the input
+// keeps its own); nothing when the bytes are no such message.
+template <typename Request, typename Response>
+std::optional<grpc::Status> send(Rig& r,
+                                 grpc::Status (Stub::*rpc)(grpc::ClientContext*, const Request&,
+                                                           Response*),
+                                 const std::uint8_t* data, std::size_t size, bool keep_own_lease) {
+  Request request;
+  if (!request.ParseFromArray(data, static_cast<int>(size))) return std::nullopt;
+  if constexpr (requires { request.set_lease_id(std::string()); }) {
+    if (!keep_own_lease) request.set_lease_id(r.lease_id);
+  }
+  Response response;
+  return ((*r.stub).*rpc)(context().get(), request, &response);
 }
 
 }  // namespace
@@ -134,103 +143,55 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ++data;
   --size;
   const core::DriverSnapshot before = r.driver->snapshot();
-  bool refused_motion = false;
+  const bool keep = keep_own_lease;
+  std::optional<grpc::Status> status;
+  bool motion = false;  // a command that moves the arm when accepted
   switch (selector % 12) {
-    case 0: {
-      v1::JogRequest request;
-      if (!parse(request, data, size)) return 0;
-      set_lease(request, keep_own_lease, r);
-      v1::JogResponse response;
-      refused_motion = !r.stub->Jog(context().get(), request, &response).ok();
+    case 0:
+      status = send(r, &Stub::Jog, data, size, keep);
+      motion = true;
       break;
-    }
-    case 1: {
-      v1::ExecuteTrajectoryRequest request;
-      if (!parse(request, data, size)) return 0;
-      set_lease(request, keep_own_lease, r);
-      v1::ExecuteTrajectoryResponse response;
-      refused_motion = !r.stub->ExecuteTrajectory(context().get(), request, &response).ok();
+    case 1:
+      status = send(r, &Stub::ExecuteTrajectory, data, size, keep);
+      motion = true;
       break;
-    }
-    case 2: {
-      v1::ExecutePlanRequest request;
-      if (!parse(request, data, size)) return 0;
-      set_lease(request, keep_own_lease, r);
-      v1::ExecutePlanResponse response;
-      refused_motion = !r.stub->ExecutePlan(context().get(), request, &response).ok();
+    case 2:
+      status = send(r, &Stub::ExecutePlan, data, size, keep);
+      motion = true;
       break;
-    }
-    case 3: {
-      v1::PreviewPlanRequest request;
-      if (!parse(request, data, size)) return 0;
-      v1::PreviewPlanResponse response;
-      (void)r.stub->PreviewPlan(context().get(), request, &response);
+    case 3:
+      status = send(r, &Stub::PreviewPlan, data, size, keep);
       break;
-    }
-    case 4: {
-      v1::SetGripperRequest request;
-      if (!parse(request, data, size)) return 0;
-      set_lease(request, keep_own_lease, r);
-      v1::SetGripperResponse response;
-      (void)r.stub->SetGripper(context().get(), request, &response);
+    case 4:
+      status = send(r, &Stub::SetGripper, data, size, keep);
       break;
-    }
-    case 5: {
-      v1::CancelRequest request;
-      if (!parse(request, data, size)) return 0;
-      set_lease(request, keep_own_lease, r);
-      v1::CancelResponse response;
-      (void)r.stub->Cancel(context().get(), request, &response);
+    case 5:
+      status = send(r, &Stub::Cancel, data, size, keep);
       break;
-    }
-    case 6: {
-      v1::EStopRequest request;
-      if (!parse(request, data, size)) return 0;
-      v1::EStopResponse response;
-      (void)r.stub->EStop(context().get(), request, &response);
+    case 6:
+      status = send(r, &Stub::EStop, data, size, keep);
       break;
-    }
-    case 7: {
-      v1::ResetEStopRequest request;
-      if (!parse(request, data, size)) return 0;
-      set_lease(request, keep_own_lease, r);
-      v1::ResetEStopResponse response;
-      (void)r.stub->ResetEStop(context().get(), request, &response);
+    case 7:
+      status = send(r, &Stub::ResetEStop, data, size, keep);
       break;
-    }
-    case 8: {
-      v1::RenewLeaseRequest request;
-      if (!parse(request, data, size)) return 0;
-      set_lease(request, keep_own_lease, r);
-      v1::Lease response;
-      (void)r.stub->RenewLease(context().get(), request, &response);
+    case 8:
+      status = send(r, &Stub::RenewLease, data, size, keep);
       break;
-    }
-    case 9: {
-      v1::AcquireLeaseRequest request;
-      if (!parse(request, data, size)) return 0;
-      v1::Lease response;
-      (void)r.stub->AcquireLease(context().get(), request, &response);
+    case 9:
+      status = send(r, &Stub::AcquireLease, data, size, keep);
       break;
-    }
-    case 10: {
-      v1::ReleaseLeaseRequest request;
-      if (!parse(request, data, size)) return 0;
-      set_lease(request, keep_own_lease, r);
-      v1::ReleaseLeaseResponse response;
-      (void)r.stub->ReleaseLease(context().get(), request, &response);
+    case 10:
+      status = send(r, &Stub::ReleaseLease, data, size, keep);
       break;
-    }
     default: {
-      v1::PingRequest request;
-      if (!parse(request, data, size)) return 0;
-      v1::PingResponse response;
-      (void)r.stub->Ping(context().get(), request, &response);
+      status = send(r, &Stub::Ping, data, size, keep);
       v1::RobotInfo info;
       (void)r.stub->GetInfo(context().get(), v1::GetInfoRequest(), &info);
       break;
     }
   }
+  if (!status) return 0;
+  const bool refused_motion = motion && !status->ok();
   if (refused_motion) {
     // A refused motion command left the arm at rest where it was.
     const core::DriverSnapshot after = r.driver->snapshot();
