@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <opencv2/core.hpp>
 #include <opencv2/core/persistence.hpp>
 #include <string>
@@ -9,6 +10,10 @@
 
 namespace telear::vision {
 namespace {
+
+// The largest rows or cols of a matrix in a camera or calibration file (they hold 3x3, 4x4,
+// 1x14 matrices).
+constexpr long long kMaxMatrixSide = 1024;
 
 // An OpenCV matrix as the readers see it: a map of exactly rows, cols, dt and data. The
 // layouts' own markers (YAML's !!opencv-matrix tag, XML's type_id attribute) are not exposed
@@ -109,6 +114,28 @@ Result<std::string> convert_opencv_storage(const std::string& text, OpenCvStorag
   if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
     return Error{std::string("not valid OpenCV FileStorage ") + from + ": a NUL byte at offset " +
                  std::to_string(nul)};
+  }
+  // OpenCV allocates an opencv-matrix's rows x cols before it reads the data: a file that says
+  // `<cols>4294967288</cols>` asked for 17 GB (found by fuzz/camera_file_fuzz.cpp). The
+  // matrices of camera and calibration files are small; larger sizes are refused first.
+  for (const char* key : {"<rows>", "<cols>", "rows:", "cols:"}) {
+    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+      std::size_t i = at + std::strlen(key);
+      while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+      std::size_t digits = 0;
+      long long value = 0;
+      while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) && digits < 10) {
+        value = value * 10 + (text[i] - '0');
+        ++i;
+        ++digits;
+      }
+      const bool more_digits = i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]));
+      if (more_digits || value > kMaxMatrixSide) {
+        return Error{std::string("not valid OpenCV FileStorage ") + from + ": a matrix's " +
+                     std::string(key).substr(key[0] == '<' ? 1 : 0, 4) + " over " +
+                     std::to_string(kMaxMatrixSide)};
+      }
+    }
   }
   try {
     cv::FileStorage in(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);

@@ -429,6 +429,20 @@ TEST(CameraFile, ANulByteInAnXmlFileIsRefusedBeforeOpenCvReadsIt) {
             "camera file 'nul.xml': not valid OpenCV FileStorage XML: a NUL byte at offset 14");
 }
 
+// Issue 25: OpenCV allocates an opencv-matrix's rows x cols before reading its data; a camera
+// file saying <cols>4294967288</cols> asked for 17 GB
+// (fuzz/crashes/camera_file/xml_matrix_of_17_gigabytes.xml). Sizes over 1024 are refused first.
+TEST(CameraFile, AMatrixLargerThanAnyCameraFileHoldsIsRefusedBeforeOpenCvAllocatesIt) {
+  const std::string text =
+      "<?xml version=\"1.0\"?>\n<opencv_storage>\n<camera_matrix type_id=\"opencv-matrix\">"
+      "<rows>3</rows><cols>4294967288</cols><dt>d</dt><data>1 0 0</data></camera_matrix>\n"
+      "</opencv_storage>\n";
+  auto file = parse_camera_yaml(text, "huge.xml");
+  ASSERT_FALSE(file);
+  EXPECT_EQ(file.error().message,
+            "camera file 'huge.xml': not valid OpenCV FileStorage XML: a matrix's cols over 1024");
+}
+
 TEST(CameraFile, RosCameraInfoKeepsTheRectificationAndChecksIt) {
   Result<CameraFile> read = parse_camera_yaml(kRos, "left.yaml");
   ASSERT_TRUE(read.ok()) << read.error().message;
