@@ -130,10 +130,11 @@ Result<std::string> convert_opencv_storage(const std::string& text, OpenCvStorag
         ++digits;
       }
       const bool more_digits = i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]));
-      if (more_digits || value > kMaxMatrixSide) {
+      // Not a number at all (`<rows>?</rows>`) made OpenCV allocate 48 GB as well.
+      if (digits == 0 || more_digits || value > kMaxMatrixSide) {
         return Error{std::string("not valid OpenCV FileStorage ") + from + ": a matrix's " +
-                     std::string(key).substr(key[0] == '<' ? 1 : 0, 4) + " over " +
-                     std::to_string(kMaxMatrixSide)};
+                     std::string(key).substr(key[0] == '<' ? 1 : 0, 4) +
+                     " is not a number from 0 to " + std::to_string(kMaxMatrixSide)};
       }
     }
   }

@@ -440,7 +440,16 @@ TEST(CameraFile, AMatrixLargerThanAnyCameraFileHoldsIsRefusedBeforeOpenCvAllocat
   auto file = parse_camera_yaml(text, "huge.xml");
   ASSERT_FALSE(file);
   EXPECT_EQ(file.error().message,
-            "camera file 'huge.xml': not valid OpenCV FileStorage XML: a matrix's cols over 1024");
+            "camera file 'huge.xml': not valid OpenCV FileStorage XML: a matrix's cols is not a "
+            "number from 0 to 1024");
+  // fuzz/crashes/camera_file/xml_rows_not_a_number.xml: 48 GB.
+  std::string question = text;
+  question.replace(question.find("<rows>3"), 7, "<rows>?");
+  file = parse_camera_yaml(question, "question.xml");
+  ASSERT_FALSE(file);
+  EXPECT_EQ(file.error().message,
+            "camera file 'question.xml': not valid OpenCV FileStorage XML: a matrix's rows is not "
+            "a number from 0 to 1024");
 }
 
 TEST(CameraFile, RosCameraInfoKeepsTheRectificationAndChecksIt) {
