@@ -300,6 +300,32 @@ TEST(UrdfConformance, MalformedTextNeverCrashes) {
   EXPECT_EQ(self.error().message, "URDF 't.urdf': mimic loop j -> j");
 }
 
+// Issue 25: TinyXML 1 (urdfdom's parser) reads past the end of a text cut inside a multi-byte
+// UTF-8 character (fuzz/crashes/urdf/utf8_cut_at_the_end.urdf, a heap overflow under ASan);
+// text that is not UTF-8 is refused first, with the byte named. Valid UTF-8 names still load.
+TEST(UrdfConformance, TextThatIsNotUtf8IsRefusedBeforeTheXmlParserReadsIt) {
+  const std::string head = "<robot name=\"r\"><link name=\"a\"/></robot>";
+  for (const auto& [text, at] : {std::pair<std::string, std::size_t>{head + "\xD6", head.size()},
+                                 {"<robot name=\"\xC0\xAF\"/>", 13},          // an overlong '/'
+                                 {"<robot name=\"\xED\xA0\x80\"/>", 13},      // a surrogate
+                                 {"<robot name=\"\xF4\x90\x80\x80\"/>", 13},  // past U+10FFFF
+                                 {"<robot name=\"\xE2\x82\"/>", 13}}) {  // a cut 3-byte sequence
+    auto model = parse_urdf(text, "bytes.urdf");
+    ASSERT_FALSE(model) << at;
+    EXPECT_EQ(model.error().message,
+              "URDF 'bytes.urdf': not UTF-8 text (an invalid byte "
+              "sequence at byte " +
+                  std::to_string(at) + ")");
+  }
+  auto utf8 = parse_urdf_description(
+      "<robot name=\"bras_\xC3\xA9l\xC3\xA8ve\"><link name=\"a\"/><link name=\"b\"/>"
+      "<joint name=\"j\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>"
+      "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>"
+      "</joint></robot>",
+      "utf8.urdf");
+  EXPECT_TRUE(utf8) << utf8.error().message;
+}
+
 // Issue 25, the fuzzer's first findings (fuzz/crashes/urdf/): URDFs whose joints form a cycle
 // made urdfdom build links that own each other and never free them. The graph is now checked
 // before urdfdom builds it; these name the cycle (the fuzz replay under ASan would name a leak).
