@@ -24,18 +24,13 @@ cv::Mat owned_mat(void* pixels, int width, int height, int channels, bool sixtee
 cv::Mat to_opencv_order(cv::Mat image) {
   cv::Mat out;
   switch (image.channels()) {
-    case 2:
-      cv::cvtColor(image, out, cv::COLOR_GRAY2BGRA);
-      // cvtColor fills alpha with the maximum; keep the file's alpha.
-      {
-        std::vector<cv::Mat> planes;
-        cv::split(image, planes);
-        cv::Mat bgra[4];
-        cv::split(out, bgra);
-        bgra[3] = planes[1];
-        cv::merge(bgra, 4, out);
-      }
+    case 2: {  // grey + alpha: the grey in B, G and R, the file's alpha kept
+      std::vector<cv::Mat> planes;
+      cv::split(image, planes);
+      const cv::Mat bgra[4] = {planes[0], planes[0], planes[0], planes[1]};
+      cv::merge(bgra, 4, out);
       return out;
+    }
     case 3:
       cv::cvtColor(image, out, cv::COLOR_RGB2BGR);
       return out;
