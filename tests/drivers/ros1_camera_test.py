@@ -14,6 +14,7 @@ serves from camera_info; and the errors, by their text.
 Environment (set by CTest): TELEAR_BINARY, TELEAR_ROS_TEST_DIR (the fixture's master_uri).
 """
 
+import atexit
 import io
 import json
 import os
@@ -57,7 +58,9 @@ def load_vision_stubs(out_dir):
     return vision_pb2, vision_pb2_grpc
 
 
-pb, pb_grpc = load_vision_stubs(tempfile.mkdtemp(prefix="telear-stubs-"))
+_stubs_dir = tempfile.mkdtemp(prefix="telear-stubs-")
+atexit.register(shutil.rmtree, _stubs_dir, True)  # each CTest entry is its own interpreter
+pb, pb_grpc = load_vision_stubs(_stubs_dir)
 
 
 def monotonic_ns():

@@ -3,8 +3,10 @@ FollowJointTrajectory server, ros1_test_controller.cpp), `telear robot-server --
 gRPC client of that server (stubs generated from proto/ at run time, as the Python example does).
 """
 
+import atexit
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -23,6 +25,8 @@ import ros_master  # noqa: E402
 PUMA_JOINTS = ["waist", "shoulder", "elbow", "wrist_roll", "wrist_bend", "wrist_swivel"]
 
 _stubs_dir = tempfile.mkdtemp(prefix="telear-stubs-")
+# Removed at exit: each CTest entry is its own interpreter, and 2,400 of these were left in /tmp.
+atexit.register(shutil.rmtree, _stubs_dir, True)
 pb, pb_grpc = robot_example.load_stubs(_stubs_dir)
 
 
