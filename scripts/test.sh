@@ -56,16 +56,17 @@ for h in "${asan_fuzz[@]}"; do asan_fuzz_targets+=(--target "${h}_fuzz_replay");
 # The AddressSanitizer tree: -O1 -g1, ASan's recommended optimisation with line tables only.
 # Unity batches and precompiled headers as in the main tree (the Eigen allocator mismatch with
 # Debian's uninstrumented Ceres is settled in CMakeLists.txt). Only the net test executable
-# (tests/net/CMakeLists.txt) and the fuzz replays above: the network layer, the simulated robot driver and the net tests
-# are compiled instrumented; core, geometry and vision are linked from the main tree's build,
-# uninstrumented (TELEAR_PREBUILT_LAYERS; two thirds of this tree's compile time). Their
-# code's own memory errors are therefore not looked for here; leaks anywhere still are (ASan
-# intercepts every allocation).
+# (tests/net/CMakeLists.txt) and the fuzz replays above: the network layer, the simulated
+# robot driver and the net tests are compiled instrumented; core, geometry, vision and the
+# protoc-generated messages are linked from the main tree's build, uninstrumented
+# (TELEAR_PREBUILT_LAYERS; two thirds of this tree's compile time). Their code's own memory
+# errors are therefore not looked for here (the fuzz harnesses compile all of it instrumented,
+# docs/fuzzing.md); leaks anywhere still are (ASan intercepts every allocation).
 asan_build() {
   if [ ! -f "$asan_dir/build.ninja" ]; then
     cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
       -DTELEAR_SANITIZE=address -DTELEAR_BUILD_BENCH=OFF \
-      -DTELEAR_PREBUILT_DIR="$(cd "$build_dir" && pwd)" -DTELEAR_PREBUILT_LAYERS="core;geometry;vision"
+      -DTELEAR_PREBUILT_DIR="$(cd "$build_dir" && pwd)" -DTELEAR_PREBUILT_LAYERS="core;geometry;vision;proto"
   fi
   cmake --build "$asan_dir" -j "${TELEAR_JOBS:-2}" --target net_test "${asan_fuzz_targets[@]}"
 }
