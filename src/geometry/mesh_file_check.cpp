@@ -205,7 +205,24 @@ Status check_collada_structure(const std::string& text, const std::string& path)
   return Status::Ok();
 }
 
+namespace {
+
+// assimp's text readers stop at a NUL byte as at the file's end: a file cut short inside a
+// statement, where they leak what they were building (an ASCII STL's facet, an OBJ's mesh:
+// fuzz/crashes/mesh/). A text format has no NUL byte.
+std::optional<Error> nul_byte_error(const std::string& text, const std::string& path,
+                                    const char* format) {
+  const std::size_t nul = text.find('\0');
+  if (nul == std::string::npos) return std::nullopt;
+  const auto line = std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n');
+  return Error{"mesh file " + path + " is not a readable mesh (" + format + ", line " +
+               std::to_string(line + 1) + ": a NUL byte in the text)"};
+}
+
+}  // namespace
+
 Status check_obj_structure(const std::string& text, const std::string& path) {
+  if (auto nul = nul_byte_error(text, path, "OBJ")) return *nul;
   // Counts first: an index may name an element defined later in the file.
   std::size_t counts[3] = {0, 0, 0};  // v, vt, vn
   {
@@ -281,13 +298,7 @@ bool is_ascii_stl(const std::string& text) {
 }
 
 Status check_ascii_stl_structure(const std::string& text, const std::string& path) {
-  // assimp's reader stops at a NUL byte as at the file's end: a file cut short inside.
-  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
-    const auto line =
-        std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n');
-    return Error{"mesh file " + path + " is not a readable mesh (ASCII STL, line " +
-                 std::to_string(line + 1) + ": a NUL byte in the text)"};
-  }
+  if (auto nul = nul_byte_error(text, path, "ASCII STL")) return *nul;
   std::istringstream lines(text);
   std::string line;
   int number = 0;

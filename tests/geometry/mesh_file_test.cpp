@@ -324,7 +324,8 @@ TEST(MeshFileTest, AnObjReadsOnlyRegularFilesBesideIt) {
 }
 
 // Issue 25: assimp leaks the mesh of an OBJ whose face names a vertex the file lacks
-// (fuzz/crashes/mesh/obj_face_beyond_its_vertices.obj); telear checks every index first.
+// (fuzz/crashes/mesh/obj_face_beyond_its_vertices.obj), or that has a NUL byte; telear checks
+// every index first.
 TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
   TempDir dir;
   const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n";
@@ -339,6 +340,9 @@ TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
             "line 5: '1/1' names no texture coordinate of the file (0 defined)"},
            {tri + "f -1 -2 -4\n", "line 5: '-4' names no vertex of the file (3 defined)"},
            {tri + "f 1 2 x\n", "line 5: 'x' names no vertex of the file (3 defined)"},
+           // assimp leaked the mesh of an OBJ with a NUL byte in it, read as the file's end
+           // (fuzz/crashes/mesh/obj_nul_inside_a_statement.obj).
+           {tri + "f 1 2" + std::string(1, '\0') + " 3\n", "line 5: a NUL byte in the text"},
        }) {
     const std::string path = dir.write("bad.obj", c.text);
     auto mesh = load_mesh_file(path);
