@@ -1,8 +1,7 @@
 #include "telear/lab/session_recorder.hpp"
 
 #include <spdlog/spdlog.h>
-#include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
+
 #include <thread>
 
 #include "telear/core/clock.hpp"
@@ -13,35 +12,24 @@ namespace telear::lab {
 
 SessionRecorder::SessionRecorder(session::Session& session, render::ArView& view,
                                  RecorderOptions options)
-    : session_(session),
-      view_(view),
-      options_(std::move(options)),
-      writer_(std::make_unique<cv::VideoWriter>()) {}
+    : session_(session), view_(view), options_(std::move(options)) {}
 
 SessionRecorder::~SessionRecorder() = default;
 
 void SessionRecorder::close_video() {
-  writer_->release();
+  if (writer_) writer_->close();
+  writer_.reset();
 }
 
 Status SessionRecorder::open_video(int width, int height) {
   if (!options_.video) return Status::Ok();
   const std::string path = options_.out_dir + "/demo_stereo.mp4";
-  const cv::Size size(width, height);
-  writer_->open(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('a', 'v', 'c', '1'), options_.fps,
-                size);
-  if (writer_->isOpened()) {
-    recording_.video_codec = "avc1";
-  } else {
-    writer_->open(path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), options_.fps, size);
-    if (!writer_->isOpened()) {
-      return Error{"cannot write the video " + path +
-                   ": neither an H.264 (avc1) nor an MPEG-4 (mp4v) writer opens; check the "
-                   "folder and OpenCV's FFmpeg support, or record without video"};
-    }
-    recording_.video_codec = "mp4v";
-    recording_.video_warning = "this OpenCV cannot write H.264 (avc1); " + path +
-                               " is MPEG-4 part 2 (mp4v), which browsers may not play";
+  auto writer = vision::open_mp4_writer({path, width, height, options_.fps});
+  if (!writer) return writer.error();
+  writer_ = std::move(*writer);
+  recording_.video_codec = writer_->codec();
+  recording_.video_warning = writer_->warning();
+  if (!recording_.video_warning.empty()) {
     // Logged here as well as recorded (the demo's report, the console's status), so that no
     // caller can lose it: the file plays in fewer places than the docs promise.
     spdlog::warn("session recorder: {}", recording_.video_warning);
@@ -86,12 +74,13 @@ void SessionRecorder::tick() {
   }
   view_.render(view::ar_view_input(v));
   last_image_ = view_.read_composed_rgb();
-  if (writer_->isOpened()) {
-    cv::Mat rgb(last_image_.height, last_image_.width, CV_8UC3, last_image_.pixels.data());
-    cv::Mat bgr;
-    cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-    writer_->write(bgr);
-    ++recording_.video_frames;
+  if (writer_) {
+    if (Status s = writer_->write(last_image_); s) {
+      ++recording_.video_frames;
+    } else if (recording_.video_warning.empty()) {
+      recording_.video_warning = s.error().message;  // reported once, in the demo's report
+      spdlog::warn("session recorder: {}", s.error().message);
+    }
   }
   ++recording_.ticks;
   const double spent = std::chrono::duration<double>(Clock::now() - now).count();

@@ -4,9 +4,8 @@
 
 #include "telear/net/token_file.hpp"
 #include "telear/sim/sim_rig_source.hpp"
-#include "telear/vision/camera_source.hpp"
 #include "telear/vision/synthetic_source.hpp"
-#include "telear/vision/video_file_source.hpp"
+#include "telear/vision/videoio.hpp"
 
 namespace telear::lab {
 namespace {
@@ -64,7 +63,7 @@ Result<VisionSource> open_vision_source(const VisionSourceOptions& options) {
     }
     vision::VideoFileSourceOptions files{options.left, options.right, options.fps, 0, 0};
     if (options.size) files.width = options.size->width, files.height = options.size->height;
-    auto file_source = vision::VideoFileSource::open(files);
+    auto file_source = vision::open_video_file_pair(files);
     if (!file_source) return file_source.error();
     opened.source = std::move(*file_source);
   } else if (options.kind == "v4l2") {
@@ -73,7 +72,7 @@ Result<VisionSource> open_vision_source(const VisionSourceOptions& options) {
     cameras.right_index = options.right_camera;
     if (options.size) cameras.width = options.size->width, cameras.height = options.size->height;
     if (options.fps > 0) cameras.fps = options.fps;
-    auto camera_source = vision::CameraSource::open(cameras);
+    auto camera_source = vision::open_camera_pair(cameras);
     if (!camera_source) return camera_source.error();
     opened.source = std::move(*camera_source);
   } else if (options.kind == "synthetic") {

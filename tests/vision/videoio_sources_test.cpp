@@ -1,24 +1,76 @@
-// The stereo sources that read through OpenCV's videoio (video files, V4L2 cameras): their own
-// executable, like their own library (telear::vision_videoio), so the other test programs do not
-// load videoio's shared libraries at each start.
+// What reads and writes through OpenCV's videoio (video files, V4L2 cameras, MP4), through the
+// plugin libtelear_videoio.so that vision loads at its first use (telear/vision/videoio.hpp):
+// their own executable, so that only this test program loads videoio's shared libraries.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <link.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <string>
 
-#include "telear/vision/camera_source.hpp"
-#include "telear/vision/video_file_source.hpp"
+#include "telear/vision/videoio.hpp"
+#include "test_util/temp_dir.hpp"
 
 namespace telear::vision {
 namespace {
 
+using ::testing::EndsWith;
+using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
 const char* const kVtest = "/usr/share/doc/opencv-doc/examples/data/vtest.avi";
 
+// Whether a shared library whose name contains `part` is loaded in this process.
+bool loaded(const std::string& part) {
+  struct Search {
+    std::string part;
+    bool found = false;
+  } search{part};
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void* data) {
+        auto* s = static_cast<Search*>(data);
+        if (info->dlpi_name && std::string(info->dlpi_name).find(s->part) != std::string::npos) {
+          s->found = true;
+        }
+        return 0;
+      },
+      &search);
+  return search.found;
+}
+
+TEST(VideoioPlugin, VideoioIsLoadedOnlyWhenAVideoIsOpened) {
+  EXPECT_FALSE(loaded("libopencv_videoio")) << "linked into the test program";
+  auto path = videoio_plugin_path();
+  ASSERT_TRUE(path) << path.error().message;
+  EXPECT_THAT(*path, EndsWith("libtelear_videoio.so"));
+  EXPECT_TRUE(loaded("libopencv_videoio"));
+}
+
+TEST(VideoioPlugin, APluginThatDoesNotLoadIsNamedWithTheReason) {
+  setenv("TELEAR_VIDEOIO_PLUGIN", "/nonexistent/libtelear_videoio.so", 1);
+  auto source = open_video_file_pair({kVtest, kVtest, 0, 0, 0});
+  ASSERT_FALSE(source);
+  EXPECT_THAT(source.error().message,
+              StartsWith("the videoio plugin TELEAR_VIDEOIO_PLUGIN='/nonexistent/"
+                         "libtelear_videoio.so' does not load: /nonexistent/"));
+  // Every later call gives the same answer, without trying again.
+  auto writer = open_mp4_writer({"/tmp/never.mp4", 64, 48, 10.0});
+  ASSERT_FALSE(writer);
+  EXPECT_EQ(writer.error().message, source.error().message);
+}
+
+TEST(VideoioPlugin, ALibraryThatIsNotThePluginIsRefused) {
+  setenv("TELEAR_VIDEOIO_PLUGIN", "libm.so.6", 1);
+  auto path = videoio_plugin_path();
+  ASSERT_FALSE(path);
+  EXPECT_THAT(path.error().message,
+              HasSubstr("no telear_videoio_plugin symbol: not telear's videoio plugin"));
+}
+
 TEST(VideoFileSource, DecodesOpenCvsSampleVideo) {
   if (!std::filesystem::exists(kVtest)) GTEST_SKIP() << kVtest << " missing (apt opencv-doc)";
-  auto source = VideoFileSource::open({kVtest, kVtest, 1000.0, 0, 0});
+  auto source = open_video_file_pair({kVtest, kVtest, 1000.0, 0, 0});
   ASSERT_TRUE(source) << source.error().message;
   EXPECT_EQ((*source)->name(), "files");
   EXPECT_EQ((*source)->width(), 768);
@@ -38,8 +90,8 @@ TEST(VideoFileSource, DecodesOpenCvsSampleVideo) {
 
 TEST(VideoFileSource, ScalesToAGivenSize) {
   if (!std::filesystem::exists(kVtest)) GTEST_SKIP() << kVtest << " missing";
-  auto source = VideoFileSource::open({kVtest, kVtest, 1000.0, 320, 240});
-  ASSERT_TRUE(source);
+  auto source = open_video_file_pair({kVtest, kVtest, 1000.0, 320, 240});
+  ASSERT_TRUE(source) << source.error().message;
   auto pair = (*source)->capture();
   ASSERT_TRUE(pair);
   EXPECT_EQ(pair->left.width, 320);
@@ -47,7 +99,7 @@ TEST(VideoFileSource, ScalesToAGivenSize) {
 }
 
 TEST(VideoFileSource, MissingFileSaysSo) {
-  auto source = VideoFileSource::open({"/nonexistent/left.avi", kVtest, 0, 0, 0});
+  auto source = open_video_file_pair({"/nonexistent/left.avi", kVtest, 0, 0, 0});
   ASSERT_FALSE(source);
   EXPECT_EQ(source.error().message, "video file '/nonexistent/left.avi': no such file");
 }
@@ -56,9 +108,48 @@ TEST(CameraSource, MissingCameraHasAClearMessage) {
   CameraSourceOptions options;
   options.left_index = 63;  // /dev/video63: not a camera on any test machine
   options.right_index = 62;
-  auto source = CameraSource::open(options);
+  auto source = open_camera_pair(options);
   ASSERT_FALSE(source);
   EXPECT_THAT(source.error().message, StartsWith("no camera at /dev/video63: "));
+}
+
+// The demo's MP4: frames written are read back, at their size, in order.
+TEST(Mp4Writer, WritesFramesThatReadBack) {
+  test_files::TempDir tmp("mp4");
+  const std::string path = tmp.file("out.mp4");
+  auto writer = open_mp4_writer({path, 64, 48, 10.0});
+  ASSERT_TRUE(writer) << writer.error().message;
+  EXPECT_THAT((*writer)->codec(), ::testing::AnyOf("avc1", "mp4v"));
+  EXPECT_EQ((*writer)->warning().empty(), (*writer)->codec() == "avc1");
+  core::Image frame = core::Image(64, 48, 3);
+  for (int i = 0; i < 5; ++i) {
+    std::fill(frame.pixels.begin(), frame.pixels.end(), static_cast<std::uint8_t>(40 * i));
+    ASSERT_TRUE((*writer)->write(frame).ok());
+  }
+  // A frame of another size is refused, and named.
+  const Status wrong = (*writer)->write(core::Image(32, 24, 3));
+  ASSERT_FALSE(wrong.ok());
+  EXPECT_EQ(wrong.error().message,
+            "the video " + path + " takes 64x48 RGB frames, not 32x24 with 3 channels");
+  (*writer)->close();
+  EXPECT_FALSE((*writer)->write(frame).ok());
+
+  auto source = open_video_file_pair({path, path, 1000.0, 0, 0});
+  ASSERT_TRUE(source) << source.error().message;
+  EXPECT_EQ((*source)->width(), 64);
+  auto first = (*source)->capture();
+  auto second = (*source)->capture();
+  ASSERT_TRUE(first && second);
+  // Grey 0 then 40, through a lossy codec.
+  EXPECT_NEAR(first->left.pixels[64 * 24 * 3 + 96], 0, 6);
+  EXPECT_NEAR(second->left.pixels[64 * 24 * 3 + 96], 40, 6);
+}
+
+TEST(Mp4Writer, BadSizeOrRateIsRefused) {
+  auto writer = open_mp4_writer({"/tmp/x.mp4", 0, 48, 10.0});
+  ASSERT_FALSE(writer);
+  EXPECT_EQ(writer.error().message,
+            "the video /tmp/x.mp4: size 0x48 and rate 10 fps must be positive");
 }
 
 }  // namespace

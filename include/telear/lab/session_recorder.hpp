@@ -25,10 +25,7 @@
 #include "telear/net/latency_stages.hpp"
 #include "telear/render/ar_view.hpp"
 #include "telear/session/session.hpp"
-
-namespace cv {
-class VideoWriter;
-}  // namespace cv
+#include "telear/vision/videoio.hpp"
 
 namespace telear::lab {
 
@@ -98,7 +95,7 @@ class SessionRecorder {
   session::Session& session_;
   render::ArView& view_;
   RecorderOptions options_;
-  std::unique_ptr<cv::VideoWriter> writer_;  // opencv_videoio, linked privately
+  std::unique_ptr<vision::VideoWriter> writer_;  // the videoio plugin's; null: no video
   Recording recording_;
   std::optional<std::chrono::steady_clock::time_point> last_;
   std::uint64_t last_frame_id_ = 0;
