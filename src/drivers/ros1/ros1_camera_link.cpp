@@ -6,6 +6,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
+#include <stb_image.h>
 #include <time.h>
 
 #include <atomic>
@@ -15,7 +16,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <thread>
 #include <utility>
@@ -115,19 +115,20 @@ std::string convert_compressed(const sensor_msgs::CompressedImage& m, EyeFrame& 
     return "format '" + m.format + "' is a depth image, not a camera's";
   }
   if (m.data.empty()) return "an empty " + m.format + " image";
-  const cv::Mat bytes(1, static_cast<int>(m.data.size()), CV_8UC1,
-                      const_cast<std::uint8_t*>(m.data.data()));
-  const cv::Mat bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
-  if (bgr.empty()) {
+  // stb_image (as telear's image files): OpenCV's imgcodecs would load ~140 shared libraries
+  // (GDAL, Poppler, ...) at every start of every program that links the drivers.
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* rgb = stbi_load_from_memory(m.data.data(), static_cast<int>(m.data.size()), &width,
+                                       &height, &channels, 3);
+  if (rgb == nullptr) {
     return "cannot decode the '" + m.format + "' image (" + std::to_string(m.data.size()) +
-           " bytes)";
+           " bytes): " + stbi_failure_reason();
   }
-  out.width = bgr.cols;
-  out.height = bgr.rows;
+  out.width = width;
+  out.height = height;
   out.encoding = m.format;
-  out.rgb.resize(static_cast<std::size_t>(bgr.cols) * bgr.rows * 3);
-  cv::Mat rgb(bgr.rows, bgr.cols, CV_8UC3, out.rgb.data());
-  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  out.rgb.assign(rgb, rgb + static_cast<std::size_t>(width) * height * 3);
+  stbi_image_free(rgb);
   return {};
 }
 
