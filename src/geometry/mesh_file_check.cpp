@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
@@ -207,22 +208,31 @@ Status check_collada_structure(const std::string& text, const std::string& path)
 
 namespace {
 
-// assimp's text readers stop at a NUL byte as at the file's end: a file cut short inside a
-// statement, where they leak what they were building (an ASCII STL's facet, an OBJ's mesh:
-// fuzz/crashes/mesh/). A text format has no NUL byte.
-std::optional<Error> nul_byte_error(const std::string& text, const std::string& path,
-                                    const char* format) {
-  const std::size_t nul = text.find('\0');
-  if (nul == std::string::npos) return std::nullopt;
-  const auto line = std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n');
+// assimp's text readers stop at a NUL byte as at the file's end, and take only spaces and tabs
+// between words: a file cut short inside a statement, or a word it cannot read (a vertical tab
+// before a number, which the checks below, reading words as C++ streams do, take for a space),
+// and they leak what they were building (an ASCII STL's facet, an OBJ's mesh:
+// fuzz/crashes/mesh/). A text format has no control character but tab, CR and LF.
+std::optional<Error> control_character_error(const std::string& text, const std::string& path,
+                                             const char* format) {
+  const auto bad = std::find_if(text.begin(), text.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return (u < 0x20 && c != '\t' && c != '\r' && c != '\n') || u == 0x7f;
+  });
+  if (bad == text.end()) return std::nullopt;
+  const auto line = std::count(text.begin(), bad, '\n');
+  char code[8];
+  std::snprintf(code, sizeof code, "0x%02X", static_cast<unsigned char>(*bad));
+  const std::string what =
+      *bad == '\0' ? std::string("a NUL byte") : std::string("a control character (") + code + ")";
   return Error{"mesh file " + path + " is not a readable mesh (" + format + ", line " +
-               std::to_string(line + 1) + ": a NUL byte in the text)"};
+               std::to_string(line + 1) + ": " + what + " in the text)"};
 }
 
 }  // namespace
 
 Status check_obj_structure(const std::string& text, const std::string& path) {
-  if (auto nul = nul_byte_error(text, path, "OBJ")) return *nul;
+  if (auto bad = control_character_error(text, path, "OBJ")) return *bad;
   // Counts first: an index may name an element defined later in the file.
   std::size_t counts[3] = {0, 0, 0};  // v, vt, vn
   {
@@ -298,7 +308,7 @@ bool is_ascii_stl(const std::string& text) {
 }
 
 Status check_ascii_stl_structure(const std::string& text, const std::string& path) {
-  if (auto nul = nul_byte_error(text, path, "ASCII STL")) return *nul;
+  if (auto bad = control_character_error(text, path, "ASCII STL")) return *bad;
   std::istringstream lines(text);
   std::string line;
   int number = 0;
