@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace telear::geometry {
@@ -79,6 +80,14 @@ class Checker {
       }
     } else if (name == "float_array") {
       return check_float_array(e, where);
+    } else if (const int n = fixed_count(name); n > 0) {
+      // assimp reads these numbers word by word and throws on a word that is not one, leaking
+      // the scene it was building (a node's <scale>[2 2 2</scale>: fuzz/crashes/mesh/).
+      const auto values = numbers(&e, false);
+      const bool rgb = name == "color" && values && values->size() == 3;
+      if (!values || (values->size() != static_cast<std::size_t>(n) && !rgb)) {
+        return where + " does not hold " + std::to_string(n) + " numbers";
+      }
     } else if (in_mesh && is_primitive(name)) {
       if (!has_input(&e, "VERTEX")) return where + " has no VERTEX input";
       if (e.FirstChildElement("p") == nullptr) return where + " has no index list <p>";
@@ -88,6 +97,18 @@ class Checker {
       return check_indices(e, name, where);
     }
     return {};
+  }
+
+  // How many numbers a node transform, a colour (RGBA; RGB also) or a float holds; 0 for any
+  // other element.
+  static int fixed_count(std::string_view name) {
+    static constexpr std::pair<std::string_view, int> kCounts[] = {
+        {"translate", 3}, {"scale", 3}, {"rotate", 4}, {"matrix", 16},
+        {"lookat", 9},    {"skew", 7},  {"color", 4},  {"float", 1}};
+    for (const auto& [element, count] : kCounts) {
+      if (name == element) return count;
+    }
+    return 0;
   }
 
   // The numbers in an element's text, or nullopt when a word is not one (integers: digits).

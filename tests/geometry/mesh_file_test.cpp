@@ -235,6 +235,10 @@ TEST(MeshFileTest, MalformedColladaIsRefusedBeforeAssimpReadsIt) {
            {positions + "<triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#v\"/>"
                         "<p>0c0 0</p></triangles>",
             "<triangles> on line 1 has a <p> that is not a list of indices"},
+           // fuzz/crashes/mesh/collada_scale_not_a_number.dae: assimp threw on "[2" and leaked
+           // the scene.
+           {positions + "<scale>[2 2 2</scale>", "<scale> on line 1 does not hold 3 numbers"},
+           {positions + "<color>1 0 0 1 0</color>", "<color> on line 1 does not hold 4 numbers"},
        }) {
     const std::string path = dir.write("bad.dae", mesh_open + c.body + mesh_close);
     auto mesh = load_mesh_file(path);
