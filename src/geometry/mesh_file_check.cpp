@@ -250,28 +250,66 @@ std::optional<Error> control_character_error(const std::string& text, const std:
                std::to_string(line + 1) + ": " + what + " in the text)"};
 }
 
+// A number as assimp's readers take it: [+-]digits[.digits][(e|E)[+-]digits], or .digits.
+bool is_decimal_number(const std::string& word) {
+  std::size_t i = 0;
+  const auto digits = [&] {
+    const std::size_t start = i;
+    while (i < word.size() && std::isdigit(static_cast<unsigned char>(word[i]))) ++i;
+    return i - start;
+  };
+  if (i < word.size() && (word[i] == '+' || word[i] == '-')) ++i;
+  std::size_t mantissa = digits();
+  if (i < word.size() && word[i] == '.') {
+    ++i;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return false;
+  if (i < word.size() && (word[i] == 'e' || word[i] == 'E')) {
+    ++i;
+    if (i < word.size() && (word[i] == '+' || word[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  return i == word.size();
+}
+
 }  // namespace
 
 Status check_obj_structure(const std::string& text, const std::string& path) {
   if (auto bad = control_character_error(text, path, "OBJ")) return *bad;
-  // Counts first: an index may name an element defined later in the file.
-  std::size_t counts[3] = {0, 0, 0};  // v, vt, vn
-  {
-    std::istringstream lines(text);
-    std::string line;
-    while (std::getline(lines, line)) {
-      std::istringstream words(line);
-      std::string first;
-      words >> first;
-      if (first == "v") ++counts[0];
-      if (first == "vt") ++counts[1];
-      if (first == "vn") ++counts[2];
-    }
-  }
   const auto fail = [&](int number, const std::string& what) {
     return Error{"mesh file " + path + " is not a readable mesh (OBJ, line " +
                  std::to_string(number) + ": " + what + ")"};
   };
+  // Counts first (an index may name an element defined later in the file), and the vertex
+  // data's numbers: assimp leaked the mesh of a vertex whose number ran into another byte
+  // (fuzz/crashes/mesh/obj_vertex_number_runs_into_a_byte.obj).
+  std::size_t counts[3] = {0, 0, 0};  // v, vt, vn
+  {
+    std::istringstream lines(text);
+    std::string line;
+    int number = 0;
+    while (std::getline(lines, line)) {
+      ++number;
+      std::istringstream words(line);
+      std::string first;
+      words >> first;
+      const int kind = first == "v" ? 0 : first == "vt" ? 1 : first == "vn" ? 2 : -1;
+      if (kind < 0) continue;
+      ++counts[kind];
+      std::size_t values = 0;
+      for (std::string word; words >> word && word[0] != '#'; ++values) {  // # a comment
+        if (!is_decimal_number(word)) {
+          return fail(number, "'" + first + "' takes numbers, not '" + word + "'");
+        }
+      }
+      // v x y z [w | r g b], vt u [v [w]], vn x y z
+      const bool fits = kind == 0   ? values == 3 || values == 4 || values == 6
+                        : kind == 1 ? values >= 1 && values <= 3
+                                    : values == 3;
+      if (!fits) return fail(number, "'" + first + "' with " + std::to_string(values) + " numbers");
+    }
+  }
   std::istringstream lines(text);
   std::string line;
   int number = 0;

@@ -351,6 +351,12 @@ TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
            // assimp leaked the mesh of an OBJ with a NUL byte in it, read as the file's end
            // (fuzz/crashes/mesh/obj_nul_inside_a_statement.obj).
            {tri + "f 1 2" + std::string(1, '\0') + " 3\n", "line 5: a NUL byte in the text"},
+           // assimp leaked the mesh of a vertex whose number ran into a Latin-1 space
+           // (fuzz/crashes/mesh/obj_vertex_number_runs_into_a_byte.obj).
+           {"v 0 0\xa0 0\n", "line 1: 'v' takes numbers, not '0\xa0'"},
+           {"v 0 0x1 0\n", "line 1: 'v' takes numbers, not '0x1'"},
+           {"v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "line 1: 'v' with 2 numbers"},
+           {tri + "vn 0 0\n", "line 5: 'vn' with 2 numbers"},
        }) {
     const std::string path = dir.write("bad.obj", c.text);
     auto mesh = load_mesh_file(path);
@@ -358,7 +364,10 @@ TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
     EXPECT_EQ(mesh.error().message,
               "mesh file " + path + " is not a readable mesh (OBJ, " + c.problem + ")");
   }
-  // Relative (negative) indices and v//vn corners within the lists load.
+  // Relative (negative) indices and v//vn corners within the lists load, and a comment may
+  // end a vertex's line.
+  ASSERT_TRUE(
+      load_mesh_file(dir.write("commented.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")));
   auto mesh = load_mesh_file(dir.write("good.obj", tri + "f -3//1 -2//1 -1//1\n"));
   ASSERT_TRUE(mesh) << mesh.error().message;
   EXPECT_EQ(mesh->triangle_count(), 1u);
