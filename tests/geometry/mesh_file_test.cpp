@@ -239,6 +239,9 @@ TEST(MeshFileTest, MalformedColladaIsRefusedBeforeAssimpReadsIt) {
            // the scene.
            {positions + "<scale>[2 2 2</scale>", "<scale> on line 1 does not hold 3 numbers"},
            {positions + "<color>1 0 0 1 0</color>", "<color> on line 1 does not hold 4 numbers"},
+           // fuzz/crashes/mesh/collada_instance_without_url.dae: assimp threw and leaked.
+           {positions + "<instance_geometry erl=\"#g\"/>",
+            "<instance_geometry> on line 1 has no url"},
        }) {
     const std::string path = dir.write("bad.dae", mesh_open + c.body + mesh_close);
     auto mesh = load_mesh_file(path);
