@@ -279,6 +279,9 @@ TEST(MeshFileTest, MalformedAsciiStlIsRefusedBeforeAssimpReadsIt) {
            {"solid s\n" + facet, "line 9: expected 'endsolid' (the file ends inside a solid)"},
            {"solid s\nfacet normal 0 0 1\n outer loop\n  vertex 0 zero 0\n",
             "line 4: expected 'vertex X Y Z'"},
+           // fuzz/crashes/mesh/stl_hexadecimal_number.stl: assimp leaked the facets read.
+           {"solid s\nfacet normal 0 0 1\n outer loop\n  vertex 0x01 0 0\n",
+            "line 4: expected 'vertex X Y Z'"},
            {"solid s\n" + facet + "endsolid s\nextra\n", "line 10: expected 'solid'"},
            {"solid s\nfacet normal 0 0 1\n outer loop\n  vertex 0" + std::string(1, '\0') +
                 " 0 0\n",
