@@ -77,9 +77,13 @@ void SessionRecorder::tick() {
   if (writer_) {
     if (Status s = writer_->write(last_image_); s) {
       ++recording_.video_frames;
-    } else if (recording_.video_warning.empty()) {
-      recording_.video_warning = s.error().message;  // reported once, in the demo's report
-      spdlog::warn("session recorder: {}", s.error().message);
+    } else {
+      // Reported once, beside any codec warning (the demo's report), and the video ends:
+      // the next frames would fail alike.
+      const std::string& why = s.error().message;
+      recording_.video_warning += (recording_.video_warning.empty() ? "" : "; ") + why;
+      spdlog::warn("session recorder: {}", why);
+      close_video();
     }
   }
   ++recording_.ticks;

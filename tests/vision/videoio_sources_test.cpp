@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <link.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -39,33 +40,55 @@ bool loaded(const std::string& part) {
   return search.found;
 }
 
-TEST(VideoioPlugin, VideoioIsLoadedOnlyWhenAVideoIsOpened) {
-  EXPECT_FALSE(loaded("libopencv_videoio")) << "linked into the test program";
-  auto path = videoio_plugin_path();
-  ASSERT_TRUE(path) << path.error().message;
-  EXPECT_THAT(*path, EndsWith("libtelear_videoio.so"));
-  EXPECT_TRUE(loaded("libopencv_videoio"));
+// The plugin is loaded once per process, so each of these runs in a process of its own: gtest's
+// threadsafe death-test style runs this program again for the one statement, whatever ran
+// before in this process. The child prints what it found, and the parent matches it.
+class VideoioPlugin : public ::testing::Test {
+ protected:
+  void SetUp() override { GTEST_FLAG_SET(death_test_style, "threadsafe"); }
+};
+
+std::string message(const Result<std::string>& r) {
+  return r ? *r : r.error().message;
 }
 
-TEST(VideoioPlugin, APluginThatDoesNotLoadIsNamedWithTheReason) {
-  setenv("TELEAR_VIDEOIO_PLUGIN", "/nonexistent/libtelear_videoio.so", 1);
-  auto source = open_video_file_pair({kVtest, kVtest, 0, 0, 0});
-  ASSERT_FALSE(source);
-  EXPECT_THAT(source.error().message,
-              StartsWith("the videoio plugin TELEAR_VIDEOIO_PLUGIN='/nonexistent/"
-                         "libtelear_videoio.so' does not load: /nonexistent/"));
-  // Every later call gives the same answer, without trying again.
-  auto writer = open_mp4_writer({"/tmp/never.mp4", 64, 48, 10.0});
-  ASSERT_FALSE(writer);
-  EXPECT_EQ(writer.error().message, source.error().message);
+TEST_F(VideoioPlugin, VideoioIsLoadedOnlyWhenAVideoIsOpened) {
+  EXPECT_EXIT(
+      {
+        const bool before = loaded("libopencv_videoio");
+        const std::string path = message(videoio_plugin_path());
+        std::fprintf(stderr, "before %d; %s; after %d\n", before, path.c_str(),
+                     loaded("libopencv_videoio"));
+        std::_Exit(0);
+      },
+      ::testing::ExitedWithCode(0), "before 0; /[^;]*/libtelear_videoio\\.so; after 1");
 }
 
-TEST(VideoioPlugin, ALibraryThatIsNotThePluginIsRefused) {
-  setenv("TELEAR_VIDEOIO_PLUGIN", "libm.so.6", 1);
-  auto path = videoio_plugin_path();
-  ASSERT_FALSE(path);
-  EXPECT_THAT(path.error().message,
-              HasSubstr("no telear_videoio_plugin symbol: not telear's videoio plugin"));
+TEST_F(VideoioPlugin, APluginThatDoesNotLoadIsNamedWithTheReason) {
+  EXPECT_EXIT(
+      {
+        setenv("TELEAR_VIDEOIO_PLUGIN", "/nonexistent/libtelear_videoio.so", 1);
+        auto source = open_video_file_pair({kVtest, kVtest, 0, 0, 0});
+        auto writer = open_mp4_writer({"/tmp/never.mp4", 64, 48, 10.0});
+        // Every later call gives the same answer, without trying again.
+        const bool same = !source && !writer && writer.error().message == source.error().message;
+        std::fprintf(stderr, "%s; %s\n", source ? "opened" : source.error().message.c_str(),
+                     same ? "the same later" : "another later");
+        std::_Exit(0);
+      },
+      ::testing::ExitedWithCode(0),
+      "the videoio plugin TELEAR_VIDEOIO_PLUGIN='/nonexistent/libtelear_videoio\\.so' does not "
+      "load: /nonexistent/libtelear_videoio\\.so: [^;]*; the same later");
+}
+
+TEST_F(VideoioPlugin, ALibraryThatIsNotThePluginIsRefused) {
+  EXPECT_EXIT(
+      {
+        setenv("TELEAR_VIDEOIO_PLUGIN", "libm.so.6", 1);
+        std::fprintf(stderr, "%s\n", message(videoio_plugin_path()).c_str());
+        std::_Exit(0);
+      },
+      ::testing::ExitedWithCode(0), "no telear_videoio_plugin symbol: not telear's videoio plugin");
 }
 
 TEST(VideoFileSource, DecodesOpenCvsSampleVideo) {
