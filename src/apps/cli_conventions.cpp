@@ -11,6 +11,7 @@
 #include "apps/cli_app.hpp"
 #include "apps/cli_parsing.hpp"
 #include "apps/console_command.hpp"
+#include "apps/web_command.hpp"
 #include "bench/kin_bench_command.hpp"
 #include "bench/latency_bench_command.hpp"
 #include "bench/prediction_bench_command.hpp"
@@ -96,6 +97,40 @@ void add_console_command(CLI::App& app, Commands& commands) {
   commands.push_back({console_app, [arguments] {
                         return run_console(arguments->console, arguments->arm, std::cout,
                                            std::cerr);
+                      }});
+}
+
+// [SECTION] web (docs/web.md)
+
+void add_web_command(CLI::App& app, Commands& commands) {
+  struct WebArguments {
+    web::WebOptions web;
+    geometry::RobotSelection arm;
+  };
+  auto arguments = std::make_shared<WebArguments>();
+  web::WebOptions& web = arguments->web;
+  CLI::App* web_app = app.add_subcommand(
+      "web", "the operator console as a web page (three.js, WebXR): one session per browser tab");
+  web_app->add_option("--listen", web.listen, "HOST:PORT the page is served on (port 0: any)")
+      ->capture_default_str();
+  web_app->add_option("--robot", web.robot, "robot server HOST:PORT (none: embedded sim)");
+  web_app->add_option("--vision", web.vision, "vision server HOST:PORT (none: embedded sim)");
+  web_app->add_option("--token-file", web.token_file,
+                      "the servers' token (embedded: theirs; else: to read the cameras)");
+  web_app->add_option("--tls-ca", web.tls_ca_file, "the servers speak TLS: trust this CA (PEM)");
+  web_app->add_option("--tls-cert", web.tls_cert_file, "serve HTTPS: certificate chain (PEM)");
+  web_app->add_option("--tls-key", web.tls_key_file, "serve HTTPS: private key (PEM)");
+  add_robot_arguments(web_app, arguments->arm, /*draws_meshes=*/true, "--arm");
+  web_app->add_option("--calibration", web.calibration, "registered stereo camera file");
+  web_app->add_option("--workspace", web.workspace,
+                      "the scene drawn in VR (default: the robot's shipped workspace)");
+  web_app->add_option("--resolution", web.resolution, "video size WIDTHxHEIGHT")
+      ->capture_default_str()
+      ->check(image_size_validator({64, 48}, {1920, 1080}));
+  web_app->add_option("--lease-heartbeat", web.lease_heartbeat_s,
+                      "s between lease renewals asked of the robot server (0: its default)");
+  commands.push_back({web_app, [arguments] {
+                        return run_web(arguments->web, arguments->arm, std::cout, std::cerr);
                       }});
 }
 

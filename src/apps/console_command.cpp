@@ -43,9 +43,11 @@ std::string flag_error(const console::ConsoleOptions& options) {
 
 console::LocalServersStarter simulated_local_servers() {
   return [](core::RobotModelPtr model, const core::RobotDescription& description,
-            const std::string& calibration_file) -> Result<std::unique_ptr<console::LocalServers>> {
+            const std::string& calibration_file,
+            const std::string& token) -> Result<std::unique_ptr<console::LocalServers>> {
     lab::EmbeddedServersOptions options;
     options.calibration_file = calibration_file;
+    options.token = token;
     if (Status s = lab::serve_robot(options, description); !s) return s.error();
     auto servers = lab::EmbeddedServers::create(std::move(model), options);
     if (!servers) return servers.error();

@@ -171,6 +171,7 @@ int main(int argc, char** argv) {
   telear::cli::add_robot_server_command(app, commands);
   telear::cli::add_vision_server_command(app, commands);
   telear::cli::add_console_command(app, commands);
+  telear::cli::add_web_command(app, commands);
   telear::cli::add_record_command(app, commands);
   telear::cli::add_replay_command(app, commands);
   telear::cli::add_report_command(app, commands);

@@ -232,7 +232,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   robot.client_name = "telear-console";
   vision.client_name = "telear-console";
   if (embedded) {
-    auto servers = options.start_local_servers(m.model, arm->description, calibration_file);
+    auto servers = options.start_local_servers(m.model, arm->description, calibration_file, {});
     if (!servers) return servers.error();
     app->servers_ = std::move(*servers);
     if (!cameras) {

@@ -60,9 +60,6 @@ void main() {
 }
 )glsl";
 
-// Raw pixels with no ray (beyond the lens model's monotonic radius) point far away.
-constexpr float kNoRay = -1.0e9f;
-
 Texture upload_rg32f(int width, int height, const std::vector<float>& rg) {
   Texture t = Texture::create_2d(width, height, GL_RG32F);
   t.bind(GL_TEXTURE0);
@@ -73,6 +70,36 @@ Texture upload_rg32f(int width, int height, const std::vector<float>& rg) {
 }
 
 }  // namespace
+
+RawOverlayRegion raw_overlay_region(const vision::RawToPinholeLut& lut, int width, int height) {
+  const double W = width;
+  const double H = height;
+  const double min_u = std::max(std::min(lut.min_u, 0.0), -W);
+  const double min_v = std::max(std::min(lut.min_v, 0.0), -H);
+  const double max_u = std::min(std::max(lut.max_u, W - 1.0), 2.0 * W - 1.0);
+  const double max_v = std::min(std::max(lut.max_v, H - 1.0), 2.0 * H - 1.0);
+  RawOverlayRegion region;
+  region.x0 = static_cast<int>(std::floor(min_u)) - 2;
+  region.y0 = static_cast<int>(std::floor(min_v)) - 2;
+  region.width = static_cast<int>(std::ceil(max_u)) + 2 - region.x0 + 1;
+  region.height = static_cast<int>(std::ceil(max_v)) + 2 - region.y0 + 1;
+  return region;
+}
+
+std::vector<float> raw_overlay_lut(const vision::RawToPinholeLut& lut) {
+  const int W = lut.pinhole_uv.cols;
+  const int H = lut.pinhole_uv.rows;
+  std::vector<float> rg(static_cast<size_t>(W) * H * 2);
+  for (int v = 0; v < H; ++v) {
+    for (int u = 0; u < W; ++u) {
+      const cv::Vec2f q = lut.pinhole_uv.at<cv::Vec2f>(v, u);
+      const size_t i = (static_cast<size_t>(v) * W + u) * 2;
+      rg[i] = std::isnan(q[0]) ? kNoPinholeRay : q[0];
+      rg[i + 1] = std::isnan(q[1]) ? kNoPinholeRay : q[1];
+    }
+  }
+  return rg;
+}
 
 Result<Overlay> Overlay::create(const vision::CameraModel& camera, const OverlayOptions& options) {
   if (Status valid = vision::validate_camera(camera); !valid) {
@@ -112,33 +139,17 @@ Result<Overlay> Overlay::create(const vision::CameraModel& camera, const Overlay
     return o;
   }
 
-  // kRaw: the pinhole region spans every raw pixel's pinhole position, plus 2 pixels for the
-  // bilinear footprint, and at least the image itself; at most one image size of margin on
-  // each side (rays beyond it, at the corners of extreme lenses, are not drawn).
+  // kRaw: the scene into a pinhole image around the raw one, warped through the look-up table.
   const vision::RawToPinholeLut lut = vision::compute_raw_to_pinhole_lut(camera);
-  const double min_u = std::max(std::min(lut.min_u, 0.0), -static_cast<double>(W));
-  const double min_v = std::max(std::min(lut.min_v, 0.0), -static_cast<double>(H));
-  const double max_u = std::min(std::max(lut.max_u, W - 1.0), 2.0 * W - 1.0);
-  const double max_v = std::min(std::max(lut.max_v, H - 1.0), 2.0 * H - 1.0);
-  const int x0 = static_cast<int>(std::floor(min_u)) - 2;
-  const int y0 = static_cast<int>(std::floor(min_v)) - 2;
-  const int x1 = static_cast<int>(std::ceil(max_u)) + 2;
-  const int y1 = static_cast<int>(std::ceil(max_v)) + 2;
+  const RawOverlayRegion region = raw_overlay_region(lut, W, H);
+  const int x0 = region.x0;
+  const int y0 = region.y0;
   o.region_origin_ = {x0, y0};
-  o.scene_projection_ = full.region(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
-  auto pinhole = OffscreenTarget::create(x1 - x0 + 1, y1 - y0 + 1, options.samples);
+  o.scene_projection_ = full.region(x0, y0, region.width, region.height);
+  auto pinhole = OffscreenTarget::create(region.width, region.height, options.samples);
   if (!pinhole) return Error{"overlay: pinhole image: " + pinhole.error().message};
   o.pinhole_ = std::move(pinhole.value());
-
-  std::vector<float> rg(static_cast<size_t>(W) * H * 2);
-  for (int v = 0; v < H; ++v) {
-    for (int u = 0; u < W; ++u) {
-      const cv::Vec2f q = lut.pinhole_uv.at<cv::Vec2f>(v, u);
-      const size_t i = (static_cast<size_t>(v) * W + u) * 2;
-      rg[i] = std::isnan(q[0]) ? kNoRay : q[0];
-      rg[i + 1] = std::isnan(q[1]) ? kNoRay : q[1];
-    }
-  }
+  const std::vector<float> rg = raw_overlay_lut(lut);
   o.lut_ = upload_rg32f(W, H, rg);
   auto program = Program::link(kFullScreenVertex, kWarpFragment, "overlay warp");
   if (!program) return program.error();

@@ -29,9 +29,10 @@ class LocalServers {
 };
 
 // Starts the servers for this arm; `calibration_file` (may be empty) is the stereo calibration
-// the vision server serves. Errors name what could not be started.
+// the vision server serves; `token` the servers' bearer token (empty: a random one). Errors name
+// what could not be started.
 using LocalServersStarter = std::function<Result<std::unique_ptr<LocalServers>>(
     core::RobotModelPtr model, const core::RobotDescription& description,
-    const std::string& calibration_file)>;
+    const std::string& calibration_file, const std::string& token)>;
 
 }  // namespace telear::console

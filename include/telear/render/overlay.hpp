@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "telear/core/result.hpp"
 #include "telear/render/camera_projection.hpp"
@@ -32,6 +33,7 @@
 #include "telear/render/offscreen_target.hpp"
 #include "telear/render/video_background.hpp"
 #include "telear/vision/camera_model.hpp"
+#include "telear/vision/distortion_maps.hpp"
 
 namespace telear::render {
 
@@ -48,6 +50,21 @@ struct OverlayOptions {
   // > 1: anti-aliased edges). kUndistorted draws into the caller's target, which chooses.
   int samples = 1;
 };
+
+// The raw mode's pinhole image for a camera (x0, y0: the pixel of the camera's plane its
+// top-left pixel shows): every raw pixel's pinhole position, plus 2 pixels for the bilinear
+// footprint, and at least the image itself; at most one image size of margin on each side
+// (rays beyond it, at the corners of extreme lenses, are not drawn). And the look-up table as
+// the warp reads it: per raw pixel, top row first, its pinhole position (u, v), or
+// kNoPinholeRay where the lens model has no ray. The browser operator (telear web) draws with
+// the same two.
+struct RawOverlayRegion {
+  int x0 = 0, y0 = 0;
+  int width = 0, height = 0;
+};
+inline constexpr float kNoPinholeRay = -1.0e9f;
+RawOverlayRegion raw_overlay_region(const vision::RawToPinholeLut& lut, int width, int height);
+std::vector<float> raw_overlay_lut(const vision::RawToPinholeLut& lut);
 
 using SceneDrawer =
     std::function<void(const Eigen::Matrix4f& projection, const Eigen::Matrix4f& T_view_base)>;
