@@ -5,6 +5,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 "$(pwd)/scripts/install-deps.sh"
+# The page's npm packages (web/package-lock.json): three.js, and esbuild, which bundles the
+# page into the build folder (`telear web` serves it).
+scripts/npm-ci.sh web
 build_dir=${TELEAR_BUILD_DIR:-build}
 if [ ! -f "$build_dir/build.ninja" ]; then
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"

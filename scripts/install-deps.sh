@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages telear builds against, skipping those already present.
+# Installs the Debian 12 packages telear builds against, skipping those already present; with
+# --tests, also what only the tests need (Chromium, which drives the browser operator's page).
 # Idempotent: a second run with everything installed returns at once without apt-get.
 set -euo pipefail
 
@@ -55,6 +56,12 @@ packages=(
   # gnuplot-iostream (header-only, over Boost.Iostreams, which it brings in)
   gnuplot-nox libgnuplot-iostream-dev
 )
+# web: Boost.Beast (HTTP and WebSocket, header-only) for `telear web`; HTTPS through libssl
+packages+=(libboost-dev)
+if [ "${1:-}" = "--tests" ]; then
+  # tests/web: the page in a real browser (driven by npm's playwright-core)
+  packages+=(chromium)
+fi
 # npm: Debian's package, unless the installed nodejs already brings it (NodeSource's does, and
 # conflicts with Debian's npm).
 command -v npm > /dev/null 2>&1 || packages+=(npm)

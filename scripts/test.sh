@@ -27,16 +27,15 @@ print_stages() {
 trap print_stages EXIT
 
 begin_stage "build"
+# The tests' own packages first (Chromium for the page's tests, tests/web); build.sh adds the
+# rest.
+scripts/install-deps.sh --tests
 scripts/build.sh
 end_stage "build"
 # The reference MCAP reader's npm packages (tests/record/js, pinned by its lock file; ~2 s),
 # skipped while node_modules holds what that lock file names.
 begin_stage "npm ci"
-js_dir=tests/record/js
-if ! cmp -s "$js_dir/package-lock.json" "$js_dir/node_modules/.telear-installed-lock"; then
-  npm ci --prefix "$js_dir" --ignore-scripts --no-audit --no-fund
-  cp "$js_dir/package-lock.json" "$js_dir/node_modules/.telear-installed-lock"
-fi
+scripts/npm-ci.sh tests/record/js
 end_stage "npm ci"
 build_dir=${TELEAR_BUILD_DIR:-build}
 asan_dir=${TELEAR_ASAN_BUILD_DIR:-build-asan}
