@@ -10,9 +10,12 @@
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
 #include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +25,8 @@
 
 #include "apps/console_command.hpp"
 #include "telear/web/web_server.hpp"
+#include "test_util/temp_dir.hpp"
+#include "test_util/test_pki.hpp"
 
 namespace telear::web {
 namespace {
@@ -31,6 +36,7 @@ namespace beast = boost::beast;
 namespace http = beast::http;
 namespace websocket = beast::websocket;
 using tcp = asio::ip::tcp;
+namespace ssl = asio::ssl;
 using nlohmann::json;
 
 // One tab's socket, read with a timeout; binary messages are counted by kind.
@@ -291,6 +297,75 @@ TEST_F(WebServerTest, OneTabHoldsTheLeaseTheOtherWatchesAndTheEStopLatches) {
   const json reset = first->command(3, "reset-estop");
   EXPECT_EQ(reset["ok"], true) << reset["message"];
   EXPECT_EQ(first->command(4, "release-control")["ok"], true);
+}
+
+// HTTPS and WSS with --tls-cert/--tls-key: a browser that trusts the CA gets the page and its
+// socket; one that trusts another CA, or speaks plain HTTP, gets nothing.
+TEST(WebServerTlsTest, ServesThePageAndTheSocketOnlyOverTls) {
+  const test_files::TempDir dir("web_tls");
+  const test_files::TestPki pki = test_files::make_test_pki(dir);
+  std::ofstream(dir.file("index.html")) << "<html>over tls</html>";
+  WebOptions options;
+  options.listen = "127.0.0.1:0";
+  options.page_root = dir.string();
+  options.resolution = "320x240";
+  options.tls_cert_file = pki.server_cert;
+  options.tls_key_file = pki.server_key;
+  options.start_local_servers = cli::simulated_local_servers();
+  std::ostringstream log;
+  auto server = WebServer::create(options, log);
+  ASSERT_TRUE(server) << server.error().message;
+  const std::string url = (*server)->url();
+  ASSERT_EQ(url.rfind("https://127.0.0.1:", 0), 0u) << url;
+  const std::string port = url.substr(url.rfind(':') + 1);
+
+  asio::io_context io;
+  tcp::resolver resolver(io);
+  const auto endpoints = resolver.resolve("127.0.0.1", port);
+  auto tls_stream = [&](const std::string& ca, ssl::context& context) {
+    context.load_verify_file(ca);
+    context.set_verify_mode(ssl::verify_peer);
+    beast::ssl_stream<beast::tcp_stream> stream(io, context);
+    stream.set_verify_callback(ssl::rfc2818_verification("127.0.0.1"));
+    beast::get_lowest_layer(stream).connect(endpoints);
+    beast::get_lowest_layer(stream).expires_after(std::chrono::seconds(10));
+    return stream;
+  };
+
+  ssl::context trusting(ssl::context::tls_client);
+  auto stream = tls_stream(pki.ca, trusting);
+  stream.handshake(ssl::stream_base::client);
+  http::request<http::string_body> request{http::verb::get, "/", 11};
+  request.set(http::field::host, "127.0.0.1");
+  http::write(stream, request);
+  beast::flat_buffer buffer;
+  http::response<http::string_body> response;
+  http::read(stream, buffer, response);
+  EXPECT_EQ(response.result(), http::status::ok);
+  EXPECT_EQ(response.body(), "<html>over tls</html>");
+
+  ssl::context trusting_ws(ssl::context::tls_client);
+  websocket::stream<beast::ssl_stream<beast::tcp_stream>> ws(tls_stream(pki.ca, trusting_ws));
+  ws.next_layer().handshake(ssl::stream_base::client);
+  ws.handshake("127.0.0.1:" + port, "/ws");
+  beast::flat_buffer hello;
+  ws.read(hello);
+  EXPECT_NE(beast::buffers_to_string(hello.data()).find("\"type\":\"hello\""), std::string::npos);
+
+  ssl::context distrusting(ssl::context::tls_client);
+  auto other = tls_stream(pki.other_ca, distrusting);
+  beast::error_code ec;
+  other.handshake(ssl::stream_base::client, ec);
+  EXPECT_TRUE(ec) << "a client trusting another CA completed the handshake";
+
+  beast::tcp_stream plain(io);
+  plain.connect(endpoints);
+  plain.expires_after(std::chrono::seconds(10));
+  http::write(plain, request, ec);
+  http::response<http::string_body> plain_response;
+  beast::flat_buffer plain_buffer;
+  if (!ec) http::read(plain, plain_buffer, plain_response, ec);
+  EXPECT_TRUE(ec) << "plain HTTP was answered: " << plain_response.result_int();
 }
 
 }  // namespace
