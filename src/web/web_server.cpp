@@ -364,6 +364,32 @@ Result<std::unique_ptr<WebServer>> WebServer::create(const WebOptions& options, 
   setup->height = resolution->height;
   setup->embedded = embedded;
 
+  // [SECTION] HTTPS
+  if (!options.tls_cert_file.empty()) {
+    impl->tls.emplace(ssl::context::tls_server);
+    impl->tls->set_options(ssl::context::default_workarounds | ssl::context::no_sslv2 |
+                           ssl::context::no_sslv3 | ssl::context::no_tlsv1 |
+                           ssl::context::no_tlsv1_1);
+    beast::error_code ec;
+    impl->tls->use_certificate_chain_file(options.tls_cert_file, ec);
+    if (ec) return Error{"certificate '" + options.tls_cert_file + "': " + ec.message()};
+    impl->tls->use_private_key_file(options.tls_key_file, ssl::context::pem, ec);
+    if (ec) return Error{"key '" + options.tls_key_file + "': " + ec.message()};
+  }
+
+  // [SECTION] the listener (bound before anything starts: a taken port fails at once)
+  impl->io.emplace(2);
+  auto endpoint = parse_listen(*impl->io, options.listen);
+  if (!endpoint) return endpoint.error();
+  impl->host = options.listen.substr(0, options.listen.rfind(':'));
+  beast::error_code ec;
+  impl->acceptor.emplace(*impl->io);
+  impl->acceptor->open(endpoint->protocol(), ec);
+  if (!ec) impl->acceptor->set_option(asio::socket_base::reuse_address(true), ec);
+  if (!ec) impl->acceptor->bind(*endpoint, ec);
+  if (!ec) impl->acceptor->listen(asio::socket_base::max_listen_connections, ec);
+  if (ec) return Error{"listen " + options.listen + ": " + ec.message()};
+
   // [SECTION] the arm and the scene, drawn alike in every tab
   auto arm = geometry::load_robot_assets(options.arm, options.geometry);
   if (!arm) return arm.error();
@@ -445,32 +471,7 @@ Result<std::unique_ptr<WebServer>> WebServer::create(const WebOptions& options, 
         vision::resized_camera(cameras->right, setup->width, setup->height)};
   }
 
-  // [SECTION] HTTPS
-  if (!options.tls_cert_file.empty()) {
-    impl->tls.emplace(ssl::context::tls_server);
-    impl->tls->set_options(ssl::context::default_workarounds | ssl::context::no_sslv2 |
-                           ssl::context::no_sslv3 | ssl::context::no_tlsv1 |
-                           ssl::context::no_tlsv1_1);
-    beast::error_code ec;
-    impl->tls->use_certificate_chain_file(options.tls_cert_file, ec);
-    if (ec) return Error{"certificate '" + options.tls_cert_file + "': " + ec.message()};
-    impl->tls->use_private_key_file(options.tls_key_file, ssl::context::pem, ec);
-    if (ec) return Error{"key '" + options.tls_key_file + "': " + ec.message()};
-  }
-
-  // [SECTION] the listener
   impl->shared = std::make_shared<Shared>(Shared{std::move(setup), *page_root});
-  impl->io.emplace(2);
-  auto endpoint = parse_listen(*impl->io, options.listen);
-  if (!endpoint) return endpoint.error();
-  impl->host = options.listen.substr(0, options.listen.rfind(':'));
-  beast::error_code ec;
-  impl->acceptor.emplace(*impl->io);
-  impl->acceptor->open(endpoint->protocol(), ec);
-  if (!ec) impl->acceptor->set_option(asio::socket_base::reuse_address(true), ec);
-  if (!ec) impl->acceptor->bind(*endpoint, ec);
-  if (!ec) impl->acceptor->listen(asio::socket_base::max_listen_connections, ec);
-  if (ec) return Error{"listen " + options.listen + ": " + ec.message()};
   log << "telear web: the page from " << *page_root << "\n";
   impl->accept();
   for (int i = 0; i < 2; ++i) impl->threads.emplace_back([io = &*impl->io] { io->run(); });

@@ -368,5 +368,46 @@ TEST(WebServerTlsTest, ServesThePageAndTheSocketOnlyOverTls) {
   EXPECT_TRUE(ec) << "plain HTTP was answered: " << plain_response.result_int();
 }
 
+TEST(WebServerOptionsTest, RefusesWhatCannotBeServedAndSaysWhy) {
+  std::ostringstream log;
+  const test_files::TempDir dir("web_options");
+  std::ofstream(dir.file("index.html")) << "<html></html>";
+  auto refused = [&](WebOptions options) {
+    if (options.page_root.empty()) options.page_root = dir.string();
+    options.start_local_servers = cli::simulated_local_servers();
+    auto server = WebServer::create(options, log);
+    return server ? std::string("started") : server.error().message;
+  };
+  WebOptions half;
+  half.robot = "127.0.0.1:50051";
+  EXPECT_EQ(refused(half),
+            "give both the robot and the vision server's address, or neither (local servers)");
+  WebOptions no_port;
+  no_port.listen = "127.0.0.1";
+  EXPECT_EQ(refused(no_port), "listen '127.0.0.1': expected HOST:PORT (e.g. 127.0.0.1:8080)");
+  WebOptions bad_port;
+  bad_port.listen = "127.0.0.1:99999";
+  EXPECT_EQ(refused(bad_port), "listen '127.0.0.1:99999': the port must be a number 0..65535");
+  WebOptions key_only;
+  key_only.tls_key_file = dir.file("web.key");
+  EXPECT_EQ(refused(key_only), "HTTPS needs both the certificate and its key");
+  WebOptions no_page;
+  no_page.page_root = dir.file("nowhere");
+  EXPECT_NE(refused(no_page).find("the page's files (index.html, app.js) are not in"),
+            std::string::npos);
+  WebOptions missing_cert;
+  missing_cert.listen = "127.0.0.1:0";
+  missing_cert.tls_cert_file = dir.file("missing.crt");
+  missing_cert.tls_key_file = dir.file("missing.key");
+  EXPECT_EQ(refused(missing_cert).rfind("certificate '" + dir.file("missing.crt") + "': ", 0), 0u)
+      << refused(missing_cert);
+  // The port taken by another listener.
+  asio::io_context io;
+  tcp::acceptor taken(io, tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
+  WebOptions busy;
+  busy.listen = "127.0.0.1:" + std::to_string(taken.local_endpoint().port());
+  EXPECT_EQ(refused(busy), "listen " + busy.listen + ": Address already in use");
+}
+
 }  // namespace
 }  // namespace telear::web
