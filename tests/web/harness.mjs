@@ -233,7 +233,13 @@ export async function runTest(name, body, {serverArgs = [], args: given = null} 
   let failure = null;
   const log = (message) => console.log(`${name} [${((Date.now() - started) / 1000).toFixed(1)} s] ${message}`);
   try {
-    [server, browser] = await Promise.all([startServer(args, scratch, serverArgs), launchBrowser()]);
+    // Both at once (each takes seconds), but a server that started is stopped below even when
+    // the browser failed, and the other way round.
+    const [s, b] = await Promise.allSettled([startServer(args, scratch, serverArgs), launchBrowser()]);
+    server = s.status === 'fulfilled' ? s.value : null;
+    browser = b.status === 'fulfilled' ? b.value : null;
+    if (s.status === 'rejected') throw s.reason;
+    if (b.status === 'rejected') throw b.reason;
     log(`telear web at ${server.url}`);
     const track = async (p) => { pages.push(p); return p; };
     await body({args, server, browser, scratch, log, open: async (opts) => track(await openPage(browser, server.url, opts))});
