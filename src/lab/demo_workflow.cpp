@@ -320,6 +320,7 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   session_options.vision.client_name = "telear-demo";
   session_options.lease_heartbeat_s = 1.0;  // see session::SessionOptions::lease_heartbeat_s
   session_options.vision.address = (*servers)->vision_address();
+  session_options.vision.token = (*servers)->token();
   session_options.vision.width = options.width;
   session_options.vision.height = options.height;
   // The cameras registered through the servers, at the operator's view size.

@@ -103,6 +103,8 @@ Result<std::unique_ptr<EmbeddedServers>> EmbeddedServers::create(core::RobotMode
   vision_options.listen_address = "127.0.0.1:0";
   vision_options.source = std::move(*source);
   vision_options.calibration_file = options.calibration_file;
+  // Reading the video needs the token too, as on any server started by hand (issue 25).
+  vision_options.token = servers->token_;
   auto vision = net::VisionServer::create(std::move(vision_options));
   if (!vision) return Error{"embedded vision server: " + vision.error().message};
   servers->vision_ = std::move(*vision);

@@ -42,22 +42,27 @@ Result<std::unique_ptr<VisionServer>> VisionServer::create(VisionServerOptions o
   }
   VisionServiceConfig config;
   config.max_streams = options.max_streams;
-  if (!options.observer_token_file.empty() && options.token_file.empty()) {
+  std::string token = options.token;
+  if (!options.token_file.empty()) {
+    if (!token.empty()) return Error{"vision server: give the token or its file, not both"};
+    auto loaded = load_token_file(options.token_file);
+    if (!loaded) return Error{"vision server: " + loaded.error().message};
+    token = std::move(loaded).value();
+  }
+  if (!options.observer_token_file.empty() && token.empty()) {
     return Error{"vision server: an observer token needs the operator's token (token_file)"};
   }
-  if (!options.token_file.empty()) {
-    auto token = load_token_file(options.token_file);
-    if (!token) return Error{"vision server: " + token.error().message};
+  if (!token.empty()) {
     std::string observer;
     if (!options.observer_token_file.empty()) {
       auto loaded = load_token_file(options.observer_token_file);
       if (!loaded) return Error{"vision server: observer token: " + loaded.error().message};
-      if (*loaded == *token) {
+      if (*loaded == token) {
         return Error{"vision server: the observer token is the operator's token (it must differ)"};
       }
       observer = std::move(loaded).value();
     }
-    config.auth.emplace(*token, false, std::move(observer));
+    config.auth.emplace(token, false, std::move(observer));
   }
   auto credentials = server_credentials(options.tls_cert_file, options.tls_key_file);
   if (!credentials) return Error{"vision server: " + credentials.error().message};
@@ -110,7 +115,7 @@ Result<std::unique_ptr<VisionServer>> VisionServer::create(VisionServerOptions o
   spdlog::info(
       "vision server listening on {} (source {}, {}x{} at {} fps, JPEG quality {}, {}, {})",
       impl.address, source.name(), source.width(), source.height(), source.fps(),
-      options.jpeg_quality, options.token_file.empty() ? "no token" : "token required",
+      options.jpeg_quality, token.empty() ? "no token" : "token required",
       options.tls_cert_file.empty() ? "plaintext" : "TLS");
   return server;
 }

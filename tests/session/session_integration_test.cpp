@@ -36,6 +36,7 @@ class SessionIntegrationTest : public ::testing::Test {
     session_options.robot.token = servers->token();
     session_options.robot.client_name = "session-test";
     session_options.vision.address = servers->vision_address();
+    session_options.vision.token = servers->token();
     session_options.vision.width = 320;
     session_options.vision.height = 240;
     // Generous thresholds: the tests share 2 cores with llvmpipe rendering the simulated

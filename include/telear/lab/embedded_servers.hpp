@@ -6,8 +6,8 @@
 //
 // The vision server's simulated rig follows the robot server's state stream through an
 // observer RobotClient (the same path a remote vision server would take), so the "real" arm
-// in the video moves with the robot. The bearer token is generated per start (random) unless
-// given.
+// in the video moves with the robot. Both servers take one bearer token, for commands and for
+// reading alike (the video too), generated per start (random) unless given.
 
 #include <Eigen/Core>
 #include <memory>

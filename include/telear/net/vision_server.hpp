@@ -26,6 +26,7 @@ struct VisionServerOptions {
   std::unique_ptr<vision::StereoSource> source;    // required
   std::string calibration_file;  // optional stereo camera file (OpenCV YAML) for GetCameraInfo
   std::string token_file;        // optional: every call needs `authorization: Bearer <token>`
+  std::string token;             // or the token itself (servers started in-process); not both
   // A second accepted token (the vision service only reads): the robot server's observer token
   // for watchers; empty: none. Needs token_file.
   std::string observer_token_file;
