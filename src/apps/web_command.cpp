@@ -1,5 +1,8 @@
 #include "apps/web_command.hpp"
 
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
 #include "apps/console_command.hpp"
 #include "telear/web/web_server.hpp"
 
@@ -25,6 +28,10 @@ int run_web(const web::WebOptions& given, const geometry::RobotSelection& arm, s
     return 2;
   }
   if (!options.start_local_servers) options.start_local_servers = simulated_local_servers();
+  // The servers' logs go to stderr: stdout's first lines are the address and the token, which
+  // scripts read.
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>(
+      "", std::make_shared<spdlog::sinks::stderr_color_sink_mt>()));
   auto server = web::WebServer::create(options, err);
   if (!server) {
     err << "telear web: " << server.error().message << "\n";

@@ -25,6 +25,7 @@
 #include "telear/core/clock.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/marker_mount.hpp"
+#include "telear/core/number_format.hpp"
 #include "telear/core/version.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
@@ -590,6 +591,16 @@ Result<record::RecordingCounts> ConsoleApp::stop_recording() {
 int ConsoleApp::run() {
   while (frame()) {
   }
+  // The video as shown at the end (the status panel's figures over its last 2 s), for scripts
+  // and measurements (docs/web.md compares the browser operator with it).
+  const session::SessionStats stats = session_->stats();
+  *impl_->log << "telear console: video " << core::format_number(stats.video_fps, "%.1f")
+              << " fps decoded, " << stats.shown.samples << " frames shown with their code in 2 s";
+  if (stats.shown.samples > 0) {
+    *impl_->log << ", capture -> shown p50 " << core::format_number(stats.shown.p50_s * 1e3, "%.1f")
+                << " ms, p99 " << core::format_number(stats.shown.p99_s * 1e3, "%.1f") << " ms";
+  }
+  *impl_->log << "\n";
   int status = script_.failures() > 0 ? 1 : 0;
   if (impl_->recorder) {
     auto counts = stop_recording();

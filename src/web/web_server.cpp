@@ -452,6 +452,9 @@ Result<std::unique_ptr<WebServer>> WebServer::create(const WebOptions& options, 
     session_options.lease_heartbeat_s = options.lease_heartbeat_s;
   vision.width = setup->width;
   vision.height = setup->height;
+  // The page decodes the JPEGs it is sent; the session's own decode feeds only the frame's age
+  // and the registration check, which reads luma: no colour conversion.
+  vision.decode_planes = true;
   if (!cameras && !token.empty()) {  // the vision server's calibration, read with the file's token
     net::VisionClientOptions probe_options = vision;
     probe_options.token = token;
