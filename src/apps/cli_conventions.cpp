@@ -127,6 +127,9 @@ void add_web_command(CLI::App& app, Commands& commands) {
   web_app->add_option("--resolution", web.resolution, "video size WIDTHxHEIGHT")
       ->capture_default_str()
       ->check(image_size_validator({64, 48}, {1920, 1080}));
+  web_app->add_option("--max-tabs", web.max_tabs, "browser tabs served at once (more: 503)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
   web_app->add_option("--lease-heartbeat", web.lease_heartbeat_s,
                       "s between lease renewals asked of the robot server (0: its default)");
   commands.push_back({web_app, [arguments] {

@@ -1,5 +1,6 @@
 #include "telear/web/web_server.hpp"
 
+#include <atomic>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/ssl.hpp>
 #include <boost/asio/strand.hpp>
@@ -31,6 +32,8 @@ namespace telear::web {
 struct Shared {
   std::shared_ptr<const OperatorSetup> setup;
   std::string page_root;
+  int max_tabs = 16;
+  mutable std::atomic<int> tabs{0};  // sockets open (each one a slot until its channel ends)
 };
 
 namespace {
@@ -57,6 +60,7 @@ class SocketChannel : public std::enable_shared_from_this<SocketChannel<Stream>>
 
   ~SocketChannel() {
     if (operator_) operator_->stop();  // its destructor then waits for the session's end
+    shared_->tabs.fetch_sub(1);        // the slot taken when the upgrade was accepted
   }
 
   void start(http::request<http::string_body> request) {
@@ -139,10 +143,10 @@ class SocketChannel : public std::enable_shared_from_this<SocketChannel<Stream>>
         }
       }
     } else if (queue_.size() >= kMaxQueuedOnce) {
-      // A tab that reads nothing: close it rather than hold its answers without bound.
+      // A tab that reads nothing: dropped rather than holding its answers without bound (the
+      // socket closed under the pending write and read, which then end with an error).
       closed_ = true;
-      ws_.async_close(websocket::close_code::policy_error,
-                      [self = this->shared_from_this()](beast::error_code) {});
+      beast::get_lowest_layer(ws_).close();
       return;
     }
     queue_.push_back({std::move(data), binary, kind});
@@ -177,34 +181,41 @@ class SocketChannel : public std::enable_shared_from_this<SocketChannel<Stream>>
 
 // [SECTION] HTTP: the page's files, and the upgrade to the tab's WebSocket
 
+http::response<http::string_body> response_with(const http::request<http::string_body>& request,
+                                                http::status status, std::string body,
+                                                const std::string& type) {
+  http::response<http::string_body> response{status, request.version()};
+  response.set(http::field::server, "telear web");
+  response.set(http::field::content_type, type);
+  response.set(http::field::cache_control, "no-cache");
+  response.set("X-Content-Type-Options", "nosniff");
+  response.set("Referrer-Policy", "no-referrer");
+  response.keep_alive(request.keep_alive());
+  response.body() = std::move(body);
+  response.prepare_payload();
+  return response;
+}
+
+http::response<http::string_body> text_response(const http::request<http::string_body>& request,
+                                                http::status status, std::string body) {
+  return response_with(request, status, std::move(body), "text/plain; charset=utf-8");
+}
+
 http::response<http::string_body> page_response(const Shared& shared,
                                                 const http::request<http::string_body>& request) {
-  auto response_with = [&](http::status status, std::string body, const std::string& type) {
-    http::response<http::string_body> response{status, request.version()};
-    response.set(http::field::server, "telear web");
-    response.set(http::field::content_type, type);
-    response.set(http::field::cache_control, "no-cache");
-    response.set("X-Content-Type-Options", "nosniff");
-    response.set("Referrer-Policy", "no-referrer");
-    response.keep_alive(request.keep_alive());
-    response.body() = std::move(body);
-    response.prepare_payload();
-    return response;
-  };
   if (request.method() != http::verb::get && request.method() != http::verb::head) {
-    auto response = response_with(http::status::method_not_allowed,
-                                  "telear web serves the page's files: GET only\n",
-                                  "text/plain; charset=utf-8");
+    auto response = text_response(request, http::status::method_not_allowed,
+                                  "telear web serves the page's files: GET only\n");
     response.set(http::field::allow, "GET, HEAD");
     return response;
   }
   const std::string target(request.target());
   auto file = read_page_file(shared.page_root, target);
   if (!file) {
-    return response_with(http::status::not_found, "no such page file: " + target + "\n",
-                         "text/plain; charset=utf-8");
+    return text_response(request, http::status::not_found, "no such page file: " + target + "\n");
   }
-  auto response = response_with(http::status::ok, std::move(file->body), file->content_type);
+  auto response =
+      response_with(request, http::status::ok, std::move(file->body), file->content_type);
   if (request.method() == http::verb::head) response.body().clear();
   return response;
 }
@@ -243,8 +254,18 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     if (websocket::is_upgrade(request)) {
       const std::string target(request.target());
       if (target.substr(0, target.find('?')) == "/ws") {
-        std::make_shared<SocketChannel<Stream>>(std::move(stream_), shared_)
-            ->start(std::move(request));
+        if (shared_->tabs.fetch_add(1) < shared_->max_tabs) {
+          std::make_shared<SocketChannel<Stream>>(std::move(stream_), shared_)
+              ->start(std::move(request));
+          return;
+        }
+        shared_->tabs.fetch_sub(1);
+        response_ = text_response(request, http::status::service_unavailable,
+                                  "telear web: " + std::to_string(shared_->max_tabs) +
+                                      " tabs are connected, the most it serves (--max-tabs)\n");
+        http::async_write(
+            stream_, *response_,
+            beast::bind_front_handler(&HttpSession::on_write, this->shared_from_this()));
         return;
       }
     }
@@ -353,6 +374,7 @@ Result<std::unique_ptr<WebServer>> WebServer::create(const WebOptions& options, 
   if (options.tls_cert_file.empty() != options.tls_key_file.empty()) {
     return Error{"HTTPS needs both the certificate and its key"};
   }
+  if (options.max_tabs < 1) return Error{"max_tabs must be at least 1"};
   auto resolution = core::parse_image_size(options.resolution, {64, 48}, {1920, 1080});
   if (!resolution) return Error{"resolution: " + resolution.error().message};
   auto page_root = find_page_root(options.page_root);
@@ -474,7 +496,10 @@ Result<std::unique_ptr<WebServer>> WebServer::create(const WebOptions& options, 
         vision::resized_camera(cameras->right, setup->width, setup->height)};
   }
 
-  impl->shared = std::make_shared<Shared>(Shared{std::move(setup), *page_root});
+  impl->shared = std::make_shared<Shared>();
+  impl->shared->setup = std::move(setup);
+  impl->shared->page_root = *page_root;
+  impl->shared->max_tabs = options.max_tabs;
   log << "telear web: the page from " << *page_root << "\n";
   impl->accept();
   for (int i = 0; i < 2; ++i) impl->threads.emplace_back([io = &*impl->io] { io->run(); });

@@ -22,6 +22,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "apps/console_command.hpp"
 #include "telear/web/web_server.hpp"
@@ -407,6 +408,59 @@ TEST(WebServerOptionsTest, RefusesWhatCannotBeServedAndSaysWhy) {
   WebOptions busy;
   busy.listen = "127.0.0.1:" + std::to_string(taken.local_endpoint().port());
   EXPECT_EQ(refused(busy), "listen " + busy.listen + ": Address already in use");
+}
+
+TEST(WebServerTabsTest, TabsBeyondTheLimitAreAnswered503) {
+  const test_files::TempDir dir("web_tabs");
+  std::ofstream(dir.file("index.html")) << "<html></html>";
+  WebOptions options;
+  options.listen = "127.0.0.1:0";
+  options.page_root = dir.string();
+  options.max_tabs = 1;
+  options.start_local_servers = cli::simulated_local_servers();
+  std::ostringstream log;
+  auto server = WebServer::create(options, log);
+  ASSERT_TRUE(server) << server.error().message;
+  const std::string url = (*server)->url();
+  const int port = std::stoi(url.substr(url.rfind(':') + 1));
+  auto first = std::make_unique<PageSocket>(port);
+  EXPECT_FALSE(first->wait_type("hello").is_null());
+
+  asio::io_context io;
+  websocket::stream<tcp::socket> second(io);
+  tcp::resolver resolver(io);
+  asio::connect(second.next_layer(), resolver.resolve("127.0.0.1", std::to_string(port)));
+  websocket::response_type response;
+  beast::error_code ec;
+  second.handshake(response, "127.0.0.1", "/ws", ec);
+  EXPECT_EQ(ec, websocket::error::upgrade_declined) << ec.message();
+  // The same upgrade as plain HTTP, to read the answer's text.
+  beast::tcp_stream raw(io);
+  raw.connect(resolver.resolve("127.0.0.1", std::to_string(port)));
+  http::request<http::string_body> upgrade{http::verb::get, "/ws", 11};
+  upgrade.set(http::field::host, "127.0.0.1");
+  upgrade.set(http::field::connection, "Upgrade");
+  upgrade.set(http::field::upgrade, "websocket");
+  upgrade.set(http::field::sec_websocket_version, "13");
+  upgrade.set(http::field::sec_websocket_key, "dGhlIHNhbXBsZSBub25jZQ==");
+  http::write(raw, upgrade);
+  beast::flat_buffer buffer;
+  http::response<http::string_body> refused;
+  http::read(raw, buffer, refused);
+  EXPECT_EQ(refused.result(), http::status::service_unavailable);
+  EXPECT_EQ(refused.body(), "telear web: 1 tabs are connected, the most it serves (--max-tabs)\n");
+
+  first.reset();  // its slot comes back once its session has ended
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  bool served = false;
+  while (!served && std::chrono::steady_clock::now() < deadline) {
+    websocket::stream<tcp::socket> third(io);
+    asio::connect(third.next_layer(), resolver.resolve("127.0.0.1", std::to_string(port)));
+    third.handshake(response, "127.0.0.1", "/ws", ec);
+    served = !ec;
+    if (!served) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_TRUE(served) << "the closed tab's slot was never given back";
 }
 
 }  // namespace

@@ -31,6 +31,9 @@ struct WebOptions {
   std::string resolution = "640x480";  // the video size asked of the vision server
   double lease_heartbeat_s = 0.0;      // 0: the server's default (embedded: 1 s)
   std::string page_root;               // empty: page_files.hpp's search
+  // Browser tabs served at once (each holds a session, two streams and a thread): more are
+  // answered 503, so that sockets opened by anyone cannot exhaust the machine.
+  int max_tabs = 16;
 };
 
 }  // namespace telear::web
