@@ -41,6 +41,10 @@ class CanonicalWriter {
 
 Result<std::string> canonical_plan_bytes(const Trajectory& trajectory) {
   const double duration = trajectory.duration();
+  if (!std::isfinite(duration) || duration < 0.0) {  // never from a validated plan; not hashed
+    return Error{"the trajectory's duration is not a finite number of seconds: " +
+                 format_number(duration)};
+  }
   // floor(100 duration) + 1 samples on the grid, one more for the end when off the grid.
   const double grid = std::floor(duration * kPlanHashRateHz);
   if (grid + 2.0 > kMaxPlanHashSamples) {

@@ -43,12 +43,14 @@ std::string joint_vector_problem(const RobotModel& model, const Eigen::VectorXd&
 }
 
 Status check_options(const TrajectoryOptions& o) {
-  auto in_unit_interval = [](double x) { return std::isfinite(x) && x > 0.0 && x <= 1.0; };
-  if (!in_unit_interval(o.velocity_scale)) {
-    return Error{"velocity_scale must be in (0, 1], got " + format_number(o.velocity_scale)};
+  // At least a thousandth: a scale of 1e-314 (found by fuzzing the robot server) times out
+  // every segment to infinity, and the trajectory's duration to NaN.
+  auto in_range = [](double x) { return std::isfinite(x) && x >= kMinMotionScale && x <= 1.0; };
+  if (!in_range(o.velocity_scale)) {
+    return Error{"velocity_scale must be in [0.001, 1], got " + format_number(o.velocity_scale)};
   }
-  if (!in_unit_interval(o.acceleration_scale)) {
-    return Error{"acceleration_scale must be in (0, 1], got " +
+  if (!in_range(o.acceleration_scale)) {
+    return Error{"acceleration_scale must be in [0.001, 1], got " +
                  format_number(o.acceleration_scale)};
   }
   if (o.max_waypoints < 1) {

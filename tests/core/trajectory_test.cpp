@@ -383,9 +383,16 @@ TEST_F(WaypointValidation, RejectsBadDurationsAndGripperOpenings) {
 
 TEST_F(WaypointValidation, RejectsBadOptions) {
   EXPECT_EQ(rejection({{home}}, {.velocity_scale = 0.0}),
-            "velocity_scale must be in (0, 1], got 0");
+            "velocity_scale must be in [0.001, 1], got 0");
   EXPECT_EQ(rejection({{home}}, {.acceleration_scale = 1.5}),
-            "acceleration_scale must be in (0, 1], got 1.5");
+            "acceleration_scale must be in [0.001, 1], got 1.5");
+  // fuzz/crashes/robot_rpc/crash-9689f06e...: scales of 1e-314 and 1e-312 gave the trajectory
+  // a NaN duration, which plan_hash then converted to an integer (undefined behaviour).
+  EXPECT_EQ(rejection({{home}}, {.velocity_scale = 1.85674631709461e-314}),
+            "velocity_scale must be in [0.001, 1], got 1.85675e-314");
+  EXPECT_EQ(rejection({{home}}, {.acceleration_scale = 0.000999}),
+            "acceleration_scale must be in [0.001, 1], got 0.000999");
+  EXPECT_TRUE(validate_waypoints(*model, {{home}}, {.velocity_scale = 0.001}));
   EXPECT_EQ(rejection({{home}}, {.max_waypoints = 0}), "max_waypoints must be at least 1, got 0");
   EXPECT_EQ(rejection({{home}}, {.max_segment_duration = kNaN}),
             "max_segment_duration must be a non-negative finite number, got nan");

@@ -155,7 +155,7 @@ TEST(RobotPlan, RefusalsSayWhyAndNothingMoves) {
   {
     auto r = plan_request("p-scale", trajectory, lease);
     r.mutable_plan()->set_velocity_scale(0.0);
-    cases.push_back({"no scale", r, "velocity_scale must be in (0, 1], got 0"});
+    cases.push_back({"no scale", r, "velocity_scale must be in [0.001, 1], got 0"});
   }
   {
     auto r = plan_request("p-long", trajectory, lease);

@@ -96,9 +96,12 @@ struct JointWaypoint {
   bool expanded = false;
 };
 
+// The smallest velocity or acceleration scale: a thousandth of the joints' limits.
+inline constexpr double kMinMotionScale = 1e-3;
+
 struct TrajectoryOptions {
-  double velocity_scale = 1.0;      // (0, 1]: fraction of each joint's max velocity to plan with
-  double acceleration_scale = 1.0;  // (0, 1]: fraction of each joint's max acceleration
+  double velocity_scale = 1.0;  // [0.001, 1]: fraction of each joint's max velocity to plan with
+  double acceleration_scale = 1.0;  // [0.001, 1]: fraction of each joint's max acceleration
   int max_waypoints = 10000;
   double max_segment_duration = 3600.0;  // s; upper bound on a waypoint's min_duration
 };
