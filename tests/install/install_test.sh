@@ -54,6 +54,8 @@ for f in "$telear" \
          "$prefix/share/telear/data/robots/puma560.yaml" \
          "$prefix/share/telear/data/rigs/puma560_rig.yaml" \
          "$prefix/share/telear/data/cameras/puma560_stereo.yaml" \
+         "$prefix/share/telear/web/index.html" \
+         "$prefix/share/telear/web/app.js" \
          "$prefix/include/telear/core/robot_loader.hpp" \
          "$prefix/include/telear/core/version.hpp" \
          "$prefix/include/telear/net/robot_service.hpp" \
@@ -122,5 +124,12 @@ run_logged "$work/frame.log" "telear sim frame --q qr -o frame failed" \
 for eye in left right; do
   [[ -s frame_$eye.png ]] || fail "telear sim frame did not write frame_$eye.png in $PWD"
 done
+
+# The browser operator's page, found beside the installed program (not in the build tree).
+timeout 8 "$telear" web --listen 127.0.0.1:0 > "$work/web.out" 2> "$work/web.err" || true
+grep -q "^listening on http://127.0.0.1:" "$work/web.out" ||
+  fail "the installed telear web did not start: $(cat "$work/web.out" "$work/web.err")"
+grep -q "the page from $prefix/share/telear/web" "$work/web.err" ||
+  fail "the installed telear web did not serve its installed page: $(cat "$work/web.err")"
 
 step "passed"
