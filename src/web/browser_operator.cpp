@@ -363,6 +363,7 @@ std::string BrowserOperator::state_json() {
       {"display_reason", view.display.reason},
       {"fps", stats.video_fps},
       {"frame_age_ms", stats.frame_age_s * 1e3},
+      {"video_bytes_per_s", stats.video_bytes_per_s},
       {"state_age_ms", stats.robot_state_age_s * 1e3},
       {"latency_ms", latency},
       {"shown_ms",

@@ -12,7 +12,7 @@
 
 import {spawn} from 'node:child_process';
 import {randomBytes} from 'node:crypto';
-import {mkdtemp, rm, writeFile} from 'node:fs/promises';
+import {mkdtemp, readFile, rm, writeFile} from 'node:fs/promises';
 import os from 'node:os';
 import path from 'node:path';
 import readline from 'node:readline';
@@ -30,6 +30,11 @@ for (let i = 2; i < process.argv.length; i += 2) {
 }
 
 const children = [];
+// User + system CPU seconds of a process so far (/proc/PID/stat, clock ticks of 1/100 s).
+async function cpuSeconds(pid) {
+  const fields = (await readFile(`/proc/${pid}/stat`, 'utf8')).split(') ')[1].split(' ');
+  return (Number(fields[11]) + Number(fields[12])) / 100;
+}
 // Starts `telear ARGS` and resolves with the first line of its output matching `pattern`.
 function start(args, pattern) {
   const child = spawn(options.telear, args, {cwd: sourceRoot, stdio: ['ignore', 'pipe', 'pipe']});
@@ -72,12 +77,15 @@ try {
 
   // 1. The page.
   const web = await start(['web', '--listen', '127.0.0.1:0', ...servers], /^listening on (\S+)/);
+  const webProcess = children[children.length - 1];
   browser = await launchBrowser();
   const page = await openPage(browser, web[1]);
   await connect(page, token);
   await page.waitForTimeout(3000);  // warm-up: the first frames, the clock offset
   const before = await page.evaluate(() => window.telear.framesShown);
+  const cpuBefore = await cpuSeconds(webProcess.pid);
   await page.waitForTimeout(options.seconds * 1000);
+  const cpuAfter = await cpuSeconds(webProcess.pid);
   const after = await page.evaluate(() => ({frames: window.telear.framesShown, state: window.telear.state}));
   await browser.close();
   browser = null;
@@ -85,6 +93,10 @@ try {
     frames_drawn_per_s: (after.frames - before) / options.seconds,
     video_fps_decoded_by_telear_web: after.state.fps,
     capture_to_shown_ms: after.state.shown_ms,
+    // telear web's own cost of the stream (forwarding the JPEG pairs, its session's decode to
+    // planes): CPU ms per video frame, and the video's bytes per second on the socket.
+    telear_web_cpu_ms_per_frame: (cpuAfter - cpuBefore) * 1000 / (after.state.fps * options.seconds),
+    video_megabytes_per_s: after.state.video_bytes_per_s / 1e6,
   };
 
   // 2. The native console on the same servers.
