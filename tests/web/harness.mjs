@@ -9,6 +9,7 @@
 // The page is bundled from web/ into a scratch folder first (web/build.mjs, well under a
 // second) and served from there (TELEAR_WEB_ROOT), so a test always checks the sources it
 // sits beside; --web-root DIR (or $TELEAR_WEB_ROOT) serves a bundle already built instead.
+// $TELEAR_CHROMIUM (the browser) and $TELEAR_CHROMIUM_ARGS (more switches, space-separated).
 
 import assert from 'node:assert/strict';
 import {spawn, spawnSync} from 'node:child_process';
@@ -150,7 +151,8 @@ export async function launchBrowser() {
   return chromium.launch({
     executablePath: kChromium,
     headless: true,
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+           ...(process.env.TELEAR_CHROMIUM_ARGS ?? '').split(/\s+/).filter(Boolean)],
   });
 }
 

@@ -9,6 +9,9 @@
 // Not a test (nothing is asserted): a measurement, printed as one JSON object.
 //
 //   node tests/web/measure_page.mjs [--telear build/telear] [--seconds 10] [--resolution 640x480]
+//
+// The page is bundled from web/ first, as the tests do (or $TELEAR_WEB_ROOT is served);
+// $TELEAR_CHROMIUM_ARGS adds Chromium switches (harness.mjs), e.g. --disable-gpu-compositing.
 
 import {spawn} from 'node:child_process';
 import {randomBytes} from 'node:crypto';
@@ -17,7 +20,7 @@ import os from 'node:os';
 import path from 'node:path';
 import readline from 'node:readline';
 
-import {connect, launchBrowser, openPage, sourceRoot} from './harness.mjs';
+import {bundlePage, connect, launchBrowser, openPage, sourceRoot} from './harness.mjs';
 
 const options = {telear: path.join(sourceRoot, 'build', 'telear'), seconds: 10, resolution: '640x480'};
 for (let i = 2; i < process.argv.length; i += 2) {
@@ -36,8 +39,8 @@ async function cpuSeconds(pid) {
   return (Number(fields[11]) + Number(fields[12])) / 100;
 }
 // Starts `telear ARGS` and resolves with the first line of its output matching `pattern`.
-function start(args, pattern) {
-  const child = spawn(options.telear, args, {cwd: sourceRoot, stdio: ['ignore', 'pipe', 'pipe']});
+function start(args, pattern, env = process.env) {
+  const child = spawn(options.telear, args, {cwd: sourceRoot, env, stdio: ['ignore', 'pipe', 'pipe']});
   children.push(child);
   return new Promise((resolve, reject) => {
     for (const stream of [child.stdout, child.stderr]) {
@@ -76,7 +79,9 @@ try {
                    '--calibration', calibration, '--resolution', options.resolution];
 
   // 1. The page.
-  const web = await start(['web', '--listen', '127.0.0.1:0', ...servers], /^listening on (\S+)/);
+  const pageRoot = process.env.TELEAR_WEB_ROOT || await bundlePage(scratch);
+  const web = await start(['web', '--listen', '127.0.0.1:0', ...servers], /^listening on (\S+)/,
+                          {...process.env, TELEAR_WEB_ROOT: pageRoot});
   const webProcess = children[children.length - 1];
   browser = await launchBrowser();
   const page = await openPage(browser, web[1]);

@@ -3,7 +3,9 @@
 // changes what the operator sees.
 //
 //   state, cameras, model, hello     the last message of each type
-//   framesShown                      video frames drawn so far (both eyes = one frame)
+//   framesShown                      video frames put on the eyes' video layers so far (both
+//                                    eyes = one frame; its `shown` report follows at the next
+//                                    animation frame, once the browser has composited it)
 //   lastResult                       the last command's {id, ok, message, line}
 //   lookUpTablesLoaded               how many eyes have their lens look-up table (0..2)
 //   connection                       the connection text as shown
@@ -12,8 +14,10 @@
 //   command(line) -> Promise<result> the same path as the command line and the buttons
 //   ghostOnly(eye) -> Promise<PNG data URL>   the ghost alone, opaque, solid, on transparent
 //                                    black, W x H, through the live pipeline (region + lens)
-//   videoOnly(eye) -> Promise<{drawn, decoded}>  the eye's video as the pipeline draws it, and
-//                                    the same decoded frame drawn by a 2-D canvas
+//   videoOnly(eye) -> Promise<{drawn, decoded}>  the eye's video layer read back (the newest
+//                                    decoded frame drawn into it first, as the next animation
+//                                    frame would), and the same decoded frame drawn by a fresh
+//                                    2-D canvas: PNG data URLs, W x H
 
 export function installDebugHooks(app) {
   const listeners = new Set();

@@ -10,9 +10,11 @@
 //      (src/render/overlay.cpp, kWarpFragment).
 //
 // So the ghost bends with the lens exactly as the video does and sits on the real arm. The
-// output is an eye's canvas, a view's viewport of the headset's framebuffer, or (for the
-// tests' ghostOnly) a W x H render target. A renderer is one GL context: the eye canvases
-// and the headset each hold their own pipelines over the shared ArmScene and textures.
+// output is an eye's ghost layer (step 2 without the video: transparent over the page's
+// video layer, eye_view.js), a view's viewport of the headset's framebuffer (with the video
+// texture), or (for the tests' ghostOnly) a W x H render target. A renderer is one GL
+// context: the eyes' ghost layers and the headset each hold their own pipelines over the
+// shared ArmScene and textures.
 
 import * as THREE from 'three';
 import {CalibratedCamera} from './calibrated_camera.js';
@@ -21,7 +23,8 @@ import {compositeMesh, videoBackgroundMesh} from './shaders.js';
 export const kVrBackground = new THREE.Color(0.16, 0.18, 0.22);  // ArViewOptions::vr_background
 
 export class EyePipeline {
-  // eye: an entry of the cameras message's `eyes`; width, height: the cameras message's.
+  // eye: an entry of the cameras message's `eyes`; width, height: the cameras message's;
+  // videoTexture: null where the pipeline never draws the video (an eye's ghost layer).
   constructor(renderer, eye, width, height, videoTexture) {
     this.renderer = renderer;
     this.width = width;

@@ -17,7 +17,8 @@ import {VideoStream} from './video.js';
 import {XrPresenter} from './webxr.js';
 
 const $ = (selector) => document.querySelector(selector);
-const kStatusPeriodMs = 250;  // the page's own figures; state-driven text follows every state
+const kStatusPeriodMs = 250;  // the page's own figures; state-driven text follows each state
+const kMergeMs = 50;          // how long a change other than a video frame waits for one
 
 class App {
   constructor() {
@@ -29,8 +30,10 @@ class App {
     this.state = null;
     this.token = null;  // in memory only: sent again when the socket reconnects
     this.sessionConnected = false;
-    this.dirty = true;
-    this.stateChanged = false;
+    // Page ms of the oldest change not on screen yet other than a video frame (a state, the
+    // model, the cameras, a look-up table, the page's own figures), or null: it goes on screen
+    // with the next video frame, or on its own once it has waited kMergeMs (animate).
+    this.pendingSince = pageNowMs();
     this.newFrame = null;         // header of a decoded frame not drawn yet
     this.drawnFrames = [];        // drawn in the last animation frame: on screen at the next one
     this.shownTimes = [];         // page ms of recent shown frames, for the page's fps
@@ -108,7 +111,7 @@ class App {
       if (this.token !== null) this.connection.send({type: 'connect', token: this.token});
     } else {
       this.sessionConnected = false;
-      this.stateChanged = true;
+      this.changed();
       this.setConnection('disconnected (no socket to telear web; reconnecting)');
     }
   }
@@ -129,7 +132,7 @@ class App {
       case 'connection': {
         const state = String(m.state ?? 'disconnected');
         this.sessionConnected = state === 'connected';
-        this.stateChanged = true;
+        this.changed();
         this.setConnection(state === 'refused' ? `refused: ${m.reason ?? ''}` : `${state}${m.reason ? ` (${m.reason})` : ''}`);
         break;
       }
@@ -141,17 +144,17 @@ class App {
         } catch (e) {
           this.commandLine.showResult({line: 'model', ok: false, message: e.message});
         }
-        this.dirty = true;
+        this.changed();
         break;
       case 'cameras':
         this.setCameras(m);
         break;
       case 'state':
         this.state = m;
-        if (this.armScene.applyState(m)) this.dirty = true;
+        this.armScene.applyState(m);  // bumps its version when the picture changes
         this.status.addEvents(m.events);
         this.stateArrived(m);
-        this.stateChanged = true;
+        this.changed();
         break;
       default:
         break;  // result and pong are the connection's; unknown types are ignored
@@ -173,9 +176,9 @@ class App {
       const eye = eyes[i] ?? eyes[0];
       const lut = this.lookUpTables[i];
       const fits = lut && lut.image.width === m.width && lut.image.height === m.height;
-      view.setCamera(eye, m.width, m.height, this.video.textures[i], fits ? lut : null);
+      view.setCamera(eye, m.width, m.height, fits ? lut : null);
     });
-    this.dirty = true;
+    this.changed();
   }
 
   binary(buffer) {
@@ -201,13 +204,16 @@ class App {
       this.hooks.lookUpTablesLoaded = this.lookUpTables.filter((t) => t !== null).length;
       const fits = !this.cameras || (this.cameras.width === message.width && this.cameras.height === message.height);
       if (fits) this.eyes[message.eye].setLookUpTable(texture);
-      this.dirty = true;
+      this.changed();
     }
   }
 
   frameDecoded(header) {
     this.newFrame = header;
-    this.dirty = true;
+  }
+
+  changed() {
+    this.pendingSince ??= pageNowMs();
   }
 
   // [SECTION] render loop
@@ -223,21 +229,33 @@ class App {
     for (const header of this.drawnFrames) this.reportShown(header, now);
     this.drawnFrames = [];
 
-    if (this.dirty) {
-      this.dirty = false;
-      const showVideo = this.showVideo();
-      let drawn = false;
-      for (const eye of this.eyes) drawn = eye.render(this.armScene, showVideo) || drawn;
-      if (drawn && showVideo && this.newFrame) {
+    // Every picture the browser composites costs it a pass over the page (where it composites
+    // through SwiftShader, ~15 ms of CPU for a 1400 x 900 page: as much as the video's own
+    // layers), so the other changes ride along with the video frames: a change waits for the
+    // next frame, at most kMergeMs, or draws at once when no video is shown.
+    const showVideo = this.showVideo();
+    const frame = showVideo && this.newFrame !== null && this.eyes.every((eye) => eye.ready);
+    if (this.pendingSince === null && now - this.lastStatusMs > kStatusPeriodMs) this.pendingSince = now;
+    const due = this.pendingSince !== null && (frame || !showVideo || now - this.pendingSince >= kMergeMs);
+    if (frame || due) {
+      // The ghost layers draw only when their picture changed (eye_view.js); a video frame is
+      // a copy into each eye's video layer.
+      for (const eye of this.eyes) eye.render(this.armScene, showVideo);
+      if (frame) {
+        this.eyes.forEach((eye, i) => eye.showFrame(this.video.bitmap(i)));
         this.drawnFrames.push(this.newFrame);
         this.hooks.framesShown += 1;
         this.shownTimes.push(now);
+        this.newFrame = null;
       }
-      if (drawn) this.newFrame = null;
     }
+    // Drawn, or no eye shows video now (VR): the next frame may decode.
+    if (frame || !showVideo) this.video.drawn();
     while (this.shownTimes.length && now - this.shownTimes[0] > 1000) this.shownTimes.shift();
-
-    if (this.stateChanged || now - this.lastStatusMs > kStatusPeriodMs) this.updatePanels(now);
+    if (due) {
+      this.pendingSince = null;
+      this.updatePanels(now);
+    }
   }
 
   // docs/web.md's `shown` (frame id and page clock), plus the page's own capture -> shown
@@ -253,7 +271,6 @@ class App {
   }
 
   updatePanels(now) {
-    this.stateChanged = false;
     this.lastStatusMs = now;
     const clock = this.connection.clock;
     this.status.update(this.state, {

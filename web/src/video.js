@@ -1,7 +1,9 @@
 // The stereo video: each binary frame's two JPEGs decoded off the main thread
-// (createImageBitmap) into one texture per eye. Latest wins, as on the server: while a frame
-// decodes, a newer one waits in a single slot and replaces any older waiting one, so a slow
-// machine shows fewer frames rather than older ones.
+// (createImageBitmap, both at once) into one ImageBitmap per eye, which the eyes' video layers
+// draw (eye_view.js) and the headset's pipelines upload as textures (webxr.js: only they
+// upload). Latest wins, as on the server: while a frame decodes, or waits to be drawn, a newer
+// one waits in a single slot and replaces any older waiting one, so a slow machine shows (and
+// decodes) fewer frames rather than older ones.
 
 import * as THREE from 'three';
 
@@ -31,6 +33,7 @@ export class VideoStream {
     this.header = null;   // the header of the frame in the textures
     this.waiting = null;  // the newest frame not decoded yet
     this.decoding = false;
+    this.undrawn = false;  // the decoded frame has not been drawn yet (drawn())
     this.errors = 0;
     this.lastError = '';
   }
@@ -41,12 +44,20 @@ export class VideoStream {
 
   push(frame) {
     this.waiting = frame;
-    if (!this.decoding) this.decodeNext();
+    if (!this.decoding && !this.undrawn) this.decodeNext();
+  }
+
+  // The decoded frame has been drawn (or nothing shows video now): the next one may decode.
+  // Until then a newer frame waits in the slot undecoded, so a page that draws fewer frames
+  // than arrive spends no time decoding frames that it would never show.
+  drawn() {
+    this.undrawn = false;
+    if (!this.decoding && this.waiting) this.decodeNext();
   }
 
   async decodeNext() {
     this.decoding = true;
-    while (this.waiting) {
+    while (this.waiting && !this.undrawn) {
       const frame = this.waiting;
       this.waiting = null;
       try {
@@ -63,18 +74,19 @@ export class VideoStream {
 
   show(header, bitmaps) {
     bitmaps.forEach((bitmap, eye) => {
-      // Every renderer that uploads this texture does so from the new bitmap from now on, so
-      // the old one is no longer needed by any of them.
+      // The video layers draw, and every renderer that uploads this texture (the headset's)
+      // uploads, the new bitmap from now on: the old one is no longer needed by any of them.
       if (this.bitmaps[eye]) this.bitmaps[eye].close();
       this.bitmaps[eye] = bitmap;
       this.textures[eye].image = bitmap;
       this.textures[eye].needsUpdate = true;
     });
     this.header = header;
+    this.undrawn = true;
     this.onFrame(header);
   }
 
-  // The current frame's bitmap of one eye (the tests' videoOnly comparison), or null.
+  // The current frame's bitmap of one eye (what the eye's video layer draws), or null.
   bitmap(eye) {
     return this.bitmaps[eye];
   }

@@ -7,6 +7,9 @@
 // headset's views. Per XR frame and view: the base layer's viewport for that view, and the
 // eye's pipeline (eye_pipeline.js) drawn into it through an externally managed render target
 // (WebGLRenderer.setRenderTargetFramebuffer, as three.js's own XR manager binds the layer).
+// These pipelines are the only users of the video textures (video.js): the page's eyes draw
+// the decoded bitmaps into their video layers, so a frame is uploaded only while a session
+// runs.
 
 import * as THREE from 'three';
 import {EyePipeline} from './eye_pipeline.js';
@@ -117,6 +120,9 @@ export class XrPresenter {
       });
     }
     this.renderer.setRenderTarget(null);
+    // The headset drew the frame: the next may decode (the page's own animation frames may
+    // be paused while the headset presents).
+    this.host.video.drawn();
     this.host.onViews(used);
   }
 }
