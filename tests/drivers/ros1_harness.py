@@ -70,7 +70,11 @@ class Controller:
         if not os.path.exists(self.log_path):
             return []
         with open(self.log_path) as f:
-            events = [json.loads(line) for line in f if line.strip()]
+            text = f.read()
+        # The controller may be writing its next event: a last line without its newline is
+        # not complete yet (its buffer reaches the file in pieces), and is read next time.
+        complete = text[:text.rfind("\n") + 1]
+        events = [json.loads(line) for line in complete.splitlines() if line.strip()]
         return [e for e in events if kind is None or e["event"] == kind]
 
     def set_silent(self, silent):
