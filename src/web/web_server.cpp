@@ -1,21 +1,18 @@
 #include "telear/web/web_server.hpp"
 
-#include <atomic>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
-#include <boost/asio/ssl.hpp>
+#include <boost/asio/ssl/context.hpp>
 #include <boost/asio/strand.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
-#include <boost/beast/ssl.hpp>
-#include <boost/beast/websocket.hpp>
-#include <boost/beast/websocket/ssl.hpp>
-#include <deque>
 #include <filesystem>
 #include <mutex>
 #include <optional>
 #include <thread>
 #include <vector>
 
+#include "connections.hpp"
 #include "telear/core/image_size.hpp"
 #include "telear/core/workspace.hpp"
 #include "telear/geometry/robot_assets.hpp"
@@ -27,272 +24,12 @@
 
 namespace telear::web {
 
-// Everything a connection needs from the server, shared (outside the anonymous namespace:
-// WebServer::Impl holds it).
-struct Shared {
-  std::shared_ptr<const OperatorSetup> setup;
-  std::string page_root;
-  int max_tabs = 16;
-  mutable std::atomic<int> tabs{0};  // sockets open (each one a slot until its channel ends)
-};
-
 namespace {
 
 namespace asio = boost::asio;
-namespace beast = boost::beast;
-namespace http = beast::http;
-namespace websocket = beast::websocket;
 namespace ssl = asio::ssl;
 using tcp = asio::ip::tcp;
-
-constexpr std::size_t kMaxRequestBody = 64 * 1024;    // the page only GETs
-constexpr std::size_t kMaxSocketMessage = 64 * 1024;  // a command line, a token
-constexpr std::size_t kMaxQueuedOnce = 256;           // answers a tab has not read yet
-const auto kHttpTimeout = std::chrono::seconds(30);
-
-// [SECTION] one tab's WebSocket
-
-template <class Stream>
-class SocketChannel : public std::enable_shared_from_this<SocketChannel<Stream>> {
- public:
-  SocketChannel(Stream&& stream, std::shared_ptr<const Shared> shared)
-      : ws_(std::move(stream)), shared_(std::move(shared)) {}
-
-  ~SocketChannel() {
-    if (operator_) operator_->stop();  // its destructor then waits for the session's end
-    shared_->tabs.fetch_sub(1);        // the slot taken when the upgrade was accepted
-  }
-
-  void start(http::request<http::string_body> request) {
-    beast::get_lowest_layer(ws_).expires_never();
-    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
-    ws_.set_option(websocket::stream_base::decorator([](websocket::response_type& response) {
-      response.set(http::field::server, "telear web");
-    }));
-    ws_.read_message_max(kMaxSocketMessage);
-    ws_.async_accept(
-        request, beast::bind_front_handler(&SocketChannel::on_accept, this->shared_from_this()));
-  }
-
-  // From any thread: queued on this connection's strand.
-  void enqueue(std::string data, bool binary, OperatorOutbox::Kind kind) {
-    asio::post(ws_.get_executor(),
-               [self = this->shared_from_this(), data = std::move(data), binary, kind]() mutable {
-                 self->queue(std::move(data), binary, kind);
-               });
-  }
-
- private:
-  struct Outgoing {
-    std::string data;
-    bool binary = false;
-    OperatorOutbox::Kind kind = OperatorOutbox::Kind::kOnce;
-  };
-
-  // The operator's side of the socket: a weak reference, so that the channel (which owns the
-  // operator) is not kept alive by it.
-  class Outbox : public OperatorOutbox {
-   public:
-    explicit Outbox(std::weak_ptr<SocketChannel> channel) : channel_(std::move(channel)) {}
-    void send_text(std::string message, Kind kind) override {
-      if (auto c = channel_.lock()) c->enqueue(std::move(message), false, kind);
-    }
-    void send_binary(std::string message, Kind kind) override {
-      if (auto c = channel_.lock()) c->enqueue(std::move(message), true, kind);
-    }
-
-   private:
-    std::weak_ptr<SocketChannel> channel_;
-  };
-
-  void on_accept(beast::error_code ec) {
-    if (ec) return;
-    operator_ = std::make_unique<BrowserOperator>(shared_->setup,
-                                                  std::make_shared<Outbox>(this->weak_from_this()));
-    read();
-  }
-
-  void read() {
-    ws_.async_read(buffer_,
-                   beast::bind_front_handler(&SocketChannel::on_read, this->shared_from_this()));
-  }
-
-  void on_read(beast::error_code ec, std::size_t) {
-    if (ec) {  // closed, or a message over the limit: the tab's session ends
-      operator_->stop();
-      return;
-    }
-    if (ws_.got_text()) {
-      operator_->receive(beast::buffers_to_string(buffer_.data()));
-    } else {
-      queue(result_message(-1, false, "binary messages are not read: send JSON text"), false,
-            OperatorOutbox::Kind::kOnce);
-    }
-    buffer_.consume(buffer_.size());
-    read();
-  }
-
-  void queue(std::string data, bool binary, OperatorOutbox::Kind kind) {
-    if (closed_) return;
-    if (kind != OperatorOutbox::Kind::kOnce) {
-      // Latest wins: a state or a frame still waiting is replaced (never the one being written).
-      for (std::size_t i = writing_ ? 1 : 0; i < queue_.size(); ++i) {
-        if (queue_[i].kind == kind) {
-          queue_[i].data = std::move(data);
-          return;
-        }
-      }
-    } else if (queue_.size() >= kMaxQueuedOnce) {
-      // A tab that reads nothing: dropped rather than holding its answers without bound (the
-      // socket closed under the pending write and read, which then end with an error).
-      closed_ = true;
-      beast::get_lowest_layer(ws_).close();
-      return;
-    }
-    queue_.push_back({std::move(data), binary, kind});
-    if (!writing_) write();
-  }
-
-  void write() {
-    writing_ = true;
-    ws_.binary(queue_.front().binary);
-    ws_.async_write(asio::buffer(queue_.front().data),
-                    beast::bind_front_handler(&SocketChannel::on_write, this->shared_from_this()));
-  }
-
-  void on_write(beast::error_code ec, std::size_t) {
-    queue_.pop_front();
-    writing_ = false;
-    if (ec) {
-      closed_ = true;
-      return;
-    }
-    if (!queue_.empty()) write();
-  }
-
-  websocket::stream<Stream> ws_;
-  std::shared_ptr<const Shared> shared_;
-  beast::flat_buffer buffer_;
-  std::deque<Outgoing> queue_;
-  bool writing_ = false;
-  bool closed_ = false;
-  std::unique_ptr<BrowserOperator> operator_;
-};
-
-// [SECTION] HTTP: the page's files, and the upgrade to the tab's WebSocket
-
-http::response<http::string_body> response_with(const http::request<http::string_body>& request,
-                                                http::status status, std::string body,
-                                                const std::string& type) {
-  http::response<http::string_body> response{status, request.version()};
-  response.set(http::field::server, "telear web");
-  response.set(http::field::content_type, type);
-  response.set(http::field::cache_control, "no-cache");
-  response.set("X-Content-Type-Options", "nosniff");
-  response.set("Referrer-Policy", "no-referrer");
-  response.keep_alive(request.keep_alive());
-  response.body() = std::move(body);
-  response.prepare_payload();
-  return response;
-}
-
-http::response<http::string_body> text_response(const http::request<http::string_body>& request,
-                                                http::status status, std::string body) {
-  return response_with(request, status, std::move(body), "text/plain; charset=utf-8");
-}
-
-http::response<http::string_body> page_response(const Shared& shared,
-                                                const http::request<http::string_body>& request) {
-  if (request.method() != http::verb::get && request.method() != http::verb::head) {
-    auto response = text_response(request, http::status::method_not_allowed,
-                                  "telear web serves the page's files: GET only\n");
-    response.set(http::field::allow, "GET, HEAD");
-    return response;
-  }
-  const std::string target(request.target());
-  auto file = read_page_file(shared.page_root, target);
-  if (!file) {
-    return text_response(request, http::status::not_found, "no such page file: " + target + "\n");
-  }
-  auto response =
-      response_with(request, http::status::ok, std::move(file->body), file->content_type);
-  if (request.method() == http::verb::head) response.body().clear();
-  return response;
-}
-
-template <class Stream>
-class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
- public:
-  HttpSession(Stream&& stream, std::shared_ptr<const Shared> shared)
-      : stream_(std::move(stream)), shared_(std::move(shared)) {}
-
-  void run() {
-    if constexpr (std::is_same_v<Stream, beast::tcp_stream>) {
-      asio::dispatch(stream_.get_executor(),
-                     beast::bind_front_handler(&HttpSession::read, this->shared_from_this()));
-    } else {
-      beast::get_lowest_layer(stream_).expires_after(kHttpTimeout);
-      stream_.async_handshake(ssl::stream_base::server,
-                              [self = this->shared_from_this()](beast::error_code ec) {
-                                if (!ec) self->read();
-                              });
-    }
-  }
-
- private:
-  void read() {
-    parser_.emplace();
-    parser_->body_limit(kMaxRequestBody);
-    beast::get_lowest_layer(stream_).expires_after(kHttpTimeout);
-    http::async_read(stream_, buffer_, *parser_,
-                     beast::bind_front_handler(&HttpSession::on_read, this->shared_from_this()));
-  }
-
-  void on_read(beast::error_code ec, std::size_t) {
-    if (ec) return close();
-    http::request<http::string_body> request = parser_->release();
-    if (websocket::is_upgrade(request)) {
-      const std::string target(request.target());
-      if (target.substr(0, target.find('?')) == "/ws") {
-        if (shared_->tabs.fetch_add(1) < shared_->max_tabs) {
-          std::make_shared<SocketChannel<Stream>>(std::move(stream_), shared_)
-              ->start(std::move(request));
-          return;
-        }
-        shared_->tabs.fetch_sub(1);
-        response_ = text_response(request, http::status::service_unavailable,
-                                  "telear web: " + std::to_string(shared_->max_tabs) +
-                                      " tabs are connected, the most it serves (--max-tabs)\n");
-        http::async_write(
-            stream_, *response_,
-            beast::bind_front_handler(&HttpSession::on_write, this->shared_from_this()));
-        return;
-      }
-    }
-    response_ = page_response(*shared_, request);
-    http::async_write(stream_, *response_,
-                      beast::bind_front_handler(&HttpSession::on_write, this->shared_from_this()));
-  }
-
-  void on_write(beast::error_code ec, std::size_t) {
-    if (ec) return close();
-    const bool keep_alive = response_->keep_alive();
-    response_.reset();
-    if (keep_alive) return read();
-    close();
-  }
-
-  void close() {
-    beast::error_code ignored;
-    beast::get_lowest_layer(stream_).socket().shutdown(tcp::socket::shutdown_send, ignored);
-  }
-
-  Stream stream_;
-  std::shared_ptr<const Shared> shared_;
-  beast::flat_buffer buffer_;
-  std::optional<http::request_parser<http::string_body>> parser_;
-  std::optional<http::response<http::string_body>> response_;
-};
+using error_code = boost::system::error_code;
 
 // [SECTION] set-up shared by every tab
 
@@ -317,7 +54,7 @@ Result<tcp::endpoint> parse_listen(asio::io_context& io, const std::string& list
       std::stoi(port) > 65535) {
     return Error{"listen '" + listen + "': the port must be a number 0..65535"};
   }
-  beast::error_code ec;
+  error_code ec;
   tcp::resolver resolver(io);
   const auto results = resolver.resolve(host, port, ec);
   if (ec || results.empty()) {
@@ -340,16 +77,13 @@ struct WebServer::Impl {
   std::once_flag stopped;
 
   void accept() {
-    acceptor->async_accept(asio::make_strand(*io), [this](beast::error_code ec, tcp::socket s) {
+    acceptor->async_accept(asio::make_strand(*io), [this](error_code ec, tcp::socket s) {
       if (ec == asio::error::operation_aborted) return;  // stopping
       if (!ec) {
         if (tls) {
-          std::make_shared<HttpSession<beast::ssl_stream<beast::tcp_stream>>>(
-              beast::ssl_stream<beast::tcp_stream>(beast::tcp_stream(std::move(s)), *tls), shared)
-              ->run();
+          serve_tls(std::move(s), *tls, shared);
         } else {
-          std::make_shared<HttpSession<beast::tcp_stream>>(beast::tcp_stream(std::move(s)), shared)
-              ->run();
+          serve_plain(std::move(s), shared);
         }
       }
       accept();
@@ -392,7 +126,7 @@ Result<std::unique_ptr<WebServer>> WebServer::create(const WebOptions& options, 
     impl->tls->set_options(ssl::context::default_workarounds | ssl::context::no_sslv2 |
                            ssl::context::no_sslv3 | ssl::context::no_tlsv1 |
                            ssl::context::no_tlsv1_1);
-    beast::error_code ec;
+    error_code ec;
     impl->tls->use_certificate_chain_file(options.tls_cert_file, ec);
     if (ec) return Error{"certificate '" + options.tls_cert_file + "': " + ec.message()};
     impl->tls->use_private_key_file(options.tls_key_file, ssl::context::pem, ec);
@@ -404,7 +138,7 @@ Result<std::unique_ptr<WebServer>> WebServer::create(const WebOptions& options, 
   auto endpoint = parse_listen(*impl->io, options.listen);
   if (!endpoint) return endpoint.error();
   impl->host = options.listen.substr(0, options.listen.rfind(':'));
-  beast::error_code ec;
+  error_code ec;
   impl->acceptor.emplace(*impl->io);
   impl->acceptor->open(endpoint->protocol(), ec);
   if (!ec) impl->acceptor->set_option(asio::socket_base::reuse_address(true), ec);
@@ -519,7 +253,7 @@ const std::string& WebServer::local_token() const {
 void WebServer::run_until_signal() {
   asio::io_context signals_io;
   asio::signal_set signals(signals_io, SIGINT, SIGTERM);
-  signals.async_wait([](beast::error_code, int) {});
+  signals.async_wait([](error_code, int) {});
   signals_io.run();
   stop();
 }
@@ -528,7 +262,7 @@ void WebServer::stop() {
   std::call_once(impl_->stopped, [this] {
     Impl& m = *impl_;
     asio::post(*m.io, [&m] {
-      beast::error_code ignored;
+      error_code ignored;
       m.acceptor->close(ignored);
     });
     m.io->stop();
