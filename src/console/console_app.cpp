@@ -44,19 +44,13 @@
 #include "telear/session/session_recording.hpp"
 #include "telear/view/ar_view_input.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "telear/vision/stereo_camera_file.hpp"
 
 namespace telear::console {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-Result<vision::StereoCameraModel> load_stereo_file(const std::string& path) {
-  auto file = vision::load_camera_file(path);
-  if (!file) return file.error();
-  if (!file->right) return Error{"calibration '" + path + "': not a stereo camera file"};
-  return vision::StereoCameraModel{file->left, *file->right};
-}
 
 render::StereoLayout view_layout(const UiState& ui) {
   switch (ui.layout) {
@@ -223,7 +217,7 @@ Result<std::unique_ptr<ConsoleApp>> ConsoleApp::create(const ConsoleOptions& opt
   std::optional<vision::StereoCameraModel> cameras;
   const std::string& calibration_file = options.calibration;
   if (!calibration_file.empty()) {
-    auto loaded = load_stereo_file(calibration_file);
+    auto loaded = vision::load_stereo_cameras(calibration_file);
     if (!loaded) return loaded.error();
     cameras = *loaded;
     app->ui_.calibration_note = "calibration: " + calibration_file;

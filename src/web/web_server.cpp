@@ -19,6 +19,7 @@
 #include "telear/geometry/workspace_meshes.hpp"
 #include "telear/net/token_file.hpp"
 #include "telear/vision/camera_file.hpp"
+#include "telear/vision/stereo_camera_file.hpp"
 #include "telear/web/browser_operator.hpp"
 #include "telear/web/page_files.hpp"
 
@@ -32,13 +33,6 @@ using tcp = asio::ip::tcp;
 using error_code = boost::system::error_code;
 
 // [SECTION] set-up shared by every tab
-
-Result<vision::StereoCameraModel> load_stereo_file(const std::string& path) {
-  auto file = vision::load_camera_file(path);
-  if (!file) return file.error();
-  if (!file->right) return Error{"calibration '" + path + "': not a stereo camera file"};
-  return vision::StereoCameraModel{file->left, *file->right};
-}
 
 Result<tcp::endpoint> parse_listen(asio::io_context& io, const std::string& listen) {
   const auto colon = listen.rfind(':');
@@ -174,7 +168,7 @@ Result<std::unique_ptr<WebServer>> WebServer::create(const WebOptions& options, 
   // [SECTION] the servers and the cameras
   std::optional<vision::StereoCameraModel> cameras;
   if (!options.calibration.empty()) {
-    auto loaded = load_stereo_file(options.calibration);
+    auto loaded = vision::load_stereo_cameras(options.calibration);
     if (!loaded) return loaded.error();
     cameras = *loaded;
   }
