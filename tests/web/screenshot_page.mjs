@@ -16,7 +16,7 @@ await runTest('screenshot_page', async ({server, open, log}) => {
   await page.setViewportSize({width: 1500, height: 950});
   await connect(page, server.token);
   await waitFor(page, 'video frames', () => window.telear.framesShown >= 5, null, 30000);
-  for (const line of ['take-control', 'plan add 1.0 start', 'ghost joint 2 +25deg', 'ghost joint 3 -20deg',
+  for (const line of ['take-control', 'plan add 1.0 start', 'ghost joint 2 -25deg', 'ghost joint 3 +20deg',
                       'ghost joint 5 +30deg', 'plan add 1.5 reach', 'validate']) {
     const result = await typeCommand(page, line);
     if (!result.ok) throw new Error(`'${line}' failed: ${result.message}`);
