@@ -38,7 +38,7 @@ void add_robot_commands(CLI::App& app, Commands& commands);        // robot acm
 void add_calibration_commands(CLI::App& app, Commands& commands);  // calibrate, register, eval
 void add_sim_commands(CLI::App& app, Commands& commands);  // sim capture | frame | observations
 void add_console_command(CLI::App& app, Commands& commands);
-void add_web_command(CLI::App& app, Commands& commands);  // web (the browser operator)
+void add_web_command(CLI::App& app, Commands& commands);     // web (the browser operator)
 void add_replay_command(CLI::App& app, Commands& commands);  // replay (a recording's AR view)
 void add_record_command(CLI::App& app, Commands& commands);  // record (MCAP)
 void add_report_command(CLI::App& app, Commands& commands);  // report (plots of a recording)
