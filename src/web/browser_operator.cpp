@@ -205,10 +205,10 @@ void BrowserOperator::connect(const std::string& token) {
                      OperatorOutbox::Kind::kVideo);
     }
   };
-  std::vector<EyeProjection> eyes;
-  if (setup_->eyes) {
-    eyes = *setup_->eyes;
-  } else {  // the vision server's calibration, asked with this tab's token
+  // The shared cameras (their look-up tables are megabytes: not copied per tab), or the vision
+  // server's, asked with this tab's token.
+  std::vector<EyeProjection> asked;
+  if (!setup_->eyes) {
     net::VisionClient probe(options.vision);
     auto info = probe.get_camera_info();
     if (!info) return refuse(refusal_reason(info.error().message));
@@ -216,11 +216,13 @@ void BrowserOperator::connect(const std::string& token) {
       return refuse(
           "the vision server has no calibration; start telear web "
           "with --calibration");
-    eyes = {eye_projection(
-                "left", vision::resized_camera(info->cameras.left, setup_->width, setup_->height)),
-            eye_projection("right", vision::resized_camera(info->cameras.right, setup_->width,
-                                                           setup_->height))};
+    const vision::StereoCameraModel cameras{
+        vision::resized_camera(info->cameras.left, setup_->width, setup_->height),
+        vision::resized_camera(info->cameras.right, setup_->width, setup_->height)};
+    options.cameras = cameras;  // the session's registration check draws with them too
+    asked = {eye_projection("left", cameras.left), eye_projection("right", cameras.right)};
   }
+  const std::vector<EyeProjection>& eyes = setup_->eyes ? *setup_->eyes : asked;
   auto created = session::Session::create(setup_->model, options);
   if (!created) return refuse(created.error().message);
   // The robot server is the authority on the token: a refused GetInfo ends the attempt before
