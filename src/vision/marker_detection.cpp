@@ -61,10 +61,15 @@ std::vector<Eigen::Vector2d> refine_marker_corners(const cv::Mat& grey,
       }
       const double black = median_of(dark), white = median_of(light);
       if (white - black < 20.0) return initial;
-      const double level = 0.5 * (black + white);
       std::vector<Eigen::Vector2d> edge;
       constexpr double kStep = 0.05;
-      for (const Eigen::Vector2d& p : bases) {
+      for (std::size_t i = 0; i < bases.size(); ++i) {
+        const Eigen::Vector2d& p = bases[i];
+        // Each sample's own half-way level: light falling off along the edge (a plate lit
+        // from one side) makes one level for the whole edge cross too far out where the white
+        // is darker and too far in where it is lighter, tilting the edge (issue 26 item 1).
+        if (light[i] - dark[i] < 0.5 * (white - black)) continue;  // a cell or a shadow in the way
+        const double level = 0.5 * (dark[i] + light[i]);
         // The half-level crossing (dark -> light going outwards) nearest to the current line.
         double best = std::numeric_limits<double>::infinity();
         double previous = sample(grey, p - reach * normal);
