@@ -50,8 +50,9 @@ void add_demo_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   demo_app
       ->add_option("--live-multisample", demo.live_multisample,
-                   "the live video's anti-aliasing, MSAA samples per pixel (1: fastest, the "
-                   "marker's edges on whole pixels)")
+                   "the simulated cameras' anti-aliasing, MSAA samples per pixel, for the live "
+                   "video and the registration capture (1: fastest, the marker's edges on whole "
+                   "pixels)")
       ->capture_default_str();
   demo_app->add_flag("--no-video", demo.no_video, "skip the MP4 (key frames and report only)");
   CLI::Option* record = demo_app->add_option(

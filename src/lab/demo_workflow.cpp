@@ -244,6 +244,9 @@ Result<DemoOutcome> run_demo(const DemoOptions& options, const DemoProgress& pro
   server_options.seed = options.seed;
   server_options.fps = options.camera_fps;
   server_options.supersample = options.supersample;
+  // With MSAA as well: 2 x 2 samples alone put a nearly level edge of the marker on a staircase
+  // of half pixels, its corners 0.2-0.35 px off in such views (issue 26 item 1).
+  server_options.multisample = options.live_multisample;
   Eigen::VectorXd ready_q;
   if (auto ready = model->named_configuration("ready")) {
     ready_q = *ready;

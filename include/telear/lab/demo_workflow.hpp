@@ -44,9 +44,11 @@ struct DemoOptions {
   int registration_poses = 16;  // 4..200
   int registration_frames = 2;  // 1..30
   int supersample = 2;          // 1..8
-  // The task's live video: MSAA samples per pixel (sim::SceneOptions::multisample), 1..16.
+  // The simulated cameras' MSAA samples per pixel (sim::SceneOptions::multisample), 1..16,
+  // for the task's live video and, on top of `supersample`, for the registration capture.
   // Point sampling (1) puts the marker's edges on a staircase of whole pixels and the live
-  // marker residual at ~0.45 px where the overlay itself is off by ~0.1 (docs/demo.md).
+  // marker residual at ~0.45 px where the overlay itself is off by ~0.1 (docs/demo.md); 2 x 2
+  // supersampling alone, on a staircase of half pixels (issue 26 item 1).
   int live_multisample = 4;
   // The task's session recorded to this MCAP file (record::ServerRecorder: the servers'
   // streams, the session's events), then plotted into out_dir by report::write_recording_report
