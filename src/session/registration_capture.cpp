@@ -28,6 +28,7 @@ namespace {
 
 constexpr double kArmRangeRad = 0.6;    // the first three joints' spread around the start
 constexpr double kWristRangeRad = 0.8;  // the others'
+constexpr int kRoughCameraFrames = 5;   // frames tried for the target at the start pose
 
 using Clock = std::chrono::steady_clock;
 
@@ -111,6 +112,37 @@ Result<vision::StereoCameraModel> rough_cameras(const core::RobotModel& model,
   return cameras;
 }
 
+// Why the target at an automatic pose gives the registration nothing or little (empty: both
+// eyes see it whole enough): the first frame's detection in each eye, as `telear register`
+// will count it (a board: half its corners, vision::min_board_corners).
+Result<std::string> unusable_view(const std::string& directory, const vision::CapturedFrame& frame,
+                                  const vision::RegistrationTarget& target) {
+  auto images = vision::read_captured_images(directory, frame);
+  if (!images) return images.error();
+  vision::TargetDetectionOptions detection;
+  detection.min_corners = 1;
+  const int corners = static_cast<int>(target.points().size());
+  const int needed = target.is_board() ? vision::min_board_corners(target) : corners;
+  std::string why;
+  cv::Mat rgb;
+  for (auto [eye, image] : {std::pair{"left", &images->left}, {"right", &images->right}}) {
+    if (image->channels() == 3) {
+      cv::cvtColor(*image, rgb, cv::COLOR_BGR2RGB);  // the folder holds what OpenCV writes
+    } else {
+      rgb = *image;
+    }
+    const vision::TargetDetection seen = vision::detect_registration_target(rgb, target, detection);
+    const int found = static_cast<int>(seen.ids.size());
+    if (found >= needed) continue;
+    if (!why.empty()) why += ", ";
+    why += std::string("the ") + eye + " eye " +
+           (found == 0 ? "did not find it"
+                       : "found " + std::to_string(found) + " of its " + std::to_string(corners) +
+                             " corners (" + std::to_string(needed) + " needed)");
+  }
+  return why;
+}
+
 }  // namespace
 
 Status RegistrationCaptureOptions::validate() const {
@@ -158,7 +190,7 @@ std::vector<Eigen::VectorXd> choose_capture_poses(
     const core::RobotModel& model, const Eigen::VectorXd& q_start,
     const vision::StereoCameraModel& rough, const core::MarkerMount& marker, int count,
     std::uint64_t seed, const core::ArmBody* body, const core::Workspace* workspace,
-    const std::optional<vision::RegistrationTarget>& target) {
+    const std::optional<vision::RegistrationTarget>& target, std::vector<Eigen::VectorXd>* spares) {
   struct Candidate {
     Eigen::VectorXd q;
     Eigen::Isometry3d T_base_marker;
@@ -184,7 +216,8 @@ std::vector<Eigen::VectorXd> choose_capture_poses(
   std::vector<Eigen::Isometry3d> chosen_poses = {marker_at(q_start)};
   std::vector<Eigen::VectorXd> chosen;
   std::vector<double> nearest(candidates.size(), std::numeric_limits<double>::infinity());
-  while (static_cast<int>(chosen.size()) < count && !candidates.empty()) {
+  const int wanted = spares ? 2 * count : count;
+  while (static_cast<int>(chosen.size()) < wanted && !candidates.empty()) {
     const Eigen::Isometry3d& last = chosen_poses.back();
     std::size_t best = 0;
     for (std::size_t c = 0; c < candidates.size(); ++c) {
@@ -198,6 +231,14 @@ std::vector<Eigen::VectorXd> choose_capture_poses(
     chosen.push_back(candidates[best].q);
     chosen_poses.push_back(candidates[best].T_base_marker);
     nearest[best] = 0.0;
+  }
+  // The spares: the next farthest, in that order.
+  if (spares) {
+    spares->clear();
+    while (static_cast<int>(chosen.size()) > count) {
+      spares->insert(spares->begin(), chosen.back());
+      chosen.pop_back();
+    }
   }
   // Visit them in nearest-neighbour order from the start.
   std::vector<Eigen::VectorXd> ordered;
@@ -252,12 +293,25 @@ Result<RegistrationCaptureResult> capture_for_registration(
       options.target ? *options.target : vision::registration_target_from_mount(options.marker);
   out.capture.target = target.spec();
   std::vector<Eigen::VectorXd> poses = options.poses;
+  // Auto poses: where to go instead of a pose whose frames show the target too little (hidden
+  // by what the rough cameras and the nominal body did not foresee, or its cells too small to
+  // decode there).
+  std::vector<Eigen::VectorXd> spares;
   if (options.auto_poses > 0) {
     const auto state = robot.wait_state(0, 5.0);
     if (!state) return Error{"capture: no robot state from the robot server within 5 s"};
-    const auto frame = frame_after(vision, core::monotonic_ns(), 0, 5.0);
-    if (!frame) return Error{"capture: no video frame from the vision server within 5 s"};
-    auto rough = rough_cameras(model, *state, *frame, info->cameras, options.marker, target);
+    // Up to five frames: a small board's markers (cells of ~2 px) decode in one frame and not
+    // in the next, with the sensor's noise (issue 26 item 1: a start the operator had seen the
+    // board at was refused).
+    std::uint64_t last_id = 0;
+    Result<vision::StereoCameraModel> rough = Error{"no frame"};
+    for (int attempt = 0; attempt < kRoughCameraFrames; ++attempt) {
+      const auto frame = frame_after(vision, core::monotonic_ns(), last_id, 5.0);
+      if (!frame) return Error{"capture: no video frame from the vision server within 5 s"};
+      last_id = frame->frame_id;
+      rough = rough_cameras(model, *state, *frame, info->cameras, options.marker, target);
+      if (rough) break;
+    }
     if (!rough) return Error{"capture: " + rough.error().message};
     std::optional<core::ArmBody> body = options.body;
     if (!body) {
@@ -265,9 +319,9 @@ Result<RegistrationCaptureResult> capture_for_registration(
       if (!description) return Error{"capture: the arm's body: " + description.error().message};
       body = core::build_arm_body(*description);
     }
-    poses = choose_capture_poses(model, state->state.q, *rough, options.marker, options.auto_poses,
-                                 options.seed, &*body,
-                                 options.workspace ? &*options.workspace : nullptr, target);
+    poses = choose_capture_poses(
+        model, state->state.q, *rough, options.marker, options.auto_poses, options.seed, &*body,
+        options.workspace ? &*options.workspace : nullptr, target, &spares);
     if (poses.empty()) {
       return Error{
           "capture: no pose around the current one keeps the " + target.description() +
@@ -294,14 +348,14 @@ Result<RegistrationCaptureResult> capture_for_registration(
       if (release) (void)robot.release_lease();
     }
   } release{robot, !lease_was_held};
-  const int count = static_cast<int>(poses.size());
   std::uint64_t last_frame_id = 0;
   // The poses the arm reached, from where it started: each move between two of them was
   // accepted, so the way back along them is too (the server checks a straight move the same
   // way in both directions).
   std::vector<Eigen::VectorXd> reached;
   if (const auto state = robot.wait_state(0, 5.0)) reached.push_back(state->state.q);
-  for (int p = 0; p < count; ++p) {
+  for (int p = 0; p < static_cast<int>(poses.size()); ++p) {
+    const int count = static_cast<int>(poses.size());
     CaptureProgress report{p + 1, count, false, ""};
     const std::string label = "pose " + std::to_string(p + 1) + "/" + std::to_string(count);
     const std::string plan_id =
@@ -332,6 +386,29 @@ Result<RegistrationCaptureResult> capture_for_registration(
       out.notes.push_back(report.message);
       if (progress) progress(report);
       continue;
+    }
+    if (options.auto_poses > 0 && !spares.empty()) {
+      auto unusable = unusable_view(options.directory, pose.frames.front(), target);
+      if (!unusable) return Error{"capture: " + unusable.error().message};
+      if (!unusable->empty()) {
+        // Not kept: its frames go, and the next spare pose takes its place.
+        for (const vision::CapturedFrame& frame : pose.frames) {
+          std::error_code ignored;
+          std::filesystem::remove(std::filesystem::path(options.directory) / frame.left_image,
+                                  ignored);
+          std::filesystem::remove(std::filesystem::path(options.directory) / frame.right_image,
+                                  ignored);
+          // Its folder too (empty now; the next pose kept, of the same index, makes it again).
+          std::filesystem::remove(
+              (std::filesystem::path(options.directory) / frame.left_image).parent_path(), ignored);
+        }
+        report.message = label + " replaced by another pose: " + *unusable;
+        out.notes.push_back(report.message);
+        if (progress) progress(report);
+        poses.push_back(spares.front());
+        spares.erase(spares.begin());
+        continue;
+      }
     }
     out.capture.poses.push_back(std::move(pose));
     report.captured = true;

@@ -1,5 +1,6 @@
 #include "telear/vision/capture_observations.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <opencv2/imgproc.hpp>
@@ -40,6 +41,11 @@ std::vector<TargetPixel> average_points(const std::vector<FramePoints>& found, d
 
 }  // namespace
 
+int min_board_corners(const RegistrationTarget& target) {
+  const int corners = static_cast<int>(target.points().size());
+  return std::max(4, (corners + 1) / 2);
+}
+
 Result<CaptureObservations> detect_capture_targets(const std::string& directory,
                                                    const CaptureSet& capture,
                                                    const core::MarkerMount& marker,
@@ -57,8 +63,10 @@ Result<CaptureObservations> detect_capture_targets(const std::string& directory,
   out.observations.target_points = target.points();
   const bool board = target.is_board();
   const std::string what = board ? "board" : "marker";
+  const int min_corners =
+      options.min_corners > 0 ? options.min_corners : (board ? min_board_corners(target) : 0);
   TargetDetectionOptions detection;
-  detection.min_corners = 1;  // the pose's average is checked against options.min_corners
+  detection.min_corners = 1;  // the pose's average is checked against min_corners
   for (std::size_t p = 0; p < capture.poses.size(); ++p) {
     const CapturedPose& pose = capture.poses[p];
     const std::string name = "pose " + std::to_string(p);
@@ -106,10 +114,10 @@ Result<CaptureObservations> detect_capture_targets(const std::string& directory,
                             "): not used; was the arm at rest?");
         continue;
       }
-      if (board && static_cast<int>(mean.size()) < options.min_corners) {
+      if (board && static_cast<int>(mean.size()) < min_corners) {
         out.notes.push_back(name + ": the " + eye_name + " eye saw " + std::to_string(mean.size()) +
-                            " corners of the board (fewer than " +
-                            std::to_string(options.min_corners) + "): not used");
+                            " corners of the board (fewer than " + std::to_string(min_corners) +
+                            "): not used");
         continue;
       }
       if (found->size() < frames) {

@@ -509,8 +509,9 @@ Result<HandEyeResult> register_hand_eye(const core::RobotModel& model, const Cam
         dropped_fits.push_back(fit);
         result.notes.push_back(fit.name + " dropped as an outlier: RMS " + fixed(fit.rms_px, 2) +
                                " px against the median pose's " + fixed(median, 2) +
-                               " px (did the arm move during the capture, or the target "
-                               "slip on the flange?)");
+                               " px (was the target partly hidden or seen edge-on there, did "
+                               "the arm move during the capture, or the target slip on the "
+                               "flange?)");
       } else {
         ++remaining;
       }

@@ -1,5 +1,6 @@
 #include "capture_test_rig.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "telear/core/robot_loader.hpp"
@@ -31,6 +32,18 @@ void CaptureRigTest::SetUp() {
   auto written = write_true_calibration(rig, dir);
   ASSERT_TRUE(written) << written.error().message;
   calibration = *written;
+}
+
+void CaptureRigTest::TearDown() {
+  const char* keep = std::getenv("TELEAR_CAPTURE_TEST_KEEP");
+  if (keep == nullptr || dir.empty()) return;
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path to = std::filesystem::path(keep) / test->name();
+  std::error_code error;
+  std::filesystem::remove_all(to, error);
+  std::filesystem::create_directories(to, error);
+  std::filesystem::copy(dir, to, std::filesystem::copy_options::recursive, error);
+  if (error) ADD_FAILURE() << "TELEAR_CAPTURE_TEST_KEEP: " << to << ": " << error.message();
 }
 
 Result<Eigen::VectorXd> marker_visible_start() {

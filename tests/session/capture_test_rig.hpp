@@ -40,9 +40,14 @@ Result<std::string> write_true_calibration(const sim::StereoRig& rig,
 // (CTest runs a fixture's cases in parallel processes) and the rig's true cameras written
 // there as the calibration the vision server serves. A derived SetUp calls this one first and
 // returns on HasFatalFailure().
+//
+// TELEAR_CAPTURE_TEST_KEEP=DIR copies the test's folder (its capture folders and the true
+// calibration.yaml, the truth for `telear eval`) into DIR/<test name> at the end, so that the
+// captures can be registered again offline (docs/registration.md, "Targets").
 class CaptureRigTest : public ::testing::Test {
  protected:
   void SetUp() override;
+  void TearDown() override;
 
   core::RobotModelPtr model;
   sim::StereoRig rig;

@@ -120,8 +120,9 @@ TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheT
   auto detected = vision::detect_capture_targets(options.directory, *folder, marker);
   ASSERT_TRUE(detected) << detected.error().message;
   for (const auto& note : detected->notes) std::printf("detection: %s\n", note.c_str());
-  EXPECT_GE(detected->left_found, 10);
-  EXPECT_GE(detected->right_found, 10);
+  // Every pose kept shows the marker in both eyes: the capture replaced those that did not.
+  EXPECT_EQ(detected->left_found, static_cast<int>(folder->poses.size()));
+  EXPECT_EQ(detected->right_found, static_cast<int>(folder->poses.size()));
   // The coverage image marks where each eye found the marker and leaves the rest dark.
   const cv::Mat coverage =
       vision::coverage_image(*detected, rig.cameras.left.width, rig.cameras.left.height);
@@ -146,6 +147,7 @@ TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheT
       vision::right_from_left(rig.cameras.left.T_cam_base, rig.cameras.right.T_cam_base),
       detected->observations);
   ASSERT_TRUE(result) << result.error().message;
+  for (const auto& note : result->notes) std::printf("registration: %s\n", note.c_str());
   const auto left = vision::registration_error(rig.cameras.left.T_cam_base, result->T_left_base);
   const auto right = vision::registration_error(rig.cameras.right.T_cam_base, result->T_right_base);
   const double target_mm =
@@ -181,7 +183,9 @@ TEST_F(RegistrationCaptureTest, CapturesThroughTheServersAndRegistersAgainstTheT
       shah_li_right.position_mm, shah_li_right.rotation_deg,
       shah_li_left.position_mm / left.position_mm, shah_li_right.position_mm / right.position_mm);
   // Issue 15's targets per eye (measured: 0.20-0.39 mm over seeds 1-5, docs/registration.md).
-  EXPECT_GE(result->views_used, 21);  // the marker kept in sight: at most 3 poses lost
+  // Views a few tenths of a pixel off (0.11-0.14 px against the median's 0.04 at seed 1) are
+  // dropped since the outlier floor is 0.1 px (issue 26): at most a quarter of them.
+  EXPECT_GE(result->views_used, 18);
   EXPECT_LE(left.position_mm, 0.5);
   EXPECT_LE(right.position_mm, 0.5);
   EXPECT_LE(left.rotation_deg, 0.05);
@@ -293,6 +297,28 @@ TEST(MarkerVisibilityTest, ABoardHalfBehindTheShoulderIsHidden) {
   // The marker at the same pose is clear of it (its 3 x 3 lines are unchanged).
   MarkerVisibility marker_only(model, loaded->marker, &arm, nullptr);
   EXPECT_EQ(marker_only.hidden_reason(rig.cameras.right, q), "");
+}
+
+// The spare poses a capture visits instead of one whose frames show the target too little:
+// further candidates, none of them among the chosen, and the chosen the same as without them.
+TEST(ChooseCapturePosesTest, SparesAreFurtherPosesNotAmongTheChosen) {
+  auto loaded = test::load_puma_capture_rig();
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  auto start = test::marker_visible_start();
+  ASSERT_TRUE(start) << start.error().message;
+  const std::vector<Eigen::VectorXd> alone =
+      choose_capture_poses(*loaded->model, *start, loaded->rig.cameras, loaded->marker, 6, 4);
+  std::vector<Eigen::VectorXd> spares;
+  const std::vector<Eigen::VectorXd> chosen =
+      choose_capture_poses(*loaded->model, *start, loaded->rig.cameras, loaded->marker, 6, 4,
+                           nullptr, nullptr, std::nullopt, &spares);
+  ASSERT_EQ(chosen.size(), 6u);
+  ASSERT_EQ(alone.size(), chosen.size());
+  for (std::size_t i = 0; i < chosen.size(); ++i) EXPECT_EQ(chosen[i], alone[i]) << "pose " << i;
+  ASSERT_EQ(spares.size(), 6u);
+  for (const Eigen::VectorXd& spare : spares) {
+    for (const Eigen::VectorXd& pose : chosen) EXPECT_GT((spare - pose).norm(), 1e-6);
+  }
 }
 
 }  // namespace

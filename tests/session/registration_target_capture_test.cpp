@@ -6,14 +6,18 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 #include "capture_test_rig.hpp"
+#include "telear/core/kinematics.hpp"
 #include "telear/core/robot_loader.hpp"
 #include "telear/lab/embedded_servers.hpp"
 #include "telear/session/registration_capture.hpp"
@@ -41,6 +45,12 @@ constexpr const char* kBoard = "charuco:4x4:0.08:0.05:4x4_50";
 std::uint64_t capture_seed() {
   const char* seed = std::getenv("TELEAR_CAPTURE_TEST_SEED");
   return seed ? std::stoull(seed) : 1;
+}
+// The automatic poses of each capture (the marker's and the target's own):
+// TELEAR_CAPTURE_TEST_POSES=N, default 14.
+int auto_pose_count() {
+  const char* poses = std::getenv("TELEAR_CAPTURE_TEST_POSES");
+  return poses ? std::stoi(poses) : 14;
 }
 std::string board_spec() {
   const char* spec = std::getenv("TELEAR_CAPTURE_TEST_TARGET");
@@ -83,7 +93,10 @@ class RegistrationTargetCaptureTest : public test::CaptureRigTest {
     options.calibration_file = calibration;
     options.initial_q = start;
     options.fps = 10.0;
+    // Anti-aliased as a lens blurs: 2 x 2 samples alone put a nearly level edge on a staircase
+    // of half pixels, and the marker's corners of such views 0.2-0.35 px off (issue 26 item 1).
     options.supersample = 2;
+    options.multisample = 4;
     auto servers = lab::EmbeddedServers::create(model, options);
     EXPECT_TRUE(servers) << servers.error().message;
     if (!servers) return {};
@@ -127,8 +140,83 @@ class RegistrationTargetCaptureTest : public test::CaptureRigTest {
     return {left.position_mm, left.rotation_deg, right.position_mm, right.rotation_deg, target_mm};
   }
 
+  // TELEAR_CAPTURE_TEST_DIAG=1: each view's detected points against the true projections of
+  // their own target points at the recorded joints (the rig's true cameras, the mount's true
+  // pose), beside the solver's per-view RMS: which views pull the registration, and whether
+  // their residuals show it (docs/registration.md, "Targets").
+  void print_truth_split(const char* label, const vision::CaptureRegistration& r) {
+    if (std::getenv("TELEAR_CAPTURE_TEST_DIAG") == nullptr) return;
+    core::KinematicsData data(*model);
+    const auto& points = r.detected.observations.target_points;
+    for (const vision::HandEyeView& view : r.detected.observations.views) {
+      core::forward_kinematics(*model, data, view.q);
+      const Eigen::Isometry3d T_base_target = data.T_base_link.back() * marker.T_flange_marker;
+      std::string line;
+      for (auto [eye, camera, pixels] : {std::tuple{"L", &rig.cameras.left, &view.left},
+                                         std::tuple{"R", &rig.cameras.right, &view.right}}) {
+        double sum = 0.0, worst = 0.0;
+        Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+        // The scale of the detected points about their centre against the truth's (a bias that
+        // moves the target's distance, not its place in the image).
+        Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+        std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs;  // truth, error
+        for (const vision::TargetPixel& p : *pixels) {
+          const auto truth =
+              camera->project(T_base_target * points[static_cast<std::size_t>(p.point)]);
+          if (!truth) continue;
+          pairs.emplace_back(*truth, p.pixel - *truth);
+          centre += *truth;
+        }
+        if (!pairs.empty()) centre /= static_cast<double>(pairs.size());
+        double along = 0.0, spread = 0.0;
+        for (const auto& [truth, error] : pairs) {
+          along += error.dot(truth - centre);
+          spread += (truth - centre).squaredNorm();
+        }
+        const double scale = spread > 0.0 ? along / spread : 0.0;
+        for (const vision::TargetPixel& p : *pixels) {
+          const auto truth =
+              camera->project(T_base_target * points[static_cast<std::size_t>(p.point)]);
+          if (!truth) continue;
+          const Eigen::Vector2d e = p.pixel - *truth;
+          sum += e.squaredNorm();
+          worst = std::max(worst, e.norm());
+          mean += e / static_cast<double>(pixels->size());
+        }
+        if (std::getenv("TELEAR_CAPTURE_TEST_DIAG")[0] == '2') {
+          for (const vision::TargetPixel& p : *pixels) {
+            const auto truth =
+                camera->project(T_base_target * points[static_cast<std::size_t>(p.point)]);
+            if (truth)
+              std::printf("  %s %s point %d at (%.2f %.2f): error (%+.3f %+.3f)\n",
+                          view.name.c_str(), eye, p.point, truth->x(), truth->y(),
+                          p.pixel.x() - truth->x(), p.pixel.y() - truth->y());
+          }
+        }
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      " %s %zu pts rms %.3f max %.3f mean (%+.3f %+.3f) scale %+.5f;", eye,
+                      pixels->size(), pixels->empty() ? 0.0 : std::sqrt(sum / pixels->size()),
+                      worst, mean.x(), mean.y(), scale);
+        line += text;
+      }
+      double fit = -1.0;
+      for (const vision::ViewFit& f : r.result.views)
+        if (f.name == view.name) fit = f.rms_px;
+      std::printf("diag %s %s:%s fit %.3f\n", label, view.name.c_str(), line.c_str(), fit);
+    }
+  }
+
   std::string board_rig;
 };
+
+// The automatic poses the capture replaced because an eye saw too little of the target there.
+int replaced(const RegistrationCaptureResult& capture) {
+  return static_cast<int>(
+      std::count_if(capture.notes.begin(), capture.notes.end(), [](const std::string& note) {
+        return note.find("replaced by another pose") != std::string::npos;
+      }));
+}
 
 TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTheTruth) {
   // Start where both cameras see the marker (the operator's jog before an automatic capture).
@@ -138,7 +226,7 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
 
   // The marker, at automatic poses; then the board at the same poses.
   const RegistrationCaptureResult with_marker =
-      capture(sim::default_rig_file(), "marker", start, 14, {});
+      capture(sim::default_rig_file(), "marker", start, auto_pose_count(), {});
   ASSERT_GE(with_marker.capture.poses.size(), 10u);
   std::vector<Eigen::VectorXd> poses;
   for (const auto& pose : with_marker.capture.poses) poses.push_back(pose.q_commanded);
@@ -168,11 +256,16 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
   ASSERT_TRUE(vision::write_png_file((dir / "board_coverage.png").string(), coverage));
   for (const vision::HandEyeView& view : board_registration->detected.observations.views) {
     if (view.left.size() < 4) continue;
-    if (view.left.size() == 4) {  // a marker (TELEAR_CAPTURE_TEST_TARGET): its quad's centre
+    if (view.left.size() == 4) {  // a marker (TELEAR_CAPTURE_TEST_TARGET): its quad's centre,
+      // in its own drawing (another pose's outline may cross it in the whole image)
+      vision::CaptureObservations alone = board_registration->detected;
+      alone.observations.views = {view};
+      const cv::Mat own =
+          vision::coverage_image(alone, rig.cameras.left.width, rig.cameras.left.height);
       Eigen::Vector2d centre = Eigen::Vector2d::Zero();
       for (const vision::TargetPixel& p : view.left) centre += 0.25 * p.pixel;
       const cv::Vec3b at =
-          coverage.at<cv::Vec3b>(static_cast<int>(centre.y()), static_cast<int>(centre.x()));
+          own.at<cv::Vec3b>(static_cast<int>(centre.y()), static_cast<int>(centre.x()));
       EXPECT_GT(at[1], at[0]) << view.name << ": no green where the marker was";
       continue;
     }
@@ -190,6 +283,18 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
       corners.emplace_back(static_cast<float>(p.pixel.x()), static_cast<float>(p.pixel.y()));
     cv::convexHull(corners, hull);
     const cv::Rect box = cv::boundingRect(hull);
+    // The pose's label, drawn at the first point of the hull of the rounded corners (as
+    // coverage_image rounds them), may lie inside too: its box, with a pixel of anti-aliasing.
+    std::vector<cv::Point> rounded, rounded_hull;
+    for (const vision::TargetPixel& p : view.left)
+      rounded.emplace_back(static_cast<int>(std::lround(p.pixel.x())),
+                           static_cast<int>(std::lround(p.pixel.y())));
+    cv::convexHull(rounded, rounded_hull);
+    int baseline = 0;
+    const cv::Size text = cv::getTextSize("0", cv::FONT_HERSHEY_SIMPLEX, 0.35, 1, &baseline);
+    const cv::Point label = rounded_hull.front() + cv::Point(2, -3);
+    const cv::Rect label_box(label.x - 2, label.y - text.height - 2, text.width + 4,
+                             text.height + baseline + 4);
     int inside = 0, dark = 0, not_green = 0;
     for (int y = box.y; y < box.y + box.height; ++y) {
       for (int x = box.x; x < box.x + box.width; ++x) {
@@ -197,7 +302,7 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
         if (cv::pointPolygonTest(hull, at, true) < 2.5) continue;
         bool near_dot = false;
         for (const cv::Point2f& c : corners) near_dot = near_dot || cv::norm(c - at) < 3.5;
-        if (near_dot) continue;
+        if (near_dot || label_box.contains(cv::Point(x, y))) continue;
         ++inside;
         if (coverage.at<cv::Vec3b>(y, x) == cv::Vec3b(40, 40, 40)) ++dark;
         const cv::Vec3b bgr = own.at<cv::Vec3b>(y, x);
@@ -209,8 +314,11 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
                             << " pixels)";
   }
 
+  print_truth_split("marker", *marker_registration);
+  print_truth_split("board", *board_registration);
   const Errors m = errors_of(*marker_registration);
   const Errors b = errors_of(*board_registration);
+  std::printf("marker: %d automatic poses replaced\n", replaced(with_marker));
   std::printf(
       "%zu poses, seed %llu\n"
       "  marker %-32s left %.3f mm %.4f deg, right %.3f mm %.4f deg, on the flange %.3f mm; rms "
@@ -265,30 +373,42 @@ TEST_F(RegistrationTargetCaptureTest, AChArUcoBoardOnTheFlangeRegistersAgainstTh
 
   // The board's own automatic poses, from a pose where both eyes found it: the rough cameras
   // come from the board, and each pose keeps its whole chessboard in both views with cells of
-  // 1.5 px or more. Its markers' 1.9 px cells (seen face on) still fail to decode at some.
+  // 1.5 px or more. Its markers' 1.9 px cells (seen face on) still fail to decode at some, and
+  // the simulator's real shoulder (larger than the nominal body) hides it at others: the
+  // capture replaces those by spare poses.
   const Eigen::VectorXd board_start = with_board.capture.poses[both].q;
   const RegistrationCaptureResult board_auto =
-      capture(board_rig, "board_auto", board_start, 10, {}, *board_target);
+      capture(board_rig, "board_auto", board_start, auto_pose_count(), {}, *board_target);
   for (const std::string& note : board_auto.notes) std::printf("board auto: %s\n", note.c_str());
-  ASSERT_GE(board_auto.capture.poses.size(), 8u);
+  ASSERT_GE(board_auto.capture.poses.size(), 12u);
   EXPECT_EQ(board_auto.capture.target, board_target->spec());
   auto board_auto_registration =
       vision::register_captures(*model, (dir / "board_auto").string(), "", marker);
   ASSERT_TRUE(board_auto_registration) << board_auto_registration.error().message;
   const vision::CaptureObservations& board_found = board_auto_registration->detected;
   const int captured = static_cast<int>(board_auto.capture.poses.size());
+  print_truth_split("board_auto", *board_auto_registration);
   const Errors a = errors_of(*board_auto_registration);
   std::printf(
-      "  board, its own %d automatic poses: found %d left / %d right; left %.3f mm %.4f deg, "
+      "  board, its own %d automatic poses (%d replaced): found %d left / %d right; left %.3f mm "
+      "%.4f deg, "
       "right %.3f mm %.4f deg, on the flange %.3f mm; rms %.3f px\n",
-      captured, board_found.left_found, board_found.right_found, a.left_mm, a.left_deg, a.right_mm,
-      a.right_deg, a.target_mm, board_auto_registration->result.left.rms_px);
-  EXPECT_GE(2 * board_found.left_found, captured);
-  EXPECT_GE(2 * board_found.right_found, captured);
-  EXPECT_LT(a.left_mm, 1.5);  // 0.14 and 0.81 mm at seeds 1 and 2
-  EXPECT_LT(a.right_mm, 1.5);
-  EXPECT_LT(a.left_deg, 0.1);
-  EXPECT_LT(a.right_deg, 0.1);
+      captured, replaced(board_auto), board_found.left_found, board_found.right_found, a.left_mm,
+      a.left_deg, a.right_mm, a.right_deg, a.target_mm,
+      board_auto_registration->result.left.rms_px);
+  // Every pose kept shows the board in both eyes with half its corners or more: the capture
+  // replaced those that did not by spare poses (it failed before: 6-8 of 10).
+  EXPECT_EQ(board_found.left_found, captured);
+  EXPECT_EQ(board_found.right_found, captured);
+  // Issue 26 item 1's goal, the marker and the board each at its own automatic poses: 0.5 mm
+  // (seed 1, 14 poses: the marker 0.37-0.41 mm, the board 0.18-0.31 mm; before the fixes
+  // ~1 mm and 0.14-0.81 mm; every target at seeds 1-3 in docs/registration.md, "Targets").
+  EXPECT_LT(m.left_mm, 0.5);
+  EXPECT_LT(m.right_mm, 0.5);
+  EXPECT_LT(a.left_mm, 0.5);
+  EXPECT_LT(a.right_mm, 0.5);
+  EXPECT_LT(a.left_deg, 0.05);
+  EXPECT_LT(a.right_deg, 0.05);
 }
 
 TEST_F(RegistrationTargetCaptureTest, TheRigFileRefusesABadTarget) {

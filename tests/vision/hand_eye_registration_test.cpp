@@ -123,6 +123,34 @@ TEST_F(HandEyeRegistration, ShahLiBaselineIsExactWithoutNoise) {
   EXPECT_LT(registration_error(truth.left.T_cam_base, result->T_left_base).position_mm, 1e-3);
 }
 
+// A view a fraction of a pixel off among views that fit to hundredths (a target partly
+// hidden behind a link in the simulator: 0.16-0.24 px RMS against a median view's 0.02-0.06
+// px, issue 26 item 1) is dropped: the floor under the outlier limit is 0.1 px, not the 0.4 px
+// that kept such views and moved the registration by 0.3-0.6 mm.
+TEST_F(HandEyeRegistration, DropsAViewAFewTenthsOfAPixelOffAmongViewsThatFitToHundredths) {
+  HandEyeObservations observations = synthetic(*model, truth, 20, 0.01, 3);
+  for (std::vector<TargetPixel>* eye :
+       {&observations.views[5].left, &observations.views[5].right}) {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const TargetPixel& p : *eye) centre += p.pixel / static_cast<double>(eye->size());
+    for (TargetPixel& p : *eye) p.pixel += 0.2 * (p.pixel - centre).normalized();  // 0.2 px out
+  }
+  Result<HandEyeResult> result =
+      register_hand_eye(*model, truth.left, truth.right, T_right_left_of(truth), observations);
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  EXPECT_EQ(result->views_used, 19);
+  ASSERT_FALSE(result->notes.empty());
+  EXPECT_THAT(result->notes.front(), HasSubstr("configuration 5 dropped as an outlier: RMS "));
+  HandEyeOptions old_floor;
+  old_floor.outlier_min_px = 0.4;
+  Result<HandEyeResult> kept = register_hand_eye(*model, truth.left, truth.right,
+                                                 T_right_left_of(truth), observations, old_floor);
+  ASSERT_TRUE(kept.ok()) << kept.error().message;
+  EXPECT_EQ(kept->views_used, 20);
+  EXPECT_LT(registration_error(truth.left.T_cam_base, result->T_left_base).position_mm,
+            registration_error(truth.left.T_cam_base, kept->T_left_base).position_mm);
+}
+
 TEST_F(HandEyeRegistration, DropsAndNamesAnOutlierPose) {
   HandEyeObservations observations = synthetic(*model, truth, 20, 0.1, 3);
   for (TargetPixel& p : observations.views[5].left) p.pixel += Eigen::Vector2d(9.0, -6.0);

@@ -9,6 +9,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "telear/vision/capture_observations.hpp"
+
 namespace telear::vision {
 namespace {
 
@@ -175,6 +177,15 @@ TEST(RegistrationTargetTest, APartialBoardGivesTheCornersNearItsMarkersAndTooFew
   EXPECT_FALSE(refused.found());
   EXPECT_EQ(refused.corners_seen, static_cast<int>(half.ids.size()));
   EXPECT_GT(refused.markers_found, 0);
+}
+
+// A board view `telear register` uses needs half the board's corners (at least 4): views of a
+// 4x4 board with 4 of its 9 corners were 0.07-0.6 px off in the simulator (issue 26 item 1).
+TEST(RegistrationTargetTest, ABoardViewNeedsHalfItsCorners) {
+  EXPECT_EQ(min_board_corners(parse("charuco:4x4:0.08:0.05:4x4_50")), 5);   // of 9
+  EXPECT_EQ(min_board_corners(parse("charuco:5x5:0.05:0.038:4x4_50")), 8);  // of 16
+  EXPECT_EQ(min_board_corners(parse("charuco:3x3:0.05:0.038:4x4_50")), 4);  // of 4
+  EXPECT_EQ(min_board_corners(parse("charuco:7x5:0.04:0.03:4x4_50")), 12);  // of 24
 }
 
 }  // namespace

@@ -19,7 +19,10 @@
 //     poses where the arm hid the target cost a move and gave nothing); N of them are chosen
 //     to spread the target's orientation (farthest-point sampling on the rotation angle
 //     between target orientations), then visited in nearest-neighbour order to keep the
-//     moves short.
+//     moves short. At each pose the first frame is checked: when an eye does not find the
+//     target (a board: half its corners), the pose's frames are removed and the next of N
+//     spare candidates is visited instead (a note says why), so that auto:N gives N views
+//     `telear register` uses wherever the spares allow.
 //
 // Each move is a plan of two waypoints sent as the plan message (ExecutePlan): the server
 // validates it (limits, start state, collisions when it is the authority); a refused move
@@ -107,12 +110,15 @@ Result<std::vector<Eigen::VectorXd>> load_capture_poses_file(const std::string& 
 
 // The automatic poses alone (used by capture_for_registration; public for tests): around
 // `q_start`, given rough camera models (with their T_cam_base), the marker mount and the target
-// it carries (unset: its marker).
+// it carries (unset: its marker). `spares`, when given, receives up to `count` further
+// candidates, the next farthest first: where the capture goes instead of a pose whose frames
+// show the target too little.
 std::vector<Eigen::VectorXd> choose_capture_poses(
     const core::RobotModel& model, const Eigen::VectorXd& q_start,
     const vision::StereoCameraModel& rough, const core::MarkerMount& marker, int count,
     std::uint64_t seed, const core::ArmBody* body = nullptr,
     const core::Workspace* workspace = nullptr,
-    const std::optional<vision::RegistrationTarget>& target = std::nullopt);
+    const std::optional<vision::RegistrationTarget>& target = std::nullopt,
+    std::vector<Eigen::VectorXd>* spares = nullptr);
 
 }  // namespace telear::session

@@ -13,6 +13,10 @@
 // moved during the capture). A board may be seen partly: the corners found are used, and a
 // view with fewer than min_corners of them is named and not used in that eye; a board seen
 // in one eye only at a pose is named too (that pose still counts, through the stereo pair).
+// By default a view needs half the board's corners (at least 4): measured against the
+// simulator's truth, views of a 4x4 board with 4 of its 9 corners were 0.07-0.6 px off (a link
+// across the board, or one marker decoded), those with 5 or more 0.01-0.05 px, and one such
+// view moved the registration by up to 0.7 mm (issue 26 item 1, docs/registration.md).
 
 #include <opencv2/core.hpp>
 #include <string>
@@ -28,8 +32,13 @@ namespace telear::vision {
 
 struct CaptureDetectionOptions {
   double max_frame_spread_px = 1.0;  // corners of one pose's frames further apart: moved
-  int min_corners = 4;               // a board's corners in one eye, fewer: not used
+  int min_corners = 0;  // a board's corners in one eye, fewer: not used; 0: half the board's
+                        // corners, at least 4 (min_board_corners)
 };
+
+// The corners of `target` (a board) one eye must see at a pose for that view to be used, when
+// options.min_corners is 0: half the board's corners rounded up, at least 4.
+int min_board_corners(const RegistrationTarget& target);
 
 struct CaptureObservations {
   RegistrationTarget target;
