@@ -271,6 +271,24 @@ bool is_decimal_number(const std::string& word) {
   return i == word.size();
 }
 
+// An OBJ element's corner as OBJ writes it -- "v", "v/vt", "v//vn" or "v/vt/vn" -- or empty
+// when it is none of them ("11/", "1/2/", "/3"). The indices themselves are checked apart.
+std::string obj_corner_form(const std::string& corner) {
+  std::vector<std::string> parts(1);
+  for (const char c : corner) {
+    if (c == '/') {
+      parts.emplace_back();
+    } else {
+      parts.back() += c;
+    }
+  }
+  if (parts[0].empty() || parts.size() > 3) return {};
+  if (parts.size() == 1) return "v";
+  if (parts.size() == 2) return parts[1].empty() ? "" : "v/vt";
+  if (parts[2].empty()) return {};
+  return parts[1].empty() ? "v//vn" : "v/vt/vn";
+}
+
 }  // namespace
 
 Status check_obj_structure(const std::string& text, const std::string& path) {
@@ -317,7 +335,7 @@ Status check_obj_structure(const std::string& text, const std::string& path) {
     std::string first;
     words >> first;
     if (first != "f" && first != "l" && first != "p") continue;
-    std::string corner;
+    std::string corner, first_form;
     int corners = 0;
     while (words >> corner) {
       ++corners;
@@ -343,6 +361,17 @@ Status check_obj_structure(const std::string& text, const std::string& path) {
         ++part;
       }
       if (part >= 3) return fail(number, "'" + corner + "' has more than three indices");
+      // Its form: v, v/vt, v//vn or v/vt/vn (no empty index but v//vn's), the same for every
+      // corner of the element. assimp leaked the mesh of a face that mixed 'v//vn' with '11/'
+      // and 'v' (fuzz/crashes/mesh/obj_face_mixes_its_corners_forms.obj).
+      const std::string form = obj_corner_form(corner);
+      if (form.empty()) return fail(number, "'" + corner + "' is not v, v/vt, v//vn or v/vt/vn");
+      if (corners == 1) {
+        first_form = form;
+      } else if (form != first_form) {
+        return fail(number, "'" + corner + "' is " + form + " where the first corner is " +
+                                first_form + " (one form for every corner)");
+      }
     }
     if (first == "f" && corners < 3) return fail(number, "a face needs three vertices");
     if (first == "l" && corners < 2) return fail(number, "a line needs two vertices");

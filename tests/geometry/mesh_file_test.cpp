@@ -365,6 +365,17 @@ TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
            {"v 0 0x1 0\n", "line 1: 'v' takes numbers, not '0x1'"},
            {"v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "line 1: 'v' with 2 numbers"},
            {tri + "vn 0 0\n", "line 5: 'vn' with 2 numbers"},
+           // assimp leaked the mesh of a face mixing 'v//vn' with '11/' and 'v'
+           // (fuzz/crashes/mesh/obj_face_mixes_its_corners_forms.obj): one form per element,
+           // and that form one of OBJ's four.
+           {tri + "f 1//1 2/ 3\n", "line 5: '2/' is not v, v/vt, v//vn or v/vt/vn"},
+           {tri + "f 1//1 2 3\n",
+            "line 5: '2' is v where the first corner is v//vn (one form for "
+            "every corner)"},
+           {tri + "vt 0 0\nf 1/1/1 2//1 3/1/1\n",
+            "line 6: '2//1' is v//vn where the first corner is v/vt/vn (one form for every "
+            "corner)"},
+           {tri + "vt 0 0\nf 1/1/ 2/1/ 3/1/\n", "line 6: '1/1/' is not v, v/vt, v//vn or v/vt/vn"},
        }) {
     const std::string path = dir.write("bad.obj", c.text);
     auto mesh = load_mesh_file(path);
