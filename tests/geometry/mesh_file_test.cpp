@@ -275,6 +275,11 @@ TEST(MeshFileTest, MalformedAsciiStlIsRefusedBeforeAssimpReadsIt) {
            {"solid\nfacet normal", "line 2: expected 'facet normal X Y Z' or 'endsolid'"},
            // fuzz/crashes/mesh/stl_normal_not_in_lower_case.stl: assimp leaked the facets.
            {"solid\nfacet NORMAL 0 0 1\n", "line 2: expected 'facet normal X Y Z' or 'endsolid'"},
+           // ... and so did "vertEx" (fuzz/crashes/mesh/stl_vertex_not_in_lower_case.stl):
+           // assimp's tokens facet, vertex and endsolid are lower case.
+           {"solid\nfacet normal 0 0 1\nouter loop\nvertEx 0 0 0\n",
+            "line 4: expected 'vertex X Y Z'"},
+           {"solid\nFacet normal 0 0 1\n", "line 2: expected 'facet normal X Y Z' or 'endsolid'"},
            {"solid cut\n" + facet.substr(0, 40), "line 4: expected 'vertex X Y Z'"},
            {"solid s\n" + facet, "line 9: expected 'endsolid' (the file ends inside a solid)"},
            {"solid s\nfacet normal 0 0 1\n outer loop\n  vertex 0 zero 0\n",
