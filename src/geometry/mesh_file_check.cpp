@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "telear/core/utf8.hpp"
+
 namespace telear::geometry {
 namespace {
 
@@ -205,6 +207,14 @@ class Checker {
 }  // namespace
 
 Status check_collada_structure(const std::string& text, const std::string& path) {
+  // TinyXML 1 read past the text on a multi-byte character cut by its end (a heap overflow:
+  // fuzz/crashes/mesh/collada_utf8_cut_at_the_end.dae), as on the URDF door: XML is UTF-8.
+  if (const auto bad = core::first_invalid_utf8(text)) {
+    return Error{"mesh file " + path +
+                 " is not a readable mesh (COLLADA: not UTF-8 text, an invalid byte sequence at "
+                 "byte " +
+                 std::to_string(*bad) + ")"};
+  }
   TiXmlDocument doc;
   doc.Parse(text.c_str());
   if (doc.Error()) {

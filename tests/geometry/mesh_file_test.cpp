@@ -249,8 +249,19 @@ TEST(MeshFileTest, MalformedColladaIsRefusedBeforeAssimpReadsIt) {
     EXPECT_EQ(mesh.error().message,
               "mesh file " + path + " is not a readable mesh (COLLADA: " + c.problem + ")");
   }
+  // TinyXML 1 read past the text on a UTF-8 character cut by its end, inside an attribute
+  // (fuzz/crashes/mesh/collada_utf8_cut_at_the_end.dae: a heap overflow): text that is not
+  // UTF-8 is refused before it parses.
+  const std::string cut_character =
+      dir.write("cut_character.dae", "<COLLADA><scene><instance_visual_scene url=\"#a=u\xd7");
+  auto mesh = load_mesh_file(cut_character);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message,
+            "mesh file " + cut_character +
+                " is not a readable mesh (COLLADA: not UTF-8 text, an invalid byte sequence at "
+                "byte 48)");
   const std::string not_collada = dir.write("scene.dae", "<scene/>");
-  auto mesh = load_mesh_file(not_collada);
+  mesh = load_mesh_file(not_collada);
   ASSERT_FALSE(mesh);
   EXPECT_EQ(mesh.error().message,
             "mesh file " + not_collada +
