@@ -392,6 +392,10 @@ TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
             "line 6: '2//1' is v//vn where the first corner is v/vt/vn (one form for every "
             "corner)"},
            {tri + "vt 0 0\nf 1/1/ 2/1/ 3/1/\n", "line 6: '1/1/' is not v, v/vt, v//vn or v/vt/vn"},
+           // assimp reads a statement by its word's first letter: "limitf ..." is a line to it,
+           // and leaked the mesh (fuzz/crashes/mesh/obj_statement_read_by_its_first_letter.obj).
+           {tri + "limitf 1 2 4\n", "line 5: '4' names no vertex of the file (3 defined)"},
+           {tri + "vnormal 0 0\n", "line 5: 'vnormal' with 2 numbers"},
        }) {
     const std::string path = dir.write("bad.obj", c.text);
     auto mesh = load_mesh_file(path);
