@@ -442,14 +442,10 @@ Status check_ascii_stl_structure(const std::string& text, const std::string& pat
     if (!(words >> first)) continue;  // blank line
     // assimp reads its three tokens -- facet, vertex, endsolid -- in lower case only: "vertEx"
     // leaked the facets read (fuzz/crashes/mesh/stl_vertex_not_in_lower_case.stl), as
-    // "normAl" did. The words it skips over may be in any case.
-    const bool lower_case = std::none_of(first.begin(), first.end(), [](char c) {
-      return std::isupper(static_cast<unsigned char>(c));
-    });
-    for (char& c : first) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if ((first == "facet" || first == "vertex" || first == "endsolid") && !lower_case) {
-      first = "'" + first + "' not in lower case";  // matches no keyword below
-    }
+    // "normAl" did. The words it skips over may be in any case: only those are folded.
+    std::string lower = first;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower != "facet" && lower != "vertex" && lower != "endsolid") first = lower;
     switch (want) {
       case Want::kSolid:
       case Want::kAfterSolid:
