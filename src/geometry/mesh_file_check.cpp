@@ -334,6 +334,14 @@ Status check_obj_structure(const std::string& text, const std::string& path) {
         if (!is_decimal_number(word)) {
           return fail(number, "'" + first + "' takes numbers, not '" + word + "'");
         }
+        // assimp counts a statement's numbers by their first character, a digit or a sign:
+        // it read "v -0.01 .0 0.05" as two numbers, the vertices after it one short, and
+        // leaked the mesh of a face naming the last
+        // (fuzz/crashes/mesh/obj_number_begins_with_its_point.obj).
+        if (word[0] == '.') {
+          return fail(number, "'" + word + "' begins with its decimal point (write 0" + word +
+                                  ", as assimp counts numbers by a digit or sign)");
+        }
       }
       // v x y z [w | r g b], vt u [v [w]], vn x y z
       const bool fits = kind == 0   ? values == 3 || values == 4 || values == 6
@@ -350,6 +358,12 @@ Status check_obj_structure(const std::string& text, const std::string& path) {
     std::istringstream words(line);
     std::string first;
     words >> first;
+    // assimp's path filter steps over a "://" and past the name's end when it ends with one:
+    // "mtllib fpy)file://" crashed it (fuzz/crashes/mesh/obj_mtllib_ends_with_a_url_scheme.obj).
+    // A material library is a file beside the mesh, never a URL.
+    if (first == "mtllib" && line.find("://") != std::string::npos) {
+      return fail(number, "'mtllib' names a URL; a material library is a file beside the mesh");
+    }
     // An element, to assimp, is any statement whose word begins with f, l or p: it read
     // "limitf 21//21 23//23 24//24" as a line and leaked the mesh
     // (fuzz/crashes/mesh/obj_statement_read_by_its_first_letter.obj).

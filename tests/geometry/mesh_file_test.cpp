@@ -396,6 +396,21 @@ TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
            // and leaked the mesh (fuzz/crashes/mesh/obj_statement_read_by_its_first_letter.obj).
            {tri + "limitf 1 2 4\n", "line 5: '4' names no vertex of the file (3 defined)"},
            {tri + "vnormal 0 0\n", "line 5: 'vnormal' with 2 numbers"},
+           // assimp's path filter ran past the end of a material library's name that ended
+           // with "://" (fuzz/crashes/mesh/obj_mtllib_ends_with_a_url_scheme.obj).
+           {"mtllib file://\n" + tri + "f 1 2 3\n",
+            "line 1: 'mtllib' names a URL; a material library is a file beside the mesh"},
+           {tri + "mtllib https://example.org/metal.mtl\n",
+            "line 5: 'mtllib' names a URL; a material library is a file beside the mesh"},
+           // assimp counts a vertex's numbers by their first character and did not count
+           // ".0": the vertices after it were one short and it leaked the mesh of a face naming
+           // the last (fuzz/crashes/mesh/obj_number_begins_with_its_point.obj).
+           {"v 0 .5 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+            "line 1: '.5' begins with its decimal point (write 0.5, as assimp counts numbers by "
+            "a digit or sign)"},
+           {tri + "vn 0 0 .1\n",
+            "line 5: '.1' begins with its decimal point (write 0.1, as assimp counts numbers by "
+            "a digit or sign)"},
        }) {
     const std::string path = dir.write("bad.obj", c.text);
     auto mesh = load_mesh_file(path);
@@ -407,6 +422,8 @@ TEST(MeshFileTest, AnObjIndexBeyondItsListsIsRefusedBeforeAssimpReadsIt) {
   // end a vertex's line.
   ASSERT_TRUE(
       load_mesh_file(dir.write("commented.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")));
+  // A sign before the point is a number to assimp.
+  ASSERT_TRUE(load_mesh_file(dir.write("signed.obj", "v 0 -.5 +.5\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")));
   auto mesh = load_mesh_file(dir.write("good.obj", tri + "f -3//1 -2//1 -1//1\n"));
   ASSERT_TRUE(mesh) << mesh.error().message;
   EXPECT_EQ(mesh->triangle_count(), 1u);
