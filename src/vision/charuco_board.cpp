@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "bent_edge.hpp"
 #include "grey_sampling.hpp"
 #include "telear/vision/mono_calibration.hpp"
 
@@ -52,24 +53,6 @@ double grey_at(const cv::Mat& grey, const cv::Point2d& p) {
 cv::Point2d charuco_apply(const cv::Matx33d& H, const cv::Point2d& q) {
   const cv::Vec3d r = H * cv::Vec3d(q.x, q.y, 1.0);
   return {r[0] / r[2], r[1] / r[2]};
-}
-
-// The total-least-squares line a x + b y + c = 0 ((a, b) a unit normal) through `points`.
-cv::Vec3d charuco_fit_line(const std::vector<cv::Point2d>& points) {
-  cv::Point2d mean(0.0, 0.0);
-  for (const cv::Point2d& q : points) mean += q / static_cast<double>(points.size());
-  double sxx = 0.0, sxy = 0.0, syy = 0.0;
-  for (const cv::Point2d& q : points) {
-    const cv::Point2d d = q - mean;
-    sxx += d.x * d.x;
-    sxy += d.x * d.y;
-    syy += d.y * d.y;
-  }
-  // The normal is the eigenvector of the scatter's smaller eigenvalue: the direction at
-  // angle theta + 90 deg, theta the principal axis' angle.
-  const double theta = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-  const cv::Point2d normal(-std::sin(theta), std::cos(theta));
-  return {normal.x, normal.y, -normal.dot(mean)};
 }
 
 bool charuco_inside(const cv::Mat& grey, const cv::Point2d& p) {
@@ -196,6 +179,14 @@ void refine_charuco_corners(const cv::Mat& grey, int squares_x, double marker_ra
   const auto black_square = [](int i, int j) { return ((i + j) % 2 + 2) % 2 == 0; };
   enum class Outcome { kRefined, kUnmeasured, kHidden };
   std::vector<Outcome> outcomes(corners.size(), Outcome::kRefined);
+  // Each refined corner's edge points of its last pass, per axis, and the image direction of
+  // the board's v axis there (which orients the edges' normals alike).
+  struct Edges {
+    std::vector<cv::Point2d> points[2];
+    cv::Point2d towards[2];
+  };
+  std::vector<Edges> edges(corners.size());
+  std::vector<cv::Point2d> refined(corners.size());
   for (std::size_t k = 0; k < corners.size(); ++k) {
     const cv::Point2d c(board[k].x, board[k].y);
     const cv::Point2d initial(corners[k].x, corners[k].y);
@@ -227,7 +218,7 @@ void refine_charuco_corners(const cv::Mat& grey, int squares_x, double marker_ra
         if (outcome != Outcome::kRefined) break;
         // Once more without the points off the line; most of them must be on it, else
         // something covers the edge (the gripper in front of the board).
-        const cv::Vec3d line = charuco_fit_line(edge);
+        const cv::Vec3d line = fit_edge_line(edge);
         std::vector<cv::Point2d> kept;
         for (const cv::Point2d& q : edge) {
           if (std::abs(line[0] * q.x + line[1] * q.y + line[2]) < 0.5) kept.push_back(q);
@@ -236,7 +227,9 @@ void refine_charuco_corners(const cv::Mat& grey, int squares_x, double marker_ra
           outcome = Outcome::kHidden;
           break;
         }
-        lines[axis] = charuco_fit_line(kept);
+        lines[axis] = fit_edge_line(kept);
+        edges[k].towards[axis] = to_image(c + v) - p;
+        edges[k].points[axis] = std::move(kept);
       }
       if (outcome != Outcome::kRefined) break;
       const cv::Vec3d crossing = lines[0].cross(lines[1]);
@@ -247,9 +240,35 @@ void refine_charuco_corners(const cv::Mat& grey, int squares_x, double marker_ra
       p = cv::Point2d(crossing[0] / crossing[2], crossing[1] / crossing[2]);
       if (cv::norm(p - initial) > 0.25 * square_px) outcome = Outcome::kHidden;
     }
-    if (outcome == Outcome::kRefined) {
-      corners[k] = cv::Point2f(static_cast<float>(p.x), static_cast<float>(p.y));
+    refined[k] = p;
+  }
+  // A lens bends the board's lines (bent_edge.hpp): each edge is taken as a parabola and its
+  // tangent at the corner kept. One parabola per edge would triple the corner's variance (its
+  // vertex and its bend trade off); the board is small against the lens, so its edges of one
+  // axis bend alike: the median bend of each axis' edges is used for all of them.
+  double bend[2] = {0.0, 0.0};
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<double> bends;
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      if (outcomes[k] != Outcome::kRefined) continue;
+      if (auto c = edge_bend(edges[k].points[axis], refined[k], edges[k].towards[axis]))
+        bends.push_back(*c);
     }
+    if (!bends.empty()) bend[axis] = median_of(bends);
+  }
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    if (outcomes[k] != Outcome::kRefined) continue;
+    cv::Point2d p = refined[k];
+    for (int pass = 0; pass < 2; ++pass) {
+      cv::Vec3d lines[2];
+      for (int axis = 0; axis < 2; ++axis) {
+        lines[axis] = edge_tangent(edges[k].points[axis], p, edges[k].towards[axis], bend[axis]);
+      }
+      const cv::Vec3d crossing = lines[0].cross(lines[1]);
+      if (std::abs(crossing[2]) < 1e-9) break;
+      p = cv::Point2d(crossing[0] / crossing[2], crossing[1] / crossing[2]);
+    }
+    corners[k] = cv::Point2f(static_cast<float>(p.x), static_cast<float>(p.y));
   }
   std::size_t kept = 0;
   for (std::size_t k = 0; k < corners.size(); ++k) {
