@@ -80,17 +80,22 @@ cv::Mat draw_charuco_board(const CalibrationPattern& pattern, int pixels_per_squ
 // square outwards within 60 % of the margin (so that the marker beyond it is not reached: a
 // margin of 1 px still works). A line is fitted to both halves' points by total least squares
 // (black lies on opposite sides of the two halves, so a level set a little too low or too high
-// moves them in opposite directions and the crossing stays put), then the points' distance from
-// it as a parabola along it, and the parabola's tangent at the corner kept: a lens bends the
-// board's lines, and the straight chord passes beside the corner (on the simulated rig's lens,
-// 0.01-0.02 px towards the image centre, which placed a board 2.3 m away 0.2-0.3 mm too far).
-// The two tangents are intersected; three passes. The directions along and across each line come from the
+// moves them in opposite directions and the crossing stays put), and the two lines are
+// intersected; three passes. The directions along and across each line come from the
 // homography of the corners found (at least 4, not all on a line; fewer are only shifted). A
 // corner keeps its shifted cv::aruco position when its edges cannot be measured (near the
 // image border, too little contrast). A corner is dropped, with its id, when something covers
 // its edges (the gripper in front of the board): an edge half found at fewer than half its
 // points, fewer than 80 % of a line's points within 0.5 px of it, or the crossing more than a
 // quarter square from cv::aruco's corner.
+//
+// Last, the lens: it bends the board's lines, and a straight line through a corner's two edge
+// halves is a chord that passes beside the corner (on the simulated rig's lens, k1 = -0.28,
+// 0.01-0.02 px towards the image centre, which placed a board 2.3 m away 0.2-0.3 mm too far;
+// issue 26). Each edge is taken as a parabola about its line (src/vision/bent_edge.hpp), its
+// bend the median of the bends of all the view's edges along the same board axis (one parabola
+// per edge would double the corners' scatter), and each corner moved to where the two
+// parabolas' tangents cross.
 void refine_charuco_corners(const cv::Mat& grey, int squares_x, double marker_ratio,
                             std::vector<int>& ids, std::vector<cv::Point2f>& corners);
 
