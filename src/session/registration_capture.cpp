@@ -387,11 +387,12 @@ Result<RegistrationCaptureResult> capture_for_registration(
       if (progress) progress(report);
       continue;
     }
-    if (options.auto_poses > 0 && !spares.empty()) {
+    if (options.auto_poses > 0) {
       auto unusable = unusable_view(options.directory, pose.frames.front(), target);
       if (!unusable) return Error{"capture: " + unusable.error().message};
       if (!unusable->empty()) {
-        // Not kept: its frames go, and the next spare pose takes its place.
+        // Not kept: its frames go, and the next spare pose takes its place (when none is left,
+        // the capture has one pose fewer: a pose without the target adds nothing).
         for (const vision::CapturedFrame& frame : pose.frames) {
           std::error_code ignored;
           std::filesystem::remove(std::filesystem::path(options.directory) / frame.left_image,
@@ -402,11 +403,16 @@ Result<RegistrationCaptureResult> capture_for_registration(
           std::filesystem::remove(
               (std::filesystem::path(options.directory) / frame.left_image).parent_path(), ignored);
         }
-        report.message = label + " replaced by another pose: " + *unusable;
+        report.message =
+            label +
+            (spares.empty() ? " dropped (no spare pose left): " : " replaced by another pose: ") +
+            *unusable;
         out.notes.push_back(report.message);
         if (progress) progress(report);
-        poses.push_back(spares.front());
-        spares.erase(spares.begin());
+        if (!spares.empty()) {
+          poses.push_back(spares.front());
+          spares.erase(spares.begin());
+        }
         continue;
       }
     }
