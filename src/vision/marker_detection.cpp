@@ -41,7 +41,11 @@ std::vector<Eigen::Vector2d> refine_marker_corners(const cv::Mat& grey,
       const Eigen::Vector2d along = (b - a) / length;
       Eigen::Vector2d normal(-along.y(), along.x());
       if (normal.dot(0.5 * (a + b) - centre) < 0) normal = -normal;  // outwards
-      const double reach = 0.5 * cell;
+      // Half a cell across the side, where the quiet zone is narrowest: a marker seen at a
+      // slant is foreshortened across some sides, and half a cell along them reached the dark
+      // beyond the quiet zone and pulled those sides in (issue 26).
+      const double cell_across = 2.0 * normal.dot(a - centre) / side_cells;
+      const double reach = 0.5 * std::min(cell, cell_across);
       const int samples = std::max(8, static_cast<int>(2 * length));
       std::vector<Eigen::Vector2d> bases;
       for (int i = 0; i < samples; ++i) {

@@ -153,6 +153,32 @@ TEST(MarkerRefinement, LightFallingOffAcrossTheMarkerDoesNotTiltItsEdges) {
   EXPECT_LT(worst, 0.15);
 }
 
+// A marker seen at a slant: foreshortened to 40 % across its top and bottom sides, its quiet
+// zone there is 0.4 of a cell in the image, and beyond it a dark plate (issue 26: the rig's
+// flange plate). Half a cell along those sides reached the plate: its edges' half-way level
+// fell and the sides were pulled in (0.69 px RMS; half a cell across them: 0.14 px, the same
+// as on a mid-grey or a light surround at this slant).
+TEST(MarkerRefinement, AMarkerSeenAtASlantKeepsItsSidesBesideADarkSurround) {
+  double sum = 0.0;
+  const int trials = 8;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < trials; ++i) {
+    // Squeezed along x, then turned a quarter: its top and bottom sides are the long ones.
+    const Corners truth = quad({64 + 4 * unit(rng), 60 + 4 * unit(rng)}, 48 + 6 * unit(rng),
+                               M_PI / 2 + 0.1 * (unit(rng) - 0.5), 0.4, 0.0);
+    test::SyntheticMarkerOptions options;
+    options.background = 15;  // the dark plate right outside the quiet zone
+    options.seed = static_cast<std::uint64_t>(i + 1);
+    const cv::Mat image = test::synthetic_marker_image(128, 120, truth, options);
+    const auto refined = detect_aruco_marker(image, 0);
+    ASSERT_EQ(refined.size(), 4u) << "trial " << i;
+    sum += rms(refined, truth);
+  }
+  std::cout << "slanted marker on a dark plate vs truth: mean rms " << sum / trials << " px\n";
+  EXPECT_LT(sum / trials, 0.2);
+}
+
 TEST(MarkerRefinement, KeepsTheCornersWhenEdgesCannotBeMeasured) {
   // Too small: sides under 8 px.
   const Corners tiny = quad({30, 30}, 7, 0.0, 1.0, 0.0);

@@ -15,9 +15,12 @@
 // the side (away from the corners, where two edges mix); a line is fitted to them by total
 // least squares, and neighbouring lines are intersected (three passes). The search along the
 // normal stays within half a cell of the current edge, so the inner bit edges (one cell further
-// in) and the quiet zone's outer edge do not interfere. The corners are returned unchanged when
-// the edges cannot be measured (low contrast, a side under 8 px, near the image border, or a
-// corner that would move more than 4 px).
+// in) and the quiet zone's outer edge do not interfere -- half a cell *across* the side (its
+// distance from the marker's centre over half the cells) when that is less than a cell along
+// it: a marker seen at a slant is foreshortened across two of its sides, and half a cell along
+// them reached the dark beyond the quiet zone and pulled them in (issue 26). The corners are
+// returned unchanged when the edges cannot be measured (low contrast, a side under 8 px, near the
+// image border, or a corner that would move more than 4 px).
 //
 // Pixels follow OpenCV (telear/vision/camera_model.hpp): the centre of the top-left pixel is (0,
 // 0). Corner order is cv::aruco's: the marker's top-left, top-right, bottom-right, bottom-left as
