@@ -117,22 +117,13 @@ Result<vision::StereoCameraModel> rough_cameras(const core::RobotModel& model,
 // will count it (a board: half its corners, vision::min_board_corners).
 Result<std::string> unusable_view(const std::string& directory, const vision::CapturedFrame& frame,
                                   const vision::RegistrationTarget& target) {
-  auto images = vision::read_captured_images(directory, frame);
-  if (!images) return images.error();
-  vision::TargetDetectionOptions detection;
-  detection.min_corners = 1;
+  auto seen = vision::detect_in_captured_frame(directory, frame, target);
+  if (!seen) return seen.error();
   const int corners = static_cast<int>(target.points().size());
   const int needed = target.is_board() ? vision::min_board_corners(target) : corners;
   std::string why;
-  cv::Mat rgb;
-  for (auto [eye, image] : {std::pair{"left", &images->left}, {"right", &images->right}}) {
-    if (image->channels() == 3) {
-      cv::cvtColor(*image, rgb, cv::COLOR_BGR2RGB);  // the folder holds what OpenCV writes
-    } else {
-      rgb = *image;
-    }
-    const vision::TargetDetection seen = vision::detect_registration_target(rgb, target, detection);
-    const int found = static_cast<int>(seen.ids.size());
+  for (auto [eye, detection] : {std::pair{"left", &(*seen)[0]}, {"right", &(*seen)[1]}}) {
+    const int found = static_cast<int>(detection->ids.size());
     if (found >= needed) continue;
     if (!why.empty()) why += ", ";
     why += std::string("the ") + eye + " eye " +
@@ -234,11 +225,9 @@ std::vector<Eigen::VectorXd> choose_capture_poses(
   }
   // The spares: the next farthest, in that order.
   if (spares) {
-    spares->clear();
-    while (static_cast<int>(chosen.size()) > count) {
-      spares->insert(spares->begin(), chosen.back());
-      chosen.pop_back();
-    }
+    const std::size_t kept = std::min(chosen.size(), static_cast<std::size_t>(count));
+    spares->assign(chosen.begin() + static_cast<std::ptrdiff_t>(kept), chosen.end());
+    chosen.resize(kept);
   }
   // Visit them in nearest-neighbour order from the start.
   std::vector<Eigen::VectorXd> ordered;

@@ -54,6 +54,27 @@ Result<CaptureObservations> detect_capture_targets(const std::string& directory,
                                 options);
 }
 
+Result<std::array<TargetDetection, 2>> detect_in_captured_frame(const std::string& directory,
+                                                                const CapturedFrame& frame,
+                                                                const RegistrationTarget& target) {
+  auto images = read_captured_images(directory, frame);
+  if (!images) return images.error();
+  TargetDetectionOptions detection;
+  detection.min_corners = 1;  // a pose's corners are counted by the caller
+  std::array<TargetDetection, 2> seen;
+  cv::Mat rgb;
+  for (auto [image, found] : {std::pair{&images->left, &seen[0]}, {&images->right, &seen[1]}}) {
+    // The folder stores what OpenCV writes (BGR); the detector takes telear's RGB.
+    if (image->channels() == 3) {
+      cv::cvtColor(*image, rgb, cv::COLOR_BGR2RGB);
+    } else {
+      rgb = *image;
+    }
+    *found = detect_registration_target(rgb, target, detection);
+  }
+  return seen;
+}
+
 Result<CaptureObservations> detect_capture_targets(const std::string& directory,
                                                    const CaptureSet& capture,
                                                    const RegistrationTarget& target,
@@ -65,27 +86,18 @@ Result<CaptureObservations> detect_capture_targets(const std::string& directory,
   const std::string what = board ? "board" : "marker";
   const int min_corners =
       options.min_corners > 0 ? options.min_corners : (board ? min_board_corners(target) : 0);
-  TargetDetectionOptions detection;
-  detection.min_corners = 1;  // the pose's average is checked against min_corners
   for (std::size_t p = 0; p < capture.poses.size(); ++p) {
     const CapturedPose& pose = capture.poses[p];
     const std::string name = "pose " + std::to_string(p);
     std::vector<FramePoints> left, right;
     for (const CapturedFrame& frame : pose.frames) {
-      auto images = read_captured_images(directory, frame);
-      if (!images) return images.error();
-      // The folder stores what OpenCV writes (BGR); the detector takes telear's RGB.
-      cv::Mat rgb;
-      for (auto [image, found] : {std::pair{&images->left, &left}, {&images->right, &right}}) {
-        if (image->channels() == 3) {
-          cv::cvtColor(*image, rgb, cv::COLOR_BGR2RGB);
-        } else {
-          rgb = *image;
-        }
-        const TargetDetection d = detect_registration_target(rgb, target, detection);
-        if (!d.found()) continue;
+      // Every corner found; the pose's average is checked against min_corners below.
+      auto seen = detect_in_captured_frame(directory, frame, target);
+      if (!seen) return seen.error();
+      for (auto [d, found] : {std::pair{&(*seen)[0], &left}, {&(*seen)[1], &right}}) {
+        if (!d->found()) continue;
         FramePoints points;
-        for (std::size_t i = 0; i < d.ids.size(); ++i) points[d.ids[i]] = d.pixels[i];
+        for (std::size_t i = 0; i < d->ids.size(); ++i) points[d->ids[i]] = d->pixels[i];
         found->push_back(std::move(points));
       }
     }

@@ -123,10 +123,6 @@ TEST_F(HandEyeRegistration, ShahLiBaselineIsExactWithoutNoise) {
   EXPECT_LT(registration_error(truth.left.T_cam_base, result->T_left_base).position_mm, 1e-3);
 }
 
-// A view a fraction of a pixel off among views that fit to hundredths (a target partly
-// hidden behind a link in the simulator: 0.16-0.24 px RMS against a median view's 0.02-0.06
-// px, issue 26 item 1) is dropped: the floor under the outlier limit is 0.1 px, not the 0.4 px
-// that kept such views and moved the registration by 0.3-0.6 mm.
 // The answer of 20 views of which the solver dropped configuration 5 alone, and said so.
 void expect_configuration_5_dropped(const Result<HandEyeResult>& result) {
   ASSERT_TRUE(result.ok()) << result.error().message;
@@ -135,6 +131,10 @@ void expect_configuration_5_dropped(const Result<HandEyeResult>& result) {
   EXPECT_THAT(result->notes.front(), HasSubstr("configuration 5 dropped as an outlier: RMS "));
 }
 
+// A view a fraction of a pixel off among views that fit to hundredths (a target partly
+// hidden behind a link in the simulator: 0.16-0.24 px RMS against a median view's 0.02-0.06
+// px, issue 26 item 1) is dropped: the floor under the outlier limit is 0.1 px, not the 0.4 px
+// that kept such views and moved the registration by 0.3-0.6 mm.
 TEST_F(HandEyeRegistration, DropsAViewAFewTenthsOfAPixelOffAmongViewsThatFitToHundredths) {
   HandEyeObservations observations = synthetic(*model, truth, 20, 0.01, 3);
   for (std::vector<TargetPixel>* eye :

@@ -18,6 +18,7 @@
 // across the board, or one marker decoded), those with 5 or more 0.01-0.05 px, and one such
 // view moved the registration by up to 0.7 mm (issue 26 item 1, docs/registration.md).
 
+#include <array>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -47,6 +48,13 @@ struct CaptureObservations {
   int left_found = 0;              // poses whose target was found in the left eye
   int right_found = 0;
 };
+
+// `target` detected in both eyes of one captured frame, left then right, as
+// detect_capture_targets detects it (every corner found, however few: min_corners 1). Errors:
+// an image that cannot be read (naming it).
+Result<std::array<TargetDetection, 2>> detect_in_captured_frame(const std::string& directory,
+                                                                const CapturedFrame& frame,
+                                                                const RegistrationTarget& target);
 
 // Reads every image of `capture` (folder `directory`) and detects `target`; views are named
 // "pose N" after the capture's order. Errors: an image that cannot be read (naming it).
