@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 
+#include "synthetic_observations.hpp"
 #include "telear/vision/camera_model.hpp"
 #include "telear/vision/registration_target.hpp"
 
@@ -74,17 +75,11 @@ cv::Mat render_through_lens(const RegistrationTarget& tg, const CameraModel& cam
 TEST(TargetThroughLensTest, BoardCornersKeepTheirScaleAndPlaceThroughABarrelLens) {
   auto target = parse_registration_target("charuco:4x4:0.08:0.05:4x4_50");
   ASSERT_TRUE(target) << target.error().message;
-  // The simulated rig's left camera (data/rigs/puma560_rig.yaml), the board 2.3 m away
-  // (squares ~18 px) and 150 px from the image centre, turned at random.
-  CameraModel camera;
-  camera.width = 640;
-  camera.height = 480;
-  camera.fx = 532.8;
-  camera.fy = 532.9;
-  camera.cx = 318.7;
-  camera.cy = 241.4;
-  camera.kc = *Distortion::from_coefficients(DistortionModel::plumb_bob,
-                                             {-0.281, 0.0712, 0.00091, -0.00042, 0.0});
+  // The simulated rig's left camera (data/cameras/puma560_stereo.yaml: k1 = -0.281), in its
+  // own frame; the board 2.3 m away (squares ~18 px) and 150 px from the image centre, turned
+  // at random.
+  CameraModel camera = test::shipped_stereo_cameras().left;
+  camera.T_cam_base = Eigen::Isometry3d::Identity();
   const std::vector<Eigen::Vector3d> points = target->points();
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
