@@ -53,11 +53,17 @@ class SocketChannel : public std::enable_shared_from_this<SocketChannel<Stream>>
   }
 
   // From any thread: queued on this connection's strand.
-  void enqueue(std::string data, bool binary, OperatorOutbox::Kind kind) {
-    asio::post(ws_.get_executor(),
-               [self = this->shared_from_this(), data = std::move(data), binary, kind]() mutable {
-                 self->queue(std::move(data), binary, kind);
-               });
+  // Queues `data` on the socket's thread. `self` is moved into the posted handler: the
+  // operator's threads (its own, the video's receive thread) hold a channel only for this
+  // call, so that their reference is never the last one -- the channel owns the operator, and
+  // its destructor joins the operator's thread, which must not happen on that thread ("Resource
+  // deadlock avoided", seen once in CI when a test ended while a tab was sending).
+  static void enqueue(std::shared_ptr<SocketChannel> self, std::string data, bool binary,
+                      OperatorOutbox::Kind kind) {
+    const auto executor = self->ws_.get_executor();
+    asio::post(executor, [self = std::move(self), data = std::move(data), binary, kind]() mutable {
+      self->queue(std::move(data), binary, kind);
+    });
   }
 
  private:
@@ -73,10 +79,10 @@ class SocketChannel : public std::enable_shared_from_this<SocketChannel<Stream>>
    public:
     explicit Outbox(std::weak_ptr<SocketChannel> channel) : channel_(std::move(channel)) {}
     void send_text(std::string message, Kind kind) override {
-      if (auto c = channel_.lock()) c->enqueue(std::move(message), false, kind);
+      if (auto c = channel_.lock()) enqueue(std::move(c), std::move(message), false, kind);
     }
     void send_binary(std::string message, Kind kind) override {
-      if (auto c = channel_.lock()) c->enqueue(std::move(message), true, kind);
+      if (auto c = channel_.lock()) enqueue(std::move(c), std::move(message), true, kind);
     }
 
    private:
